@@ -1,0 +1,412 @@
+//! Recording and submitting work: dispatches, fills, copies, barriers and timestamps, submitted
+//! once and waited for (the right default for tools and tests).
+
+use super::buffer::{BufferArg, GpuBuffer};
+use super::context::{Gpu, GpuInner};
+use super::error::{GpuError, GpuResult, VkContext};
+use super::kernel::{BindingKind, Kernel};
+use ash::vk;
+use bytemuck::Pod;
+
+/// Most timestamps one submission may write.
+pub const MAX_TIMESTAMPS: u32 = 256;
+
+/// Records commands into one command buffer. Every command that follows a write is preceded
+/// by a memory barrier, so consecutive dispatches always see each other's results.
+pub struct Recorder<'g> {
+    gpu: &'g GpuInner,
+    cmd: vk::CommandBuffer,
+    pending_write: bool,
+    queries: vk::QueryPool,
+    timestamps: u32,
+}
+
+impl Gpu {
+    /// Records with `record`, submits, and waits for completion.
+    pub fn submit<R>(
+        &self,
+        record: impl FnOnce(&mut Recorder<'_>) -> GpuResult<R>,
+    ) -> GpuResult<R> {
+        self.submit_timed(record).map(|(r, _)| r)
+    }
+
+    /// Like [`Gpu::submit`], and also returns the times of every [`Recorder::timestamp`] in
+    /// nanoseconds, in recording order.
+    pub fn submit_timed<R>(
+        &self,
+        record: impl FnOnce(&mut Recorder<'_>) -> GpuResult<R>,
+    ) -> GpuResult<(R, Vec<f64>)> {
+        let inner = &*self.inner;
+        let device = &inner.device;
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(inner.queue_family)
+            .flags(vk::CommandPoolCreateFlags::TRANSIENT);
+        let pool = unsafe { device.create_command_pool(&pool_info, None) }
+            .vk("vkCreateCommandPool", "submission")?;
+        let guard = PoolGuard {
+            device,
+            pool,
+            fence: vk::Fence::null(),
+            queries: vk::QueryPool::null(),
+        };
+        let alloc = vk::CommandBufferAllocateInfo::default()
+            .command_pool(pool)
+            .level(vk::CommandBufferLevel::PRIMARY)
+            .command_buffer_count(1);
+        let cmd = unsafe { device.allocate_command_buffers(&alloc) }
+            .vk("vkAllocateCommandBuffers", "submission")?[0];
+        unsafe {
+            device.begin_command_buffer(
+                cmd,
+                &vk::CommandBufferBeginInfo::default()
+                    .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+            )
+        }
+        .vk("vkBeginCommandBuffer", "submission")?;
+        let mut guard = guard;
+        let mut rec = Recorder {
+            gpu: inner,
+            cmd,
+            pending_write: false,
+            queries: vk::QueryPool::null(),
+            timestamps: 0,
+        };
+        let result = record(&mut rec);
+        guard.queries = rec.queries;
+        let value = result?;
+        // Make every write visible to the host that reads mapped memory after the wait.
+        let barrier = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
+            .dst_access_mask(vk::AccessFlags::HOST_READ | vk::AccessFlags::HOST_WRITE);
+        unsafe {
+            device.cmd_pipeline_barrier(
+                cmd,
+                vk::PipelineStageFlags::ALL_COMMANDS,
+                vk::PipelineStageFlags::HOST,
+                vk::DependencyFlags::empty(),
+                &[barrier],
+                &[],
+                &[],
+            );
+            device
+                .end_command_buffer(cmd)
+                .vk("vkEndCommandBuffer", "submission")?;
+        }
+        guard.fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }
+            .vk("vkCreateFence", "submission")?;
+        let cmds = [cmd];
+        let submit = [vk::SubmitInfo::default().command_buffers(&cmds)];
+        {
+            let queue = inner.queue.lock().unwrap();
+            unsafe { device.queue_submit(*queue, &submit, guard.fence) }
+                .vk("vkQueueSubmit", "submission")?;
+        }
+        match unsafe { device.wait_for_fences(&[guard.fence], true, u64::MAX) } {
+            Ok(()) => {}
+            Err(vk::Result::ERROR_DEVICE_LOST) => {
+                return Err(GpuError::Vulkan {
+                    call: "vkWaitForFences",
+                    object: "submission (device lost: a kernel faulted or hung)".into(),
+                    result: vk::Result::ERROR_DEVICE_LOST,
+                })
+            }
+            Err(result) => {
+                return Err(GpuError::Vulkan {
+                    call: "vkWaitForFences",
+                    object: "submission".into(),
+                    result,
+                })
+            }
+        }
+        let mut times = Vec::new();
+        if rec.timestamps > 0 {
+            let mut raw = vec![0u64; rec.timestamps as usize];
+            unsafe {
+                device.get_query_pool_results(
+                    rec.queries,
+                    0,
+                    &mut raw,
+                    vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+                )
+            }
+            .vk("vkGetQueryPoolResults", "timestamps")?;
+            let period = inner.info.timestamp_period_ns as f64;
+            times = raw.iter().map(|&t| t as f64 * period).collect();
+        }
+        Ok((value, times))
+    }
+}
+
+struct PoolGuard<'d> {
+    device: &'d ash::Device,
+    pool: vk::CommandPool,
+    fence: vk::Fence,
+    queries: vk::QueryPool,
+}
+
+impl Drop for PoolGuard<'_> {
+    fn drop(&mut self) {
+        unsafe {
+            if self.fence != vk::Fence::null() {
+                self.device.destroy_fence(self.fence, None);
+            }
+            if self.queries != vk::QueryPool::null() {
+                self.device.destroy_query_pool(self.queries, None);
+            }
+            self.device.destroy_command_pool(self.pool, None);
+        }
+    }
+}
+
+impl Recorder<'_> {
+    /// Emits the barrier owed to the last write, if any.
+    fn settle(&mut self) {
+        if self.pending_write {
+            self.barrier();
+        }
+    }
+
+    /// A full memory barrier between compute and transfer work.
+    pub fn barrier(&mut self) {
+        let stages = vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
+        let barrier = vk::MemoryBarrier::default()
+            .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
+            .dst_access_mask(
+                vk::AccessFlags::SHADER_READ
+                    | vk::AccessFlags::SHADER_WRITE
+                    | vk::AccessFlags::TRANSFER_READ
+                    | vk::AccessFlags::TRANSFER_WRITE,
+            );
+        unsafe {
+            self.gpu.device.cmd_pipeline_barrier(
+                self.cmd,
+                stages,
+                stages,
+                vk::DependencyFlags::empty(),
+                &[barrier],
+                &[],
+                &[],
+            )
+        };
+        self.pending_write = false;
+    }
+
+    /// Dispatches `kernel` over `groups` workgroups with descriptor `bindings` (by GLSL name)
+    /// and push constants `push`.
+    ///
+    /// # Errors
+    /// [`GpuError::KernelInterface`] when a binding is missing, unknown or repeated, or when
+    /// `P`'s size differs from the GLSL push-constant block; [`GpuError::OverLimit`] when a
+    /// buffer is larger than `maxStorageBufferRange` (large data goes through device addresses).
+    pub fn dispatch<P: Pod>(
+        &mut self,
+        kernel: &Kernel,
+        groups: [u32; 3],
+        bindings: &[(&str, BufferArg<'_>)],
+        push: &P,
+    ) -> GpuResult<()> {
+        let def = kernel.def;
+        let push_bytes: &[u8] = bytemuck::bytes_of(push);
+        if push_bytes.len() as u32 != def.push_constant_bytes {
+            return Err(GpuError::KernelInterface {
+                kernel: def.name,
+                problem: format!(
+                    "push constants are {} bytes on the host but {} bytes in GLSL",
+                    push_bytes.len(),
+                    def.push_constant_bytes
+                ),
+            });
+        }
+        let range_limit = self.gpu.info.max_storage_buffer_range;
+        let mut infos = Vec::with_capacity(def.bindings.len());
+        for (name, _) in bindings {
+            if !def.bindings.iter().any(|b| b.name == *name) {
+                let known: Vec<_> = def.bindings.iter().map(|b| b.name).collect();
+                return Err(GpuError::KernelInterface {
+                    kernel: def.name,
+                    problem: format!("no binding named {name:?} (bindings: {known:?})"),
+                });
+            }
+        }
+        for b in def.bindings {
+            let mut found = bindings.iter().filter(|(n, _)| *n == b.name);
+            let Some((_, arg)) = found.next() else {
+                return Err(GpuError::KernelInterface {
+                    kernel: def.name,
+                    problem: format!(
+                        "binding {:?} (binding = {}) was not given",
+                        b.name, b.binding
+                    ),
+                });
+            };
+            if found.next().is_some() {
+                return Err(GpuError::KernelInterface {
+                    kernel: def.name,
+                    problem: format!("binding {:?} was given twice", b.name),
+                });
+            }
+            if b.kind == BindingKind::StorageBuffer && arg.bytes > range_limit {
+                return Err(GpuError::OverLimit {
+                    what: format!(
+                        "kernel {} binding {:?} (buffer {:?})",
+                        def.name, b.name, arg.name
+                    ),
+                    requested: arg.bytes,
+                    limit_name: "maxStorageBufferRange",
+                    limit: range_limit,
+                });
+            }
+            infos.push((
+                b,
+                [vk::DescriptorBufferInfo::default()
+                    .buffer(arg.raw)
+                    .offset(0)
+                    .range(vk::WHOLE_SIZE)],
+            ));
+        }
+        let writes: Vec<_> = infos
+            .iter()
+            .map(|(b, info)| {
+                vk::WriteDescriptorSet::default()
+                    .dst_binding(b.binding)
+                    .descriptor_type(match b.kind {
+                        BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
+                        BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
+                    })
+                    .buffer_info(info)
+            })
+            .collect();
+        if groups.contains(&0) {
+            return Ok(());
+        }
+        self.settle();
+        let d = &self.gpu.device;
+        unsafe {
+            d.cmd_bind_pipeline(self.cmd, vk::PipelineBindPoint::COMPUTE, kernel.pipeline);
+            if !writes.is_empty() {
+                self.gpu.push_descriptor.cmd_push_descriptor_set(
+                    self.cmd,
+                    vk::PipelineBindPoint::COMPUTE,
+                    kernel.pipeline_layout,
+                    0,
+                    &writes,
+                );
+            }
+            if !push_bytes.is_empty() {
+                d.cmd_push_constants(
+                    self.cmd,
+                    kernel.pipeline_layout,
+                    vk::ShaderStageFlags::COMPUTE,
+                    0,
+                    push_bytes,
+                );
+            }
+            d.cmd_dispatch(self.cmd, groups[0], groups[1], groups[2]);
+        }
+        self.pending_write = true;
+        Ok(())
+    }
+
+    /// Fills the whole buffer with copies of the 32-bit `word`.
+    pub fn fill<T: Pod>(&mut self, buffer: &GpuBuffer<T>, word: u32) {
+        self.fill_raw(buffer.raw(), 0, buffer.bytes() & !3, word);
+    }
+
+    pub(crate) fn fill_raw(&mut self, buffer: vk::Buffer, offset: u64, bytes: u64, word: u32) {
+        if bytes == 0 {
+            return;
+        }
+        self.settle();
+        unsafe {
+            self.gpu
+                .device
+                .cmd_fill_buffer(self.cmd, buffer, offset, bytes, word)
+        };
+        self.pending_write = true;
+    }
+
+    /// Copies `count` elements from `src[src_offset..]` to `dst[dst_offset..]`.
+    pub fn copy<T: Pod>(
+        &mut self,
+        src: &GpuBuffer<T>,
+        src_offset: usize,
+        dst: &GpuBuffer<T>,
+        dst_offset: usize,
+        count: usize,
+    ) -> GpuResult<()> {
+        if src_offset + count > src.len() || dst_offset + count > dst.len() {
+            return Err(GpuError::InvalidArgument(format!(
+                "copy of {count} elements from {:?}[{src_offset}..] ({} long) to {:?}[{dst_offset}..] ({} long) is out of range",
+                src.name(),
+                src.len(),
+                dst.name(),
+                dst.len()
+            )));
+        }
+        let e = size_of::<T>() as u64;
+        self.copy_raw(
+            src.raw(),
+            src_offset as u64 * e,
+            dst.raw(),
+            dst_offset as u64 * e,
+            count as u64 * e,
+        );
+        Ok(())
+    }
+
+    pub(crate) fn copy_raw(
+        &mut self,
+        src: vk::Buffer,
+        src_offset: u64,
+        dst: vk::Buffer,
+        dst_offset: u64,
+        bytes: u64,
+    ) {
+        if bytes == 0 {
+            return;
+        }
+        self.settle();
+        let region = [vk::BufferCopy::default()
+            .src_offset(src_offset)
+            .dst_offset(dst_offset)
+            .size(bytes)];
+        unsafe { self.gpu.device.cmd_copy_buffer(self.cmd, src, dst, &region) };
+        self.pending_write = true;
+    }
+
+    /// Writes a timestamp once all previously recorded work has finished; the times come back
+    /// from [`Gpu::submit_timed`].
+    ///
+    /// # Errors
+    /// More than [`MAX_TIMESTAMPS`] in one submission, or a query-pool creation failure.
+    pub fn timestamp(&mut self) -> GpuResult<()> {
+        if self.queries == vk::QueryPool::null() {
+            let info = vk::QueryPoolCreateInfo::default()
+                .query_type(vk::QueryType::TIMESTAMP)
+                .query_count(MAX_TIMESTAMPS);
+            self.queries = unsafe { self.gpu.device.create_query_pool(&info, None) }
+                .vk("vkCreateQueryPool", "timestamps")?;
+            unsafe {
+                self.gpu
+                    .device
+                    .cmd_reset_query_pool(self.cmd, self.queries, 0, MAX_TIMESTAMPS)
+            };
+        }
+        if self.timestamps >= MAX_TIMESTAMPS {
+            return Err(GpuError::InvalidArgument(format!(
+                "more than {MAX_TIMESTAMPS} timestamps in one submission"
+            )));
+        }
+        self.settle();
+        unsafe {
+            self.gpu.device.cmd_write_timestamp(
+                self.cmd,
+                vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                self.queries,
+                self.timestamps,
+            )
+        };
+        self.timestamps += 1;
+        Ok(())
+    }
+}

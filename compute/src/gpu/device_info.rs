@@ -1,0 +1,200 @@
+//! What lazysolid needs to know about a physical device, read once and printed by `lazysolid device`.
+
+use ash::vk;
+use std::ffi::CStr;
+
+/// Properties and limits of one physical device that lazysolid's kernels depend on.
+#[derive(Clone, Debug)]
+pub struct DeviceInfo {
+    /// Index in the loader's enumeration order (what `--device INDEX` refers to).
+    pub index: usize,
+    /// `deviceName`, e.g. `llvmpipe (LLVM 15.0.6, 256 bits)`.
+    pub name: String,
+    /// Discrete, integrated, virtual or CPU.
+    pub device_type: String,
+    /// Driver name and info string, e.g. `llvmpipe / Mesa 22.3.6 (LLVM 15.0.6)`.
+    pub driver: String,
+    /// Vulkan API version the device supports, as `major.minor.patch`.
+    pub api_version: String,
+    /// `maxStorageBufferRange`: the largest range one storage-buffer binding may cover.
+    pub max_storage_buffer_range: u64,
+    /// `maxMemoryAllocationSize`.
+    pub max_memory_allocation_size: u64,
+    /// `maxBufferSize` (Vulkan 1.3 / maintenance4), or `u64::MAX` where unreported.
+    pub max_buffer_size: u64,
+    /// Size of the largest device-local heap.
+    pub heap_size: u64,
+    /// Whether that heap is host-visible (uploads are mapped writes, no staging).
+    pub heap_host_visible: bool,
+    /// Subgroup size.
+    pub subgroup_size: u32,
+    /// `maxComputeSharedMemorySize`.
+    pub max_shared_memory: u32,
+    /// `maxComputeWorkGroupCount[0]`.
+    pub max_workgroup_count: u32,
+    /// `maxComputeWorkGroupInvocations`.
+    pub max_workgroup_invocations: u32,
+    /// `shaderBufferInt64Atomics`.
+    pub int64_atomics: bool,
+    /// `bufferDeviceAddress`.
+    pub buffer_device_address: bool,
+    /// `scalarBlockLayout`.
+    pub scalar_block_layout: bool,
+    /// Whether the compute queue has timestamps, and the nanoseconds per tick.
+    pub timestamps: bool,
+    /// `timestampPeriod` in nanoseconds.
+    pub timestamp_period_ns: f32,
+    /// Whether `VK_KHR_push_descriptor` is present.
+    pub push_descriptor: bool,
+    /// Whether subgroup arithmetic, ballot and shuffle are supported in compute shaders.
+    pub subgroup_ops: bool,
+}
+
+impl DeviceInfo {
+    pub(crate) fn is_cpu(&self) -> bool {
+        self.device_type == "cpu"
+    }
+
+    /// Preference when no device is named: discrete, integrated, virtual, then CPU.
+    pub(crate) fn preference(&self) -> u32 {
+        match self.device_type.as_str() {
+            "discrete GPU" => 0,
+            "integrated GPU" => 1,
+            "virtual GPU" => 2,
+            "cpu" => 4,
+            _ => 3,
+        }
+    }
+
+    /// The missing features that lazysolid requires, empty when the device is usable.
+    pub fn missing_requirements(&self) -> Vec<&'static str> {
+        let mut missing = Vec::new();
+        if !self.buffer_device_address {
+            missing.push("bufferDeviceAddress");
+        }
+        if !self.scalar_block_layout {
+            missing.push("scalarBlockLayout");
+        }
+        if !self.int64_atomics {
+            missing.push("shaderBufferInt64Atomics");
+        }
+        if !self.push_descriptor {
+            missing.push("VK_KHR_push_descriptor");
+        }
+        if !self.subgroup_ops {
+            missing.push("subgroup arithmetic/ballot/shuffle in compute");
+        }
+        if !self.timestamps {
+            missing.push("timestamp queries on the compute queue");
+        }
+        missing
+    }
+
+    pub(crate) fn read(
+        instance: &ash::Instance,
+        physical: vk::PhysicalDevice,
+        index: usize,
+    ) -> Self {
+        let mut driver = vk::PhysicalDeviceDriverProperties::default();
+        let mut subgroup = vk::PhysicalDeviceSubgroupProperties::default();
+        let mut maint4 = vk::PhysicalDeviceMaintenance4Properties::default();
+        let mut props2 = vk::PhysicalDeviceProperties2::default()
+            .push_next(&mut driver)
+            .push_next(&mut subgroup)
+            .push_next(&mut maint4);
+        unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
+        let props = props2.properties;
+        let mut f12 = vk::PhysicalDeviceVulkan12Features::default();
+        let mut features2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f12);
+        unsafe { instance.get_physical_device_features2(physical, &mut features2) };
+        let memory = unsafe { instance.get_physical_device_memory_properties(physical) };
+        let heaps = &memory.memory_heaps[..memory.memory_heap_count as usize];
+        let types = &memory.memory_types[..memory.memory_type_count as usize];
+        let (heap_index, heap) = heaps
+            .iter()
+            .enumerate()
+            .filter(|(_, h)| h.flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL))
+            .max_by_key(|(_, h)| h.size)
+            .or_else(|| heaps.iter().enumerate().max_by_key(|(_, h)| h.size))
+            .expect("a device has at least one heap");
+        let heap_host_visible = types.iter().any(|t| {
+            t.heap_index as usize == heap_index
+                && t.property_flags.contains(
+                    vk::MemoryPropertyFlags::HOST_VISIBLE | vk::MemoryPropertyFlags::HOST_COHERENT,
+                )
+        });
+        let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
+        let timestamps = props.limits.timestamp_compute_and_graphics == vk::TRUE
+            || families.iter().any(|f| {
+                f.queue_flags.contains(vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0
+            });
+        let extensions =
+            unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
+        let has_ext = |name: &CStr| {
+            extensions
+                .iter()
+                .any(|e| e.extension_name_as_c_str() == Ok(name))
+        };
+        let needed_ops = vk::SubgroupFeatureFlags::BASIC
+            | vk::SubgroupFeatureFlags::ARITHMETIC
+            | vk::SubgroupFeatureFlags::BALLOT
+            | vk::SubgroupFeatureFlags::SHUFFLE;
+        let text = |raw: &[std::ffi::c_char]| {
+            unsafe { CStr::from_ptr(raw.as_ptr()) }
+                .to_string_lossy()
+                .into_owned()
+        };
+        let v = props.api_version;
+        DeviceInfo {
+            index,
+            name: text(&props.device_name),
+            device_type: match props.device_type {
+                vk::PhysicalDeviceType::DISCRETE_GPU => "discrete GPU",
+                vk::PhysicalDeviceType::INTEGRATED_GPU => "integrated GPU",
+                vk::PhysicalDeviceType::VIRTUAL_GPU => "virtual GPU",
+                vk::PhysicalDeviceType::CPU => "cpu",
+                _ => "other",
+            }
+            .to_string(),
+            driver: format!(
+                "{} / {}",
+                text(&driver.driver_name),
+                text(&driver.driver_info)
+            ),
+            api_version: format!(
+                "{}.{}.{}",
+                vk::api_version_major(v),
+                vk::api_version_minor(v),
+                vk::api_version_patch(v)
+            ),
+            max_storage_buffer_range: props.limits.max_storage_buffer_range as u64,
+            max_memory_allocation_size: {
+                let mut m3 = vk::PhysicalDeviceMaintenance3Properties::default();
+                let mut p = vk::PhysicalDeviceProperties2::default().push_next(&mut m3);
+                unsafe { instance.get_physical_device_properties2(physical, &mut p) };
+                m3.max_memory_allocation_size
+            },
+            max_buffer_size: if maint4.max_buffer_size == 0 {
+                u64::MAX
+            } else {
+                maint4.max_buffer_size
+            },
+            heap_size: heap.size,
+            heap_host_visible,
+            subgroup_size: subgroup.subgroup_size,
+            max_shared_memory: props.limits.max_compute_shared_memory_size,
+            max_workgroup_count: props.limits.max_compute_work_group_count[0],
+            max_workgroup_invocations: props.limits.max_compute_work_group_invocations,
+            int64_atomics: f12.shader_buffer_int64_atomics == vk::TRUE,
+            buffer_device_address: f12.buffer_device_address == vk::TRUE,
+            scalar_block_layout: f12.scalar_block_layout == vk::TRUE,
+            timestamps,
+            timestamp_period_ns: props.limits.timestamp_period,
+            push_descriptor: has_ext(ash::khr::push_descriptor::NAME),
+            subgroup_ops: subgroup
+                .supported_stages
+                .contains(vk::ShaderStageFlags::COMPUTE)
+                && subgroup.supported_operations.contains(needed_ops),
+        }
+    }
+}

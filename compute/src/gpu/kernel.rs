@@ -1,0 +1,234 @@
+//! Compute pipelines built from the SPIR-V that `build.rs` embeds, with their interface checked
+//! at dispatch against the reflected GLSL bindings and push-constant block.
+
+use super::context::{Gpu, GpuInner};
+use super::error::{GpuError, GpuResult, VkContext};
+use crate::shader_constants::DEFAULT_WORKGROUP_SIZE;
+use ash::vk;
+use std::sync::Arc;
+
+/// Kind of a reflected descriptor binding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BindingKind {
+    /// `layout(binding = N) buffer`.
+    StorageBuffer,
+    /// `layout(binding = N) uniform`.
+    UniformBuffer,
+}
+
+/// One descriptor binding of a kernel, as reflected from its SPIR-V.
+#[derive(Clone, Copy, Debug)]
+pub struct BindingDef {
+    /// The GLSL block's instance name (or its type name when anonymous).
+    pub name: &'static str,
+    /// `binding = N` in set 0.
+    pub binding: u32,
+    /// Storage or uniform buffer.
+    pub kind: BindingKind,
+}
+
+/// A kernel as compiled at build time: generated in `crate::kernels`.
+#[derive(Clone, Copy, Debug)]
+pub struct KernelDef {
+    /// Path of the GLSL file below `glsl/`, used in every message about the kernel.
+    pub name: &'static str,
+    /// SPIR-V words.
+    pub spirv: &'static [u32],
+    /// Descriptor bindings of set 0.
+    pub bindings: &'static [BindingDef],
+    /// Size of the push-constant block in bytes (0 when there is none).
+    pub push_constant_bytes: u32,
+}
+
+/// Specialization constant id that every kernel uses for its workgroup width
+/// (`layout(local_size_x_id = 0) in;`).
+pub const WORKGROUP_SIZE_ID: u32 = 0;
+
+/// A compute pipeline with its layouts. Build once, dispatch many times.
+pub struct Kernel {
+    gpu: Arc<GpuInner>,
+    pub(crate) def: &'static KernelDef,
+    module: vk::ShaderModule,
+    pub(crate) set_layout: vk::DescriptorSetLayout,
+    pub(crate) pipeline_layout: vk::PipelineLayout,
+    pub(crate) pipeline: vk::Pipeline,
+    workgroup_size: u32,
+}
+
+impl Kernel {
+    /// Builds `def` with the default workgroup size (256).
+    pub fn new(gpu: &Gpu, def: &'static KernelDef) -> GpuResult<Kernel> {
+        Self::with_constants(gpu, def, DEFAULT_WORKGROUP_SIZE, &[])
+    }
+
+    /// Builds `def` with a workgroup width and further specialization constants `(id, value)`.
+    pub fn with_constants(
+        gpu: &Gpu,
+        def: &'static KernelDef,
+        workgroup_size: u32,
+        constants: &[(u32, u32)],
+    ) -> GpuResult<Kernel> {
+        let inner = gpu.inner.clone();
+        if workgroup_size == 0 || workgroup_size > inner.info.max_workgroup_invocations {
+            return Err(GpuError::KernelInterface {
+                kernel: def.name,
+                problem: format!("workgroup size {workgroup_size} is outside 1..={} (maxComputeWorkGroupInvocations)", inner.info.max_workgroup_invocations),
+            });
+        }
+        let device = &inner.device;
+        let module = unsafe {
+            device
+                .create_shader_module(&vk::ShaderModuleCreateInfo::default().code(def.spirv), None)
+        }
+        .vk("vkCreateShaderModule", def.name)?;
+        let bindings: Vec<_> = def
+            .bindings
+            .iter()
+            .map(|b| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(b.binding)
+                    .descriptor_type(match b.kind {
+                        BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
+                        BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
+                    })
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            })
+            .collect();
+        let set_info = vk::DescriptorSetLayoutCreateInfo::default()
+            .flags(vk::DescriptorSetLayoutCreateFlags::PUSH_DESCRIPTOR_KHR)
+            .bindings(&bindings);
+        let set_layout = match unsafe { device.create_descriptor_set_layout(&set_info, None) } {
+            Ok(l) => l,
+            Err(result) => {
+                unsafe { device.destroy_shader_module(module, None) };
+                return Err(GpuError::Vulkan {
+                    call: "vkCreateDescriptorSetLayout",
+                    object: def.name.into(),
+                    result,
+                });
+            }
+        };
+        let ranges = [vk::PushConstantRange::default()
+            .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            .size(def.push_constant_bytes)];
+        let set_layouts = [set_layout];
+        let mut layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts);
+        if def.push_constant_bytes > 0 {
+            layout_info = layout_info.push_constant_ranges(&ranges);
+        }
+        let pipeline_layout = match unsafe { device.create_pipeline_layout(&layout_info, None) } {
+            Ok(l) => l,
+            Err(result) => {
+                unsafe {
+                    device.destroy_descriptor_set_layout(set_layout, None);
+                    device.destroy_shader_module(module, None);
+                }
+                return Err(GpuError::Vulkan {
+                    call: "vkCreatePipelineLayout",
+                    object: def.name.into(),
+                    result,
+                });
+            }
+        };
+        let mut values = vec![workgroup_size];
+        let mut entries = vec![vk::SpecializationMapEntry::default()
+            .constant_id(WORKGROUP_SIZE_ID)
+            .offset(0)
+            .size(4)];
+        for (i, (id, value)) in constants.iter().enumerate() {
+            values.push(*value);
+            entries.push(
+                vk::SpecializationMapEntry::default()
+                    .constant_id(*id)
+                    .offset(4 * (i as u32 + 1))
+                    .size(4),
+            );
+        }
+        let data: &[u8] = bytemuck::cast_slice(&values);
+        let spec = vk::SpecializationInfo::default()
+            .map_entries(&entries)
+            .data(data);
+        let stage = vk::PipelineShaderStageCreateInfo::default()
+            .stage(vk::ShaderStageFlags::COMPUTE)
+            .module(module)
+            .name(c"main")
+            .specialization_info(&spec);
+        let create = [vk::ComputePipelineCreateInfo::default()
+            .stage(stage)
+            .layout(pipeline_layout)];
+        let kernel_parts = (module, set_layout, pipeline_layout);
+        let pipeline = match unsafe {
+            device.create_compute_pipelines(vk::PipelineCache::null(), &create, None)
+        } {
+            Ok(p) => p[0],
+            Err((_, result)) => {
+                unsafe {
+                    device.destroy_pipeline_layout(kernel_parts.2, None);
+                    device.destroy_descriptor_set_layout(kernel_parts.1, None);
+                    device.destroy_shader_module(kernel_parts.0, None);
+                }
+                return Err(GpuError::Vulkan {
+                    call: "vkCreateComputePipelines",
+                    object: def.name.into(),
+                    result,
+                });
+            }
+        };
+        inner.set_name(pipeline, def.name);
+        Ok(Kernel {
+            gpu: inner,
+            def,
+            module,
+            set_layout,
+            pipeline_layout,
+            pipeline,
+            workgroup_size,
+        })
+    }
+
+    /// The kernel's GLSL file below `glsl/`.
+    pub fn name(&self) -> &'static str {
+        self.def.name
+    }
+
+    /// Workgroup width the pipeline was specialized with.
+    pub fn workgroup_size(&self) -> u32 {
+        self.workgroup_size
+    }
+
+    /// Workgroup counts that cover `count` invocations (rounded up), folded into a second
+    /// dimension past `maxComputeWorkGroupCount[0]`. Kernels recover the linear group index
+    /// with `group_index()` from `glsl/include/common.glsl`.
+    pub fn groups_for(&self, count: u64) -> [u32; 3] {
+        groups_for_blocks(
+            count.div_ceil(self.workgroup_size as u64),
+            self.gpu.info.max_workgroup_count,
+        )
+    }
+
+    /// Workgroup counts for `blocks` workgroups, folded like [`Kernel::groups_for`].
+    pub fn groups(&self, blocks: u64) -> [u32; 3] {
+        groups_for_blocks(blocks, self.gpu.info.max_workgroup_count)
+    }
+}
+
+fn groups_for_blocks(blocks: u64, max_x: u32) -> [u32; 3] {
+    if blocks <= max_x as u64 {
+        return [blocks as u32, 1, 1];
+    }
+    let x = max_x.min(65535) as u64;
+    [x as u32, blocks.div_ceil(x) as u32, 1]
+}
+
+impl Drop for Kernel {
+    fn drop(&mut self) {
+        unsafe {
+            let d = &self.gpu.device;
+            d.destroy_pipeline(self.pipeline, None);
+            d.destroy_pipeline_layout(self.pipeline_layout, None);
+            d.destroy_descriptor_set_layout(self.set_layout, None);
+            d.destroy_shader_module(self.module, None);
+        }
+    }
+}

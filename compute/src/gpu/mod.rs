@@ -1,0 +1,25 @@
+//! The Vulkan core: device, validation, buffers, kernels, submission and timing.
+//!
+//! ```no_run
+//! use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuOptions};
+//! let gpu = Gpu::new(&GpuOptions::from_env())?;
+//! let data = GpuBuffer::from_slice(&gpu, "data", &[1u32, 2, 3])?;
+//! assert_eq!(data.read()?, vec![1, 2, 3]);
+//! # Ok::<(), lazysolid_compute::gpu::GpuError>(())
+//! ```
+
+mod buffer;
+mod commands;
+mod context;
+mod device_info;
+mod error;
+mod kernel;
+mod validation;
+
+pub use buffer::{BufferArg, GpuBuffer};
+pub use commands::{Recorder, MAX_TIMESTAMPS};
+pub use context::{Gpu, GpuOptions, Validation, WeakGpu, DEVICE_ENV, VALIDATION_ENV};
+pub use device_info::DeviceInfo;
+pub use error::{GpuError, GpuResult};
+pub use kernel::{BindingDef, BindingKind, Kernel, KernelDef, WORKGROUP_SIZE_ID};
+pub use validation::{ValidationLog, VALIDATION_LAYER};

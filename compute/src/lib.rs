@@ -1,0 +1,17 @@
+//! lazysolid's compute crate: an explicit Vulkan compute core (ash + gpu-allocator), the GPU
+//! primitives every structure builder uses (scan, compaction, reduce, radix sort), and — as
+//! they land — the sparse texture structures and the synthesizer.
+//!
+//! Every GPU kernel has a plain-Rust reference next to it; tests compare the two.
+
+pub mod gpu;
+pub mod prims;
+pub mod shader_constants;
+
+/// Kernels compiled from `glsl/` at build time, one module per folder.
+pub mod kernels {
+    include!(concat!(env!("OUT_DIR"), "/kernels.rs"));
+}
+
+pub use ash;
+pub use gpu_allocator;

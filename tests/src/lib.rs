@@ -1,0 +1,43 @@
+//! Shared helpers for lazysolid's integration tests.
+//!
+//! Every test runs on the device the environment picks (lavapipe on CI) with the Khronos
+//! validation layer required. [`with_gpu`] fails the test on any validation error, including
+//! leaks, which the layer reports only when the device is destroyed.
+
+use lazysolid_compute::gpu::{Gpu, GpuOptions};
+use rand::{Rng, SeedableRng};
+
+/// Runs `test` on a fresh validated device, then destroys the device and asserts that the
+/// validation layer reported no error and that no GPU object outlived the test.
+pub fn with_gpu<R>(test: impl FnOnce(&Gpu) -> R) -> R {
+    let gpu = Gpu::new(&GpuOptions::for_tests())
+        .unwrap_or_else(|e| panic!("cannot create the test device: {e}"));
+    assert!(gpu.validation_enabled());
+    let log = gpu.validation_log();
+    let weak = gpu.downgrade();
+    let result = test(&gpu);
+    drop(gpu);
+    assert!(
+        weak.is_destroyed(),
+        "a GPU object outlived its test, so the device was not destroyed"
+    );
+    assert_eq!(log.errors(), 0, "validation errors: {:#?}", log.messages());
+    result
+}
+
+/// A deterministic random generator for test data.
+pub fn rng(seed: u64) -> rand_pcg::Pcg64Mcg {
+    rand_pcg::Pcg64Mcg::seed_from_u64(seed)
+}
+
+/// `n` random `u32` drawn with `seed`.
+pub fn random_u32(n: usize, seed: u64) -> Vec<u32> {
+    let mut r = rng(seed);
+    (0..n).map(|_| r.random()).collect()
+}
+
+/// Sizes every primitive must handle: empty, one, around workgroup and tile boundaries,
+/// non-powers of two and several tiles.
+pub const EDGE_SIZES: &[usize] = &[
+    0, 1, 2, 3, 4, 5, 7, 255, 256, 257, 1000, 4095, 4096, 4097, 65_537, 1_000_003,
+];

@@ -1,0 +1,213 @@
+//! The Vulkan core on the real device: buffers, kernels, descriptor binding, limits, timing.
+
+use lazysolid_compute::gpu::{GpuBuffer, GpuError, Kernel};
+use lazysolid_compute::kernels;
+use lazysolid_tests::{random_u32, with_gpu};
+
+#[test]
+fn buffer_round_trip_and_empty_buffers() {
+    with_gpu(|gpu| {
+        let data = random_u32(10_007, 1);
+        let buf = GpuBuffer::from_slice(gpu, "round trip", &data).unwrap();
+        assert_eq!(buf.read().unwrap(), data);
+        assert_eq!(buf.read_range(17, 100).unwrap(), &data[17..117]);
+        let empty = GpuBuffer::<u32>::new(gpu, "empty", 0).unwrap();
+        assert!(empty.read().unwrap().is_empty());
+        let zeros = GpuBuffer::<u64>::zeroed(gpu, "zeros", 1000).unwrap();
+        assert!(zeros.read().unwrap().iter().all(|&z| z == 0));
+        let err = buf.write(10_000, &[1, 2, 3, 4, 5, 6, 7, 8]).unwrap_err();
+        assert!(err.to_string().contains("round trip"), "{err}");
+    });
+}
+
+#[test]
+fn descriptor_bound_copy_kernel() {
+    with_gpu(|gpu| {
+        let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+        for n in [1usize, 255, 256, 257, 100_000] {
+            let data = random_u32(n, n as u64);
+            let src = GpuBuffer::from_slice(gpu, "src", &data).unwrap();
+            let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", n).unwrap();
+            gpu.submit(|rec| {
+                rec.dispatch(
+                    &kernel,
+                    kernel.groups_for(n as u64),
+                    &[("Src", src.arg()), ("Dst", dst.arg())],
+                    &(n as u32),
+                )
+            })
+            .unwrap();
+            assert_eq!(dst.read().unwrap(), data, "n = {n}");
+        }
+    });
+}
+
+#[test]
+fn dispatch_interface_errors_name_the_kernel() {
+    with_gpu(|gpu| {
+        let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+        let a = GpuBuffer::<u32>::zeroed(gpu, "a", 16).unwrap();
+        let missing = gpu
+            .submit(|rec| rec.dispatch(&kernel, [1, 1, 1], &[("Src", a.arg())], &16u32))
+            .unwrap_err();
+        assert!(
+            matches!(missing, GpuError::KernelInterface { .. })
+                && missing.to_string().contains("Dst"),
+            "{missing}"
+        );
+        let unknown = gpu
+            .submit(|rec| {
+                rec.dispatch(
+                    &kernel,
+                    [1, 1, 1],
+                    &[("Src", a.arg()), ("Dst", a.arg()), ("Nope", a.arg())],
+                    &16u32,
+                )
+            })
+            .unwrap_err();
+        assert!(unknown.to_string().contains("Nope"), "{unknown}");
+        let push = gpu
+            .submit(|rec| {
+                rec.dispatch(
+                    &kernel,
+                    [1, 1, 1],
+                    &[("Src", a.arg()), ("Dst", a.arg())],
+                    &16u64,
+                )
+            })
+            .unwrap_err();
+        assert!(
+            push.to_string()
+                .contains("push constants are 8 bytes on the host but 4 bytes"),
+            "{push}"
+        );
+    });
+}
+
+#[test]
+fn over_limit_requests_are_refused_with_the_limit_named() {
+    with_gpu(|gpu| {
+        let info = gpu.info().clone();
+        // Larger than the heap (2 GiB on lavapipe): refused before any allocation.
+        let too_big = (info.heap_size.min(info.max_memory_allocation_size) / 4 + 1) as usize;
+        let err = GpuBuffer::<u32>::new(gpu, "huge", too_big)
+            .err()
+            .expect("over-limit buffer must be refused");
+        match &err {
+            GpuError::OverLimit {
+                limit_name,
+                requested,
+                limit,
+                ..
+            } => {
+                assert!(requested > limit);
+                assert!(
+                    [
+                        "maxMemoryAllocationSize",
+                        "device heap size",
+                        "maxBufferSize"
+                    ]
+                    .contains(limit_name),
+                    "{err}"
+                );
+            }
+            other => panic!("expected OverLimit, got {other}"),
+        }
+        assert!(err.to_string().contains("huge"), "{err}");
+        // A buffer over maxStorageBufferRange (128 MiB on lavapipe) cannot be a binding.
+        let range = info.max_storage_buffer_range;
+        if range < info.heap_size / 4 {
+            let words = (range / 4 + 1024) as usize;
+            let big = GpuBuffer::<u32>::new(gpu, "big source", words).unwrap();
+            let small = GpuBuffer::<u32>::new(gpu, "small", 16).unwrap();
+            let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+            let err = gpu
+                .submit(|rec| {
+                    rec.dispatch(
+                        &kernel,
+                        [1, 1, 1],
+                        &[("Src", big.arg()), ("Dst", small.arg())],
+                        &16u32,
+                    )
+                })
+                .unwrap_err();
+            match &err {
+                GpuError::OverLimit {
+                    limit_name, limit, ..
+                } => {
+                    assert_eq!(*limit_name, "maxStorageBufferRange");
+                    assert_eq!(*limit, range);
+                }
+                other => panic!("expected OverLimit, got {other}"),
+            }
+            assert!(
+                err.to_string().contains("big source")
+                    && err.to_string().contains("maxStorageBufferRange"),
+                "{err}"
+            );
+        }
+    });
+}
+
+#[test]
+fn timestamps_measure_elapsed_work() {
+    with_gpu(|gpu| {
+        let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+        let n = 1 << 20;
+        let src = GpuBuffer::<u32>::zeroed(gpu, "src", n).unwrap();
+        let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", n).unwrap();
+        let ((), times) = gpu
+            .submit_timed(|rec| {
+                rec.timestamp()?;
+                rec.dispatch(
+                    &kernel,
+                    kernel.groups_for(n as u64),
+                    &[("Src", src.arg()), ("Dst", dst.arg())],
+                    &(n as u32),
+                )?;
+                rec.timestamp()
+            })
+            .unwrap();
+        assert_eq!(times.len(), 2);
+        assert!(times[1] > times[0], "{times:?}");
+    });
+}
+
+#[test]
+fn a_named_device_that_does_not_exist_is_an_error_listing_devices() {
+    let options = lazysolid_compute::gpu::GpuOptions {
+        device: Some("no such device 42".into()),
+        ..Default::default()
+    };
+    let err = lazysolid_compute::gpu::Gpu::new(&options)
+        .err()
+        .expect("unknown device must be refused");
+    assert!(matches!(err, GpuError::DeviceNotFound { .. }), "{err}");
+    assert!(
+        err.to_string().contains("no such device 42") && err.to_string().contains("0: "),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_validation_layer_reports_a_provoked_error() {
+    use lazysolid_compute::ash::vk;
+    use lazysolid_compute::gpu::{Gpu, GpuOptions};
+    let gpu = Gpu::new(&GpuOptions::for_tests()).unwrap();
+    let log = gpu.validation_log();
+    assert_eq!(log.errors(), 0);
+    // A zero-sized buffer violates VUID-VkBufferCreateInfo-size-00912.
+    let info = vk::BufferCreateInfo::default()
+        .size(0)
+        .usage(vk::BufferUsageFlags::STORAGE_BUFFER);
+    if let Ok(buffer) = unsafe { gpu.device().create_buffer(&info, None) } {
+        unsafe { gpu.device().destroy_buffer(buffer, None) };
+    }
+    drop(gpu);
+    assert!(log.errors() >= 1, "the provoked error was not counted");
+    assert!(
+        log.messages().iter().any(|m| m.contains("00912")),
+        "{:?}",
+        log.messages()
+    );
+}
