@@ -184,15 +184,16 @@ fn describe(rel: &str, stem: &str, words: &[u32], plain: &[u32]) -> Result<Strin
             ));
         }
         for (binding, info) in infos {
-            let kind =
-                match info.ty {
-                    rspirv_reflect::DescriptorType::STORAGE_BUFFER => "StorageBuffer",
-                    rspirv_reflect::DescriptorType::UNIFORM_BUFFER => "UniformBuffer",
-                    other => return Err(format!(
+            let kind = match info.ty {
+                rspirv_reflect::DescriptorType::STORAGE_BUFFER => "StorageBuffer",
+                rspirv_reflect::DescriptorType::UNIFORM_BUFFER => "UniformBuffer",
+                other => {
+                    return Err(format!(
                         "{rel}: binding {binding} ({}) has unsupported descriptor type {other:?}",
                         info.name
-                    )),
-                };
+                    ))
+                }
+            };
             let name = if info.name.is_empty() {
                 block_type_name(plain, *binding).unwrap_or_default()
             } else {

@@ -1,0 +1,279 @@
+//! Stable LSD radix sort on the GPU, `RADIX_BITS` per pass: `u32` keys, or `u64` keys, each
+//! optionally carrying a `u32` value.
+//!
+//! Each pass: every invocation counts the digits of its own contiguous segment into its column
+//! of a digit-major histogram (no atomics), one exclusive scan of that histogram gives every
+//! (digit, invocation) pair its output offset, and every invocation scatters its segment in
+//! order. Segments in order and offsets ordered by (digit, invocation) make each pass stable.
+
+use super::push::{RadixCountPush, RadixScatterPush};
+use super::scan::Scan;
+use super::{check_aligned, check_len};
+use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
+use crate::kernels::prims;
+use crate::shader_constants::{DEFAULT_WORKGROUP_SIZE, RADIX_BITS, RADIX_BUCKETS};
+use bytemuck::Pod;
+
+/// Plain-Rust reference: a stable sort of `(key, value)` pairs by the low `key_bits` bits of the
+/// key (what the GPU sort computes).
+pub fn sort_pairs_cpu<K: Copy + Into<u64>, V: Copy>(
+    keys: &[K],
+    values: &[V],
+    key_bits: u32,
+) -> (Vec<K>, Vec<V>) {
+    let mask = if key_bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << key_bits) - 1
+    };
+    let mut order: Vec<usize> = (0..keys.len()).collect();
+    order.sort_by_key(|&i| keys[i].into() & mask);
+    (
+        order.iter().map(|&i| keys[i]).collect(),
+        order.iter().map(|&i| values[i]).collect(),
+    )
+}
+
+/// GPU radix sort; keeps its scratch between calls.
+pub struct RadixSort {
+    gpu: Gpu,
+    count: Kernel,
+    scatter: Kernel,
+    scan: Scan,
+    hist: Option<GpuBuffer<u32>>,
+    keys32: Option<GpuBuffer<u32>>,
+    keys64: Option<GpuBuffer<u64>>,
+    values: Option<GpuBuffer<u32>>,
+    /// Most invocations a pass uses; each owns a segment of `n / threads` keys.
+    pub max_threads: u32,
+}
+
+struct Job {
+    keys: (u64, u64),
+    values: Option<(u64, u64)>,
+    n: u32,
+    key64: bool,
+    key_bits: u32,
+}
+
+impl RadixSort {
+    /// Builds the kernels.
+    pub fn new(gpu: &Gpu) -> GpuResult<RadixSort> {
+        Ok(RadixSort {
+            gpu: gpu.clone(),
+            count: Kernel::new(gpu, &prims::RADIX_COUNT)?,
+            scatter: Kernel::new(gpu, &prims::RADIX_SCATTER)?,
+            scan: Scan::new(gpu)?,
+            hist: None,
+            keys32: None,
+            keys64: None,
+            values: None,
+            max_threads: 4096,
+        })
+    }
+
+    /// Records an in-place sort of `keys[..n]` by their low `key_bits` bits (1..=32).
+    pub fn record_u32(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        keys: &GpuBuffer<u32>,
+        n: usize,
+        key_bits: u32,
+    ) -> GpuResult<()> {
+        self.record_any(rec, keys, None, n, key_bits, 32)
+    }
+
+    /// Records an in-place sort of `keys[..n]` by their low `key_bits` bits (1..=32), moving
+    /// `values[..n]` along.
+    pub fn record_u32_pairs(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        keys: &GpuBuffer<u32>,
+        values: &GpuBuffer<u32>,
+        n: usize,
+        key_bits: u32,
+    ) -> GpuResult<()> {
+        self.record_any(rec, keys, Some(values), n, key_bits, 32)
+    }
+
+    /// Records an in-place sort of `u64` `keys[..n]` by their low `key_bits` bits (1..=64),
+    /// moving `values[..n]` along when given.
+    pub fn record_u64(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        keys: &GpuBuffer<u64>,
+        values: Option<&GpuBuffer<u32>>,
+        n: usize,
+        key_bits: u32,
+    ) -> GpuResult<()> {
+        self.record_any(rec, keys, values, n, key_bits, 64)
+    }
+
+    fn record_any<K: Pod>(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        keys: &GpuBuffer<K>,
+        values: Option<&GpuBuffer<u32>>,
+        n: usize,
+        key_bits: u32,
+        width: u32,
+    ) -> GpuResult<()> {
+        if key_bits == 0 || key_bits > width {
+            return Err(GpuError::InvalidArgument(format!(
+                "radix sort of {:?}: key_bits {key_bits} is outside 1..={width}",
+                keys.name()
+            )));
+        }
+        check_len(&format!("radix sort of {:?}", keys.name()), n, keys.len())?;
+        check_aligned(keys.name(), keys.address())?;
+        if let Some(v) = values {
+            check_len(&format!("radix sort values {:?}", v.name()), n, v.len())?;
+        }
+        if n <= 1 {
+            return Ok(());
+        }
+        let key64 = width == 64;
+        let scratch_keys = if key64 {
+            if self.keys64.as_ref().is_none_or(|b| b.len() < n) {
+                self.keys64 = Some(GpuBuffer::new(
+                    &self.gpu,
+                    "radix sort scratch keys (u64)",
+                    n,
+                )?);
+            }
+            self.keys64.as_ref().unwrap().address()
+        } else {
+            if self.keys32.as_ref().is_none_or(|b| b.len() < n) {
+                self.keys32 = Some(GpuBuffer::new(
+                    &self.gpu,
+                    "radix sort scratch keys (u32)",
+                    n,
+                )?);
+            }
+            self.keys32.as_ref().unwrap().address()
+        };
+        let scratch_values = match values {
+            Some(v) => {
+                if self.values.as_ref().is_none_or(|b| b.len() < n) {
+                    self.values = Some(GpuBuffer::new(&self.gpu, "radix sort scratch values", n)?);
+                }
+                Some((v.address(), self.values.as_ref().unwrap().address()))
+            }
+            None => None,
+        };
+        let passes = key_bits.div_ceil(RADIX_BITS);
+        let job = Job {
+            keys: (keys.address(), scratch_keys),
+            values: scratch_values,
+            n: n as u32,
+            key64,
+            key_bits,
+        };
+        self.record_passes(rec, &job)?;
+        if passes % 2 == 1 {
+            // The result sits in the scratch buffers: copy it home.
+            let scratch = if key64 {
+                self.keys64.as_ref().unwrap().raw()
+            } else {
+                self.keys32.as_ref().unwrap().raw()
+            };
+            rec.copy_raw(
+                scratch,
+                0,
+                keys.raw(),
+                0,
+                keys.bytes().min((n * size_of::<K>()) as u64),
+            );
+            if let Some(v) = values {
+                rec.copy(self.values.as_ref().unwrap(), 0, v, 0, n)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn threads_for(&self, n: u32) -> u32 {
+        let wg = DEFAULT_WORKGROUP_SIZE;
+        let wanted = n.div_ceil(2048).div_ceil(wg) * wg;
+        wanted.clamp(wg, self.max_threads.max(wg))
+    }
+
+    fn record_passes(&mut self, rec: &mut Recorder<'_>, job: &Job) -> GpuResult<()> {
+        let threads = self.threads_for(job.n);
+        let seg_len = job.n.div_ceil(threads);
+        let hist_len = (RADIX_BUCKETS * threads) as usize;
+        if self.hist.as_ref().is_none_or(|h| h.len() < hist_len) {
+            self.hist = Some(GpuBuffer::new(&self.gpu, "radix sort histogram", hist_len)?);
+        }
+        let hist = self.hist.as_ref().unwrap();
+        let groups = self.count.groups_for(threads as u64);
+        for pass in 0..job.key_bits.div_ceil(RADIX_BITS) {
+            let (src, dst) = if pass % 2 == 0 {
+                job.keys
+            } else {
+                (job.keys.1, job.keys.0)
+            };
+            let (vsrc, vdst) = match job.values {
+                Some((a, b)) if pass % 2 == 0 => (a, b),
+                Some((a, b)) => (b, a),
+                None => (0, 0),
+            };
+            let shift = pass * RADIX_BITS;
+            let key64 = job.key64 as u32;
+            // The last pass may have fewer bits left than a full digit.
+            let digit_mask = (1u32 << (job.key_bits - shift).min(RADIX_BITS)) - 1;
+            rec.dispatch(
+                &self.count,
+                groups,
+                &[],
+                &RadixCountPush {
+                    keys: src,
+                    hist: hist.address(),
+                    n: job.n,
+                    seg_len,
+                    threads,
+                    shift,
+                    digit_mask,
+                    key64,
+                },
+            )?;
+            self.scan.record(rec, hist, hist, hist_len, None)?;
+            let push = RadixScatterPush {
+                keys_in: src,
+                keys_out: dst,
+                vals_in: vsrc,
+                vals_out: vdst,
+                hist: hist.address(),
+                n: job.n,
+                seg_len,
+                threads,
+                shift,
+                digit_mask,
+                key64,
+            };
+            rec.dispatch(&self.scatter, groups, &[], &push)?;
+        }
+        Ok(())
+    }
+
+    /// Sorts `keys` on the GPU and reads them back.
+    pub fn run_u32(&mut self, keys: &[u32]) -> GpuResult<Vec<u32>> {
+        let gpu = self.gpu.clone();
+        let buf = GpuBuffer::from_slice(&gpu, "radix sort keys", keys)?;
+        gpu.submit(|rec| self.record_u32(rec, &buf, keys.len(), 32))?;
+        buf.read()
+    }
+
+    /// Sorts `(keys, values)` pairs by key on the GPU and reads them back.
+    pub fn run_u64_pairs(
+        &mut self,
+        keys: &[u64],
+        values: &[u32],
+        key_bits: u32,
+    ) -> GpuResult<(Vec<u64>, Vec<u32>)> {
+        let gpu = self.gpu.clone();
+        let k = GpuBuffer::from_slice(&gpu, "radix sort keys", keys)?;
+        let v = GpuBuffer::from_slice(&gpu, "radix sort values", values)?;
+        gpu.submit(|rec| self.record_u64(rec, &k, Some(&v), keys.len(), key_bits))?;
+        Ok((k.read()?, v.read()?))
+    }
+}

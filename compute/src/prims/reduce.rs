@@ -1,0 +1,145 @@
+//! Reduction of `u32` words to one: wrapping sum, minimum or maximum, by repeated tile
+//! reductions until one word is left.
+
+use super::push::ReducePush;
+use super::{check_aligned, check_len};
+use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use crate::kernels::prims;
+use crate::shader_constants::{
+    DEFAULT_WORKGROUP_SIZE, REDUCE_OP_MAX, REDUCE_OP_MIN, REDUCE_OP_SUM, SCAN_TILE,
+};
+
+/// The reduction operator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReduceOp {
+    /// Wrapping sum (modulo 2^32), identity 0.
+    Sum,
+    /// Minimum, identity `u32::MAX`.
+    Min,
+    /// Maximum, identity 0.
+    Max,
+}
+
+impl ReduceOp {
+    /// The value an empty input reduces to.
+    pub fn identity(self) -> u32 {
+        match self {
+            ReduceOp::Min => u32::MAX,
+            ReduceOp::Sum | ReduceOp::Max => 0,
+        }
+    }
+
+    fn index(self) -> usize {
+        match self {
+            ReduceOp::Sum => 0,
+            ReduceOp::Min => 1,
+            ReduceOp::Max => 2,
+        }
+    }
+}
+
+/// Plain-Rust reference.
+pub fn reduce_cpu(input: &[u32], op: ReduceOp) -> u32 {
+    match op {
+        ReduceOp::Sum => input.iter().fold(0u32, |a, &b| a.wrapping_add(b)),
+        ReduceOp::Min => input.iter().copied().min().unwrap_or(u32::MAX),
+        ReduceOp::Max => input.iter().copied().max().unwrap_or(0),
+    }
+}
+
+/// GPU reduction; keeps its scratch between calls.
+pub struct Reduce {
+    gpu: Gpu,
+    kernels: [Kernel; 3],
+    levels: Vec<GpuBuffer<u32>>,
+}
+
+impl Reduce {
+    /// Builds one specialized kernel per operator.
+    pub fn new(gpu: &Gpu) -> GpuResult<Reduce> {
+        let k = |op| {
+            Kernel::with_constants(
+                gpu,
+                &prims::REDUCE_TILES,
+                DEFAULT_WORKGROUP_SIZE,
+                &[(1, op)],
+            )
+        };
+        Ok(Reduce {
+            gpu: gpu.clone(),
+            kernels: [k(REDUCE_OP_SUM)?, k(REDUCE_OP_MIN)?, k(REDUCE_OP_MAX)?],
+            levels: Vec::new(),
+        })
+    }
+
+    /// Records the reduction of `src[..n]` into `result[0]`.
+    pub fn record(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        src: &GpuBuffer<u32>,
+        n: usize,
+        op: ReduceOp,
+        result: &GpuBuffer<u32>,
+    ) -> GpuResult<()> {
+        check_len(&format!("reduce of {:?}", src.name()), n, src.len())?;
+        check_len(
+            &format!("reduce result {:?}", result.name()),
+            1,
+            result.len(),
+        )?;
+        check_aligned(src.name(), src.address())?;
+        if n == 0 {
+            rec.fill(result, op.identity());
+            return Ok(());
+        }
+        if n == 1 {
+            return rec.copy(src, 0, result, 0, 1);
+        }
+        // Level sizes: n -> ceil(n / TILE) -> ... -> 1; intermediate levels live in scratch.
+        let mut sizes = vec![n];
+        while *sizes.last().unwrap() > 1 {
+            sizes.push(sizes.last().unwrap().div_ceil(SCAN_TILE as usize));
+        }
+        for (level, &size) in sizes[1..sizes.len() - 1].iter().enumerate() {
+            if self.levels.get(level).is_none_or(|b| b.len() < size) {
+                let buffer =
+                    GpuBuffer::new(&self.gpu, format!("reduce partials (level {level})"), size)?;
+                if level < self.levels.len() {
+                    self.levels[level] = buffer;
+                } else {
+                    self.levels.push(buffer);
+                }
+            }
+        }
+        let kernel = &self.kernels[op.index()];
+        let mut from = src.address();
+        for i in 0..sizes.len() - 1 {
+            let to = if i + 2 == sizes.len() {
+                result.address()
+            } else {
+                self.levels[i].address()
+            };
+            rec.dispatch(
+                kernel,
+                kernel.groups(sizes[i + 1] as u64),
+                &[],
+                &ReducePush {
+                    src: from,
+                    dst: to,
+                    n: sizes[i] as u32,
+                },
+            )?;
+            from = to;
+        }
+        Ok(())
+    }
+
+    /// Reduces `input` on the GPU and reads the result back.
+    pub fn run(&mut self, input: &[u32], op: ReduceOp) -> GpuResult<u32> {
+        let gpu = self.gpu.clone();
+        let buf = GpuBuffer::from_slice(&gpu, "reduce input", input)?;
+        let result = GpuBuffer::<u32>::new(&gpu, "reduce result", 1)?;
+        gpu.submit(|rec| self.record(rec, &buf, input.len(), op, &result))?;
+        Ok(result.read()?[0])
+    }
+}
