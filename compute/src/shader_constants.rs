@@ -9,10 +9,10 @@
 pub const DEFAULT_WORKGROUP_SIZE: u32 = 256;
 
 /// Elements each invocation of the scan and reduce kernels owns (four `uvec4` loads).
-pub const SCAN_ITEMS_PER_THREAD: u32 = 16;
+pub const SCAN_ITEMS_PER_THREAD: u32 = 8;
 
 /// Elements in one scan/reduce tile: `DEFAULT_WORKGROUP_SIZE * SCAN_ITEMS_PER_THREAD`.
-pub const SCAN_TILE: u32 = 4096;
+pub const SCAN_TILE: u32 = 2048;
 
 /// Bits of the key consumed by one radix-sort pass.
 pub const RADIX_BITS: u32 = 8;
@@ -33,5 +33,4 @@ pub const COMPACT_BY_FLAGS: u32 = 0;
 /// See [`COMPACT_BY_FLAGS`].
 pub const COMPACT_BY_SENTINEL: u32 = 1;
 
-const _: () = assert!(SCAN_TILE == DEFAULT_WORKGROUP_SIZE * SCAN_ITEMS_PER_THREAD);
 const _: () = assert!(RADIX_BUCKETS == 1 << RADIX_BITS);

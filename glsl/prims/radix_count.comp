@@ -2,6 +2,9 @@
 // Radix sort, step 1 of a pass: invocation t owns the contiguous segment
 // [t * seg_len, (t + 1) * seg_len) of the keys and counts its digits into its own column of the
 // digit-major histogram hist[digit * threads + t]. No atomics: every counter has one writer.
+// The counting itself happens in a private array (cheaper than buffer memory on lavapipe).
+// u32 keys are read four at a time (seg_len is a multiple of 4): on lavapipe every per-lane
+// memory access costs about the same whatever its width.
 #include "common.glsl"
 
 layout(push_constant, scalar) uniform Push {
@@ -21,8 +24,10 @@ void main() {
         return;
     }
     U32Ptr hist = U32Ptr(pc.hist);
+    uint buckets = pc.digit_mask + 1u;
+    uint c[RADIX_BUCKETS];
     for (uint d = 0; d < RADIX_BUCKETS; ++d) {
-        hist.v[d * pc.threads + t] = 0u;
+        c[d] = 0u;
     }
     uint begin = min(t * pc.seg_len, pc.n);
     uint end = min(begin + pc.seg_len, pc.n);
@@ -30,13 +35,25 @@ void main() {
         U64Ptr keys = U64Ptr(pc.keys);
         for (uint i = begin; i < end; ++i) {
             uint d = uint(keys.v[i] >> pc.shift) & pc.digit_mask;
-            hist.v[d * pc.threads + t] += 1u;
+            c[d] += 1u;
         }
     } else {
-        U32Ptr keys = U32Ptr(pc.keys);
-        for (uint i = begin; i < end; ++i) {
-            uint d = (keys.v[i] >> pc.shift) & pc.digit_mask;
-            hist.v[d * pc.threads + t] += 1u;
+        uint i = begin;
+        UVec4Ptr quads = UVec4Ptr(pc.keys);
+        for (; i + 4u <= end; i += 4u) {
+            uvec4 d = (quads.v[i / 4u] >> pc.shift) & pc.digit_mask;
+            c[d.x] += 1u;
+            c[d.y] += 1u;
+            c[d.z] += 1u;
+            c[d.w] += 1u;
         }
+        U32Ptr keys = U32Ptr(pc.keys);
+        for (; i < end; ++i) {
+            uint d = (keys.v[i] >> pc.shift) & pc.digit_mask;
+            c[d] += 1u;
+        }
+    }
+    for (uint d = 0; d < buckets; ++d) {
+        hist.v[d * pc.threads + t] = c[d];
     }
 }

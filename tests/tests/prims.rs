@@ -35,6 +35,30 @@ fn scan_edge_sizes() {
 }
 
 #[test]
+fn scan_and_reduce_with_short_segments_as_on_gpus() {
+    with_gpu(|gpu| {
+        // GPUs get 16-word segments: deeper recursion and many more chunks per binding.
+        let mut scan = Scan::new(gpu).unwrap();
+        scan.segment_length = Some(16);
+        let mut reduce = Reduce::new(gpu).unwrap();
+        reduce.segment_length = Some(16);
+        for &n in EDGE_SIZES {
+            let input = random_u32(n, 41 + n as u64);
+            assert_eq!(
+                scan.run(&input).unwrap(),
+                exclusive_scan_cpu(&input),
+                "n = {n}"
+            );
+            assert_eq!(
+                reduce.run(&input, ReduceOp::Max).unwrap(),
+                reduce_cpu(&input, ReduceOp::Max),
+                "n = {n}"
+            );
+        }
+    });
+}
+
+#[test]
 fn reduce_edge_sizes_all_ops() {
     with_gpu(|gpu| {
         let mut reduce = Reduce::new(gpu).unwrap();
@@ -114,7 +138,7 @@ fn radix_sort_pairs_are_stable_for_every_key_width() {
         for &n in EDGE_SIZES {
             // Few distinct keys, so stability is visible in the values.
             let keys: Vec<u64> = (0..n)
-                .map(|_| r.random::<u64>() % 1000 | (r.random::<u64>() << 40))
+                .map(|_| (r.random::<u64>() % 1000) | (r.random::<u64>() << 40))
                 .collect();
             let values: Vec<u32> = (0..n as u32).collect();
             for bits in [64, 40, 13, 8, 1] {

@@ -1,1 +1,55 @@
-fn main() {}
+//! `lazysolid`: the command-line front end of lazysolid.
+
+mod bench;
+mod cli;
+
+use clap::{Parser, Subcommand};
+
+/// GPU sparse texture structures, lazy solid texture synthesis and a path tracer, in explicit
+/// Vulkan compute.
+#[derive(Parser)]
+#[command(name = "lazysolid", version, about)]
+struct Cli {
+    /// Vulkan device: a case-insensitive part of its name, or its index from `lazysolid device`.
+    /// Defaults to a real GPU when one is present, else lavapipe.
+    #[arg(long, global = true, env = "LAZYSOLID_DEVICE")]
+    device: Option<String>,
+
+    /// Print the chosen device and progress details.
+    #[arg(long, short, global = true)]
+    verbose: bool,
+
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the Vulkan devices with the limits and features lazysolid relies on.
+    Device,
+    /// Run a benchmark suite; tables go to stdout, CSV and JSON to the results folder.
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    env_logger::Builder::from_env(
+        env_logger::Env::default().default_filter_or(if cli.verbose { "info" } else { "warn" }),
+    )
+    .init();
+    let result = match cli.command {
+        Command::Device => cli::device::run(cli.device.as_deref()),
+        Command::Bench(b) => bench::run(
+            b,
+            &cli::GlobalArgs {
+                device: cli.device,
+                verbose: cli.verbose,
+            },
+        ),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}

@@ -19,6 +19,7 @@ pub struct GpuBuffer<T: Pod> {
     raw: vk::Buffer,
     allocation: Option<Allocation>,
     len: usize,
+    physical_bytes: u64,
     address: u64,
     name: String,
     _element: PhantomData<T>,
@@ -28,6 +29,7 @@ pub struct GpuBuffer<T: Pod> {
 #[derive(Clone, Copy, Debug)]
 pub struct BufferArg<'a> {
     pub(crate) raw: vk::Buffer,
+    pub(crate) offset: u64,
     pub(crate) bytes: u64,
     pub(crate) name: &'a str,
 }
@@ -61,8 +63,9 @@ impl<T: Pod> GpuBuffer<T> {
                 });
             }
         }
-        // Vulkan forbids empty buffers; an empty one still owns a minimal allocation.
-        let bytes = requested.max(16);
+        // Vulkan forbids empty buffers; an empty one still owns a minimal allocation. Sizes are
+        // padded to 16 bytes so kernels may read the last, partial uvec4 of a binding.
+        let bytes = requested.max(16).next_multiple_of(16);
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER
             | vk::BufferUsageFlags::UNIFORM_BUFFER
             | vk::BufferUsageFlags::TRANSFER_SRC
@@ -121,6 +124,7 @@ impl<T: Pod> GpuBuffer<T> {
             raw,
             allocation: Some(allocation),
             len,
+            physical_bytes: bytes,
             address,
             name,
             _element: PhantomData,
@@ -182,9 +186,46 @@ impl<T: Pod> GpuBuffer<T> {
     pub fn arg(&self) -> BufferArg<'_> {
         BufferArg {
             raw: self.raw,
-            bytes: self.bytes(),
+            offset: 0,
+            bytes: self
+                .bytes()
+                .next_multiple_of(16)
+                .clamp(16, self.physical_bytes),
             name: &self.name,
         }
+    }
+
+    /// Elements `first .. first + count` as a dispatch argument: how data larger than
+    /// `maxStorageBufferRange` is bound piece by piece. The byte offset must be a multiple of
+    /// `minStorageBufferOffsetAlignment`; the range is padded to whole uvec4 (see `new`).
+    ///
+    /// # Errors
+    /// An empty range, a range outside the buffer, or a misaligned offset.
+    pub fn arg_range(&self, first: usize, count: usize) -> GpuResult<BufferArg<'_>> {
+        self.check_range(first, count)?;
+        if count == 0 {
+            return Err(GpuError::InvalidArgument(format!(
+                "buffer {:?}: an empty range cannot be bound",
+                self.name
+            )));
+        }
+        let offset = (first * size_of::<T>()) as u64;
+        let align = self.gpu.info.min_storage_buffer_offset_alignment.max(1);
+        if offset % align != 0 {
+            return Err(GpuError::InvalidArgument(format!(
+                "buffer {:?}: binding offset {offset} bytes is not a multiple of minStorageBufferOffsetAlignment = {align}",
+                self.name
+            )));
+        }
+        let bytes = ((count * size_of::<T>()) as u64)
+            .next_multiple_of(16)
+            .min(self.physical_bytes - offset);
+        Ok(BufferArg {
+            raw: self.raw,
+            offset,
+            bytes,
+            name: &self.name,
+        })
     }
 
     fn mapped(&self) -> Option<*mut u8> {

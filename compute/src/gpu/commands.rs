@@ -260,8 +260,8 @@ impl Recorder<'_> {
                 b,
                 [vk::DescriptorBufferInfo::default()
                     .buffer(arg.raw)
-                    .offset(0)
-                    .range(vk::WHOLE_SIZE)],
+                    .offset(arg.offset)
+                    .range(arg.bytes)],
             ));
         }
         let writes: Vec<_> = infos

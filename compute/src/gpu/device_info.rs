@@ -18,6 +18,8 @@ pub struct DeviceInfo {
     pub api_version: String,
     /// `maxStorageBufferRange`: the largest range one storage-buffer binding may cover.
     pub max_storage_buffer_range: u64,
+    /// `minStorageBufferOffsetAlignment`.
+    pub min_storage_buffer_offset_alignment: u64,
     /// `maxMemoryAllocationSize`.
     pub max_memory_allocation_size: u64,
     /// `maxBufferSize` (Vulkan 1.3 / maintenance4), or `u64::MAX` where unreported.
@@ -168,6 +170,7 @@ impl DeviceInfo {
                 vk::api_version_patch(v)
             ),
             max_storage_buffer_range: props.limits.max_storage_buffer_range as u64,
+            min_storage_buffer_offset_alignment: props.limits.min_storage_buffer_offset_alignment,
             max_memory_allocation_size: {
                 let mut m3 = vk::PhysicalDeviceMaintenance3Properties::default();
                 let mut p = vk::PhysicalDeviceProperties2::default().push_next(&mut m3);

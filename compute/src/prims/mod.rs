@@ -8,10 +8,11 @@
 //! one submission, and also offers a one-call convenience that submits and reads back.
 
 mod compact;
-mod push;
+pub mod push;
 mod radix_sort;
 mod reduce;
 mod scan;
+mod segments;
 
 pub use compact::{compact_cpu, CompactOutput, Compactor, Keep, KeepCpu};
 pub use radix_sort::{sort_pairs_cpu, RadixSort};

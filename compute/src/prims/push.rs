@@ -6,24 +6,6 @@ use bytemuck::{Pod, Zeroable};
 
 #[derive(Clone, Copy, Pod, Zeroable)]
 #[repr(C, packed(4))]
-pub(crate) struct ReducePush {
-    pub src: u64,
-    pub dst: u64,
-    pub n: u32,
-}
-
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub(crate) struct ScanPush {
-    pub src: u64,
-    pub dst: u64,
-    pub carries: u64,
-    pub total: u64,
-    pub n: u32,
-}
-
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
 pub(crate) struct CompactMarkPush {
     pub values: u64,
     pub flags: u64,

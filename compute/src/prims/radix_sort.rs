@@ -68,7 +68,7 @@ impl RadixSort {
             keys32: None,
             keys64: None,
             values: None,
-            max_threads: 4096,
+            max_threads: 2048,
         })
     }
 
@@ -199,14 +199,15 @@ impl RadixSort {
 
     fn record_passes(&mut self, rec: &mut Recorder<'_>, job: &Job) -> GpuResult<()> {
         let threads = self.threads_for(job.n);
-        let seg_len = job.n.div_ceil(threads);
+        let seg_len = job.n.div_ceil(threads).next_multiple_of(4);
+        let bits = RADIX_BITS;
         let hist_len = (RADIX_BUCKETS * threads) as usize;
         if self.hist.as_ref().is_none_or(|h| h.len() < hist_len) {
             self.hist = Some(GpuBuffer::new(&self.gpu, "radix sort histogram", hist_len)?);
         }
         let hist = self.hist.as_ref().unwrap();
         let groups = self.count.groups_for(threads as u64);
-        for pass in 0..job.key_bits.div_ceil(RADIX_BITS) {
+        for pass in 0..job.key_bits.div_ceil(bits) {
             let (src, dst) = if pass % 2 == 0 {
                 job.keys
             } else {
@@ -217,10 +218,10 @@ impl RadixSort {
                 Some((a, b)) => (b, a),
                 None => (0, 0),
             };
-            let shift = pass * RADIX_BITS;
+            let shift = pass * bits;
             let key64 = job.key64 as u32;
             // The last pass may have fewer bits left than a full digit.
-            let digit_mask = (1u32 << (job.key_bits - shift).min(RADIX_BITS)) - 1;
+            let digit_mask = (1u32 << (job.key_bits - shift).min(bits)) - 1;
             rec.dispatch(
                 &self.count,
                 groups,

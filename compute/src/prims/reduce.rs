@@ -1,12 +1,12 @@
 //! Reduction of `u32` words to one: wrapping sum, minimum or maximum, by repeated tile
 //! reductions until one word is left.
 
-use super::push::ReducePush;
-use super::{check_aligned, check_len};
+use super::check_len;
+use super::segments::{reduce_segments, Split};
 use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{
-    DEFAULT_WORKGROUP_SIZE, REDUCE_OP_MAX, REDUCE_OP_MIN, REDUCE_OP_SUM, SCAN_TILE,
+    DEFAULT_WORKGROUP_SIZE, REDUCE_OP_MAX, REDUCE_OP_MIN, REDUCE_OP_SUM,
 };
 
 /// The reduction operator.
@@ -52,6 +52,9 @@ pub struct Reduce {
     gpu: Gpu,
     kernels: [Kernel; 3],
     levels: Vec<GpuBuffer<u32>>,
+    /// Words per invocation; `None` picks by device type (long on CPU devices, 16 on GPUs).
+    /// Set it to test or tune the other policy.
+    pub segment_length: Option<usize>,
 }
 
 impl Reduce {
@@ -60,7 +63,7 @@ impl Reduce {
         let k = |op| {
             Kernel::with_constants(
                 gpu,
-                &prims::REDUCE_TILES,
+                &prims::REDUCE_SEGMENTS,
                 DEFAULT_WORKGROUP_SIZE,
                 &[(1, op)],
             )
@@ -69,6 +72,7 @@ impl Reduce {
             gpu: gpu.clone(),
             kernels: [k(REDUCE_OP_SUM)?, k(REDUCE_OP_MIN)?, k(REDUCE_OP_MAX)?],
             levels: Vec::new(),
+            segment_length: None,
         })
     }
 
@@ -87,7 +91,6 @@ impl Reduce {
             1,
             result.len(),
         )?;
-        check_aligned(src.name(), src.address())?;
         if n == 0 {
             rec.fill(result, op.identity());
             return Ok(());
@@ -95,11 +98,16 @@ impl Reduce {
         if n == 1 {
             return rec.copy(src, 0, result, 0, 1);
         }
-        // Level sizes: n -> ceil(n / TILE) -> ... -> 1; intermediate levels live in scratch.
-        let mut sizes = vec![n];
-        while *sizes.last().unwrap() > 1 {
-            sizes.push(sizes.last().unwrap().div_ceil(SCAN_TILE as usize));
+        // Level sizes: n -> its segment count -> ... -> 1; intermediate levels live in scratch.
+        let mut splits = vec![Split::new(n, self.gpu.info(), self.segment_length)];
+        while splits.last().unwrap().segments > 1 {
+            splits.push(Split::new(
+                splits.last().unwrap().segments,
+                self.gpu.info(),
+                self.segment_length,
+            ));
         }
+        let sizes: Vec<usize> = splits.iter().map(|s| s.n).chain([1]).collect();
         for (level, &size) in sizes[1..sizes.len() - 1].iter().enumerate() {
             if self.levels.get(level).is_none_or(|b| b.len() < size) {
                 let buffer =
@@ -112,24 +120,14 @@ impl Reduce {
             }
         }
         let kernel = &self.kernels[op.index()];
-        let mut from = src.address();
-        for i in 0..sizes.len() - 1 {
-            let to = if i + 2 == sizes.len() {
-                result.address()
+        for (i, split) in splits.iter().enumerate() {
+            let from = if i == 0 { src } else { &self.levels[i - 1] };
+            let to = if i + 1 == splits.len() {
+                result
             } else {
-                self.levels[i].address()
+                &self.levels[i]
             };
-            rec.dispatch(
-                kernel,
-                kernel.groups(sizes[i + 1] as u64),
-                &[],
-                &ReducePush {
-                    src: from,
-                    dst: to,
-                    n: sizes[i] as u32,
-                },
-            )?;
-            from = to;
+            reduce_segments(rec, kernel, from, split, to)?;
         }
         Ok(())
     }

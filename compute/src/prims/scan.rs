@@ -1,11 +1,11 @@
-//! Exclusive prefix sum of `u32` (wrapping), reduce-then-scan over tiles of `SCAN_TILE` words:
-//! tile totals, a recursive scan of those totals, then each tile scanned with its carry.
+//! Exclusive prefix sum of `u32` (wrapping), by segments: segment totals, a recursive scan of
+//! those totals, then every segment scanned from its carry.
 
-use super::push::{ReducePush, ScanPush};
-use super::{check_aligned, check_len};
+use super::check_len;
+use super::segments::{reduce_segments, ScanPush, Split};
 use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
-use crate::shader_constants::{REDUCE_OP_SUM, SCAN_TILE};
+use crate::shader_constants::{DEFAULT_WORKGROUP_SIZE, REDUCE_OP_SUM};
 
 /// Plain-Rust reference: exclusive prefix sums (wrapping) and the total.
 pub fn exclusive_scan_cpu(input: &[u32]) -> (Vec<u32>, u32) {
@@ -27,6 +27,10 @@ pub struct Scan {
     reduce: Kernel,
     scan: Kernel,
     levels: Vec<GpuBuffer<u32>>,
+    /// Words per invocation; `None` picks by device type (long on CPU devices, 16 on GPUs).
+    /// Set it to test or tune the other policy.
+    pub segment_length: Option<usize>,
+    unused_total: GpuBuffer<u32>,
 }
 
 impl Scan {
@@ -36,12 +40,14 @@ impl Scan {
             gpu: gpu.clone(),
             reduce: Kernel::with_constants(
                 gpu,
-                &prims::REDUCE_TILES,
-                crate::shader_constants::DEFAULT_WORKGROUP_SIZE,
+                &prims::REDUCE_SEGMENTS,
+                DEFAULT_WORKGROUP_SIZE,
                 &[(1, REDUCE_OP_SUM)],
             )?,
-            scan: Kernel::new(gpu, &prims::SCAN_TILES)?,
+            scan: Kernel::new(gpu, &prims::SCAN_SEGMENTS)?,
             levels: Vec::new(),
+            segment_length: None,
+            unused_total: GpuBuffer::new(gpu, "scan total (unused)", 1)?,
         })
     }
 
@@ -57,8 +63,6 @@ impl Scan {
     ) -> GpuResult<()> {
         check_len(&format!("scan of {:?}", src.name()), n, src.len())?;
         check_len(&format!("scan into {:?}", dst.name()), n, dst.len())?;
-        check_aligned(src.name(), src.address())?;
-        check_aligned(dst.name(), dst.address())?;
         if let Some(t) = total {
             check_len(&format!("scan total {:?}", t.name()), 1, t.len())?;
         }
@@ -69,26 +73,23 @@ impl Scan {
             return Ok(());
         }
         self.reserve(n)?;
-        self.record_level(
-            rec,
-            0,
-            src.address(),
-            dst.address(),
-            n as u32,
-            total.map_or(0, |t| t.address()),
-        )
+        self.record_level(rec, 0, src, dst, n, total)
     }
 
-    /// Allocates the per-level tile totals that a scan of `n` words needs.
+    /// Allocates the per-level segment totals that a scan of `n` words needs.
     fn reserve(&mut self, n: usize) -> GpuResult<()> {
-        let mut tiles = n.div_ceil(SCAN_TILE as usize);
+        let mut split = Split::new(n, self.gpu.info(), self.segment_length);
         let mut level = 0;
-        while tiles > 1 {
-            if self.levels.get(level).is_none_or(|b| b.len() < tiles) {
+        while split.segments > 1 {
+            if self
+                .levels
+                .get(level)
+                .is_none_or(|b| b.len() < split.segments)
+            {
                 let buffer = GpuBuffer::new(
                     &self.gpu,
-                    format!("scan tile totals (level {level})"),
-                    tiles,
+                    format!("scan segment totals (level {level})"),
+                    split.segments,
                 )?;
                 if level < self.levels.len() {
                     self.levels[level] = buffer;
@@ -96,7 +97,7 @@ impl Scan {
                     self.levels.push(buffer);
                 }
             }
-            tiles = tiles.div_ceil(SCAN_TILE as usize);
+            split = Split::new(split.segments, self.gpu.info(), self.segment_length);
             level += 1;
         }
         Ok(())
@@ -106,39 +107,45 @@ impl Scan {
         &self,
         rec: &mut Recorder<'_>,
         level: usize,
-        src: u64,
-        dst: u64,
-        n: u32,
-        total: u64,
+        src: &GpuBuffer<u32>,
+        dst: &GpuBuffer<u32>,
+        n: usize,
+        total: Option<&GpuBuffer<u32>>,
     ) -> GpuResult<()> {
-        let tiles = n.div_ceil(SCAN_TILE) as u64;
-        let mut carries = 0;
-        if tiles > 1 {
-            carries = self.levels[level].address();
+        let split = Split::new(n, self.gpu.info(), self.segment_length);
+        let carries = if split.segments > 1 {
+            let totals = &self.levels[level];
+            reduce_segments(rec, &self.reduce, src, &split, totals)?;
+            self.record_level(rec, level + 1, totals, totals, split.segments, None)?;
+            Some(totals)
+        } else {
+            None
+        };
+        let total_buffer = total.unwrap_or(&self.unused_total);
+        for (first, words) in split.chunks() {
+            let push = ScanPush {
+                n: words as u32,
+                seg_len: split.seg_len as u32,
+                first_segment: (first / split.seg_len) as u32,
+                has_carries: carries.is_some() as u32,
+                write_total: (total.is_some() && first + words == n) as u32,
+            };
+            let out = dst.arg_range(first, words)?;
+            let bindings = [
+                ("Src", src.arg_range(first, words)?),
+                ("Dst", out),
+                ("DstWords", out),
+                ("Carries", carries.unwrap_or(total_buffer).arg()),
+                ("Total", total_buffer.arg()),
+            ];
             rec.dispatch(
-                &self.reduce,
-                self.reduce.groups(tiles),
-                &[],
-                &ReducePush {
-                    src,
-                    dst: carries,
-                    n,
-                },
+                &self.scan,
+                split.groups(&self.scan, words),
+                &bindings,
+                &push,
             )?;
-            self.record_level(rec, level + 1, carries, carries, tiles as u32, 0)?;
         }
-        rec.dispatch(
-            &self.scan,
-            self.scan.groups(tiles),
-            &[],
-            &ScanPush {
-                src,
-                dst,
-                carries,
-                total,
-                n,
-            },
-        )
+        Ok(())
     }
 
     /// Scans `input` on the GPU and reads the result back: `(prefix sums, total)`.

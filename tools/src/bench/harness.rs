@@ -1,0 +1,314 @@
+//! The benchmark harness every `bench` suite uses.
+//!
+//! A case is timed `warmup + runs` times; only the last `runs` count. GPU cases report the
+//! timestamp-query time of the recorded work, CPU cases wall time. Every row may name a
+//! baseline row of the same run; its ratio is `baseline min / this min` (above 1: faster).
+
+use super::CommonArgs;
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressStyle};
+use lazysolid_compute::gpu::Gpu;
+use serde::Serialize;
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Facts that make a result file interpretable later: where, when and on what it was run.
+#[derive(Clone, Debug, Serialize)]
+pub struct RunInfo {
+    pub suite: String,
+    pub device: String,
+    pub device_type: String,
+    pub driver: String,
+    pub vulkan_api: String,
+    pub date_utc: String,
+    pub git_revision: String,
+    pub host_cpu: String,
+    pub host_threads: usize,
+    pub warmup: usize,
+    pub runs: usize,
+    pub command_line: String,
+}
+
+/// Min, median and mean of the measured runs, in milliseconds.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stats {
+    pub min_ms: f64,
+    pub median_ms: f64,
+    pub mean_ms: f64,
+    pub samples_ms: Vec<f64>,
+}
+
+impl Stats {
+    fn from_samples(mut samples: Vec<f64>) -> Stats {
+        let raw = samples.clone();
+        samples.sort_by(f64::total_cmp);
+        let n = samples.len();
+        let median = if n % 2 == 1 {
+            samples[n / 2]
+        } else {
+            0.5 * (samples[n / 2 - 1] + samples[n / 2])
+        };
+        Stats {
+            min_ms: samples[0],
+            median_ms: median,
+            mean_ms: samples.iter().sum::<f64>() / n as f64,
+            samples_ms: raw,
+        }
+    }
+}
+
+/// One measured case.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// The operation, e.g. `radix sort u32`.
+    pub case: String,
+    /// Elements processed.
+    pub elements: u64,
+    /// Who ran it, e.g. `gpu` or `cpu std sort_unstable (1 thread)`.
+    pub implementation: String,
+    pub stats: Stats,
+    /// Throughput at the min time.
+    pub throughput: f64,
+    pub throughput_unit: String,
+    /// The row this one is compared with, and `baseline min / this min`.
+    pub baseline: Option<String>,
+    pub ratio: Option<f64>,
+}
+
+/// Collects rows for one suite and writes them out.
+pub struct Bench {
+    pub info: RunInfo,
+    rows: Vec<Row>,
+    out: PathBuf,
+    progress: ProgressBar,
+}
+
+/// How a case's throughput is expressed.
+#[derive(Clone, Copy)]
+pub enum Throughput {
+    /// Million elements per second.
+    Elements,
+    /// Gigabytes per second for this many bytes moved per run.
+    Bytes(u64),
+}
+
+impl Bench {
+    /// Starts a suite of `cases` cases on `gpu`.
+    pub fn new(suite: &str, gpu: &Gpu, common: &CommonArgs, cases: u64) -> anyhow::Result<Bench> {
+        anyhow::ensure!(common.runs >= 1, "--runs must be at least 1");
+        let d = gpu.info();
+        let info = RunInfo {
+            suite: suite.to_string(),
+            device: d.name.clone(),
+            device_type: d.device_type.clone(),
+            driver: d.driver.clone(),
+            vulkan_api: d.api_version.clone(),
+            date_utc: chrono::Utc::now().format("%Y-%m-%dT%H:%M:%SZ").to_string(),
+            git_revision: git_revision(),
+            host_cpu: host_cpu(),
+            host_threads: std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1),
+            warmup: common.warmup,
+            runs: common.runs,
+            command_line: std::env::args().collect::<Vec<_>>().join(" "),
+        };
+        let progress = ProgressBar::new(cases);
+        progress.set_style(
+            ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {msg}",
+            )
+            .unwrap(),
+        );
+        Ok(Bench {
+            info,
+            rows: Vec::new(),
+            out: common.out.clone(),
+            progress,
+        })
+    }
+
+    /// Times `run` (which returns the time of one run in ms) with warm-up, records the row and
+    /// returns its min time.
+    pub fn case(
+        &mut self,
+        case: &str,
+        elements: u64,
+        implementation: &str,
+        throughput: Throughput,
+        baseline: Option<&str>,
+        mut run: impl FnMut() -> anyhow::Result<f64>,
+    ) -> anyhow::Result<f64> {
+        self.progress
+            .set_message(format!("{case} — {implementation}"));
+        for _ in 0..self.info.warmup {
+            run().with_context(|| format!("{case} ({implementation}), warm-up"))?;
+        }
+        let mut samples = Vec::with_capacity(self.info.runs);
+        for _ in 0..self.info.runs {
+            samples.push(run().with_context(|| format!("{case} ({implementation})"))?);
+        }
+        let stats = Stats::from_samples(samples);
+        let (throughput, unit) = match throughput {
+            Throughput::Elements => (elements as f64 / (stats.min_ms * 1e-3) / 1e6, "Melem/s"),
+            Throughput::Bytes(b) => (b as f64 / (stats.min_ms * 1e-3) / 1e9, "GB/s"),
+        };
+        let ratio = baseline
+            .and_then(|b| {
+                self.rows
+                    .iter()
+                    .find(|r| r.case == case && r.implementation == b)
+            })
+            .map(|b| b.stats.min_ms / stats.min_ms);
+        let min = stats.min_ms;
+        self.rows.push(Row {
+            case: case.into(),
+            elements,
+            implementation: implementation.into(),
+            stats,
+            throughput,
+            throughput_unit: unit.into(),
+            baseline: baseline.map(str::to_string),
+            ratio,
+        });
+        self.progress.inc(1);
+        Ok(min)
+    }
+
+    /// Adds a derived comparison row-free note (e.g. a bandwidth ratio) to the report.
+    pub fn rows(&self) -> &[Row] {
+        &self.rows
+    }
+
+    /// Prints the table and writes `<out>/<suite>-<date>.csv` and `.json`; returns their paths.
+    pub fn finish(self, notes: &[(String, f64)]) -> anyhow::Result<(PathBuf, PathBuf)> {
+        self.progress.finish_and_clear();
+        let i = &self.info;
+        println!(
+            "{} on {} ({}), {}, git {}, {} warm-up + {} runs",
+            i.suite, i.device, i.driver, i.date_utc, i.git_revision, i.warmup, i.runs
+        );
+        println!(
+            "{:<28} {:>11} {:<36} {:>10} {:>10} {:>12} {:>9}",
+            "case", "elements", "implementation", "min ms", "median ms", "throughput", "ratio"
+        );
+        for r in &self.rows {
+            let ratio = r.ratio.map(|x| format!("{x:.2}x")).unwrap_or_default();
+            println!(
+                "{:<28} {:>11} {:<36} {:>10.3} {:>10.3} {:>7.1} {:<5} {:>8}",
+                r.case,
+                r.elements,
+                r.implementation,
+                r.stats.min_ms,
+                r.stats.median_ms,
+                r.throughput,
+                r.throughput_unit,
+                ratio
+            );
+        }
+        for (name, value) in notes {
+            println!("{name}: {value:.3}");
+        }
+        std::fs::create_dir_all(&self.out)
+            .with_context(|| format!("creating {}", self.out.display()))?;
+        let stamp = chrono::Utc::now().format("%Y%m%d-%H%M%S");
+        let base = self
+            .out
+            .join(format!("{}-{stamp}", i.suite.replace(' ', "-")));
+        let csv = base.with_extension("csv");
+        let json = base.with_extension("json");
+        write_atomically(&csv, |f| {
+            writeln!(f, "# {}", serde_json::to_string(i)?)?;
+            writeln!(f, "case,elements,implementation,min_ms,median_ms,mean_ms,throughput,throughput_unit,baseline,ratio")?;
+            for r in &self.rows {
+                writeln!(
+                    f,
+                    "{},{},{},{:.6},{:.6},{:.6},{:.4},{},{},{}",
+                    r.case,
+                    r.elements,
+                    r.implementation,
+                    r.stats.min_ms,
+                    r.stats.median_ms,
+                    r.stats.mean_ms,
+                    r.throughput,
+                    r.throughput_unit,
+                    r.baseline.clone().unwrap_or_default(),
+                    r.ratio.map(|x| format!("{x:.4}")).unwrap_or_default()
+                )?;
+            }
+            Ok(())
+        })?;
+        let notes: serde_json::Map<String, serde_json::Value> = notes
+            .iter()
+            .map(|(k, v)| (k.clone(), serde_json::json!(v)))
+            .collect();
+        write_atomically(&json, |f| {
+            Ok(serde_json::to_writer_pretty(
+                f,
+                &serde_json::json!({ "run": i, "rows": self.rows, "derived": notes }),
+            )?)
+        })?;
+        println!("results: {} and {}", csv.display(), json.display());
+        Ok((csv, json))
+    }
+}
+
+/// Writes through a temporary file and renames, so an interrupted run leaves no half file.
+fn write_atomically(
+    path: &std::path::Path,
+    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    let tmp = path.with_extension("partial");
+    let file =
+        std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
+    let mut w = std::io::BufWriter::new(file);
+    write(&mut w)?;
+    w.flush()?;
+    drop(w);
+    std::fs::rename(&tmp, path)
+        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+    Ok(())
+}
+
+/// Times a CPU closure in milliseconds.
+pub fn time_cpu<R>(f: impl FnOnce() -> R) -> (R, f64) {
+    let t = Instant::now();
+    let r = f();
+    (r, t.elapsed().as_secs_f64() * 1e3)
+}
+
+fn git_revision() -> String {
+    let run = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    match run(&["rev-parse", "--short=12", "HEAD"]) {
+        Some(rev) => {
+            let dirty = run(&["status", "--porcelain", "--untracked-files=no"])
+                .is_some_and(|s| !s.is_empty());
+            if dirty {
+                format!("{rev}-dirty")
+            } else {
+                rev
+            }
+        }
+        None => "unknown".into(),
+    }
+}
+
+fn host_cpu() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown".into())
+}

@@ -1,0 +1,37 @@
+//! `lazysolid bench …`: benchmark suites sharing one harness (warm-up, repeated runs, min and
+//! median, ratios against a baseline measured in the same run, table + CSV + JSON).
+
+pub mod harness;
+mod prims;
+
+use crate::cli::GlobalArgs;
+use clap::{Args, Subcommand};
+use std::path::PathBuf;
+
+/// Benchmark suites.
+#[derive(Subcommand)]
+pub enum BenchCommand {
+    /// Scan, reduce, compaction and radix sort against their CPU references and a copy kernel.
+    Prims(prims::PrimsArgs),
+}
+
+/// Options every suite shares.
+#[derive(Args, Clone)]
+pub struct CommonArgs {
+    /// Unmeasured runs before the measured ones (lavapipe compiles kernels at first dispatch).
+    #[arg(long, default_value_t = 2)]
+    pub warmup: usize,
+    /// Measured runs per case; the table reports their min and median.
+    #[arg(long, default_value_t = 5)]
+    pub runs: usize,
+    /// Folder for the CSV and JSON files.
+    #[arg(long, default_value = "results")]
+    pub out: PathBuf,
+}
+
+/// Runs the chosen suite.
+pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
+    match command {
+        BenchCommand::Prims(args) => prims::run(&args, global),
+    }
+}
