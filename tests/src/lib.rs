@@ -41,3 +41,16 @@ pub fn random_u32(n: usize, seed: u64) -> Vec<u32> {
 pub const EDGE_SIZES: &[usize] = &[
     0, 1, 2, 3, 4, 5, 7, 255, 256, 257, 1000, 4095, 4096, 4097, 65_537, 1_000_003,
 ];
+
+/// Path of a mesh installed by `scripts/fetch-assets.sh`; panics with the fix when it is absent.
+pub fn asset_mesh(name: &str) -> std::path::PathBuf {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/meshes")
+        .join(name);
+    assert!(
+        path.exists(),
+        "{} is missing: run scripts/fetch-assets.sh (the README's test command does)",
+        path.display()
+    );
+    path
+}

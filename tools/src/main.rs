@@ -38,18 +38,22 @@ fn main() {
         env_logger::Env::default().default_filter_or(if cli.verbose { "info" } else { "warn" }),
     )
     .init();
+    let global = cli::GlobalArgs {
+        device: cli.device.clone(),
+        verbose: cli.verbose,
+        validation_logs: Default::default(),
+    };
     let result = match cli.command {
         Command::Device => cli::device::run(cli.device.as_deref()),
-        Command::Bench(b) => bench::run(
-            b,
-            &cli::GlobalArgs {
-                device: cli.device,
-                verbose: cli.verbose,
-            },
-        ),
+        Command::Bench(b) => bench::run(b, &global),
     };
+    // Every device is dropped by now, so leak reports are in the logs.
+    let validation_errors = global.report_validation();
     if let Err(e) = result {
         eprintln!("error: {e:#}");
         std::process::exit(1);
+    }
+    if validation_errors > 0 {
+        std::process::exit(2);
     }
 }

@@ -2,12 +2,15 @@
 
 pub mod device;
 
-use lazysolid_compute::gpu::{Gpu, GpuOptions};
+use lazysolid_compute::gpu::{Gpu, GpuOptions, ValidationLog};
+use std::cell::RefCell;
+use std::sync::Arc;
 
-/// Flags every subcommand accepts.
+/// Flags every subcommand accepts, and the validation logs of the devices it created.
 pub struct GlobalArgs {
     pub device: Option<String>,
     pub verbose: bool,
+    pub validation_logs: RefCell<Vec<Arc<ValidationLog>>>,
 }
 
 impl GlobalArgs {
@@ -18,6 +21,9 @@ impl GlobalArgs {
             options.device = self.device.clone();
         }
         let gpu = Gpu::new(&options)?;
+        if gpu.validation_enabled() {
+            self.validation_logs.borrow_mut().push(gpu.validation_log());
+        }
         if self.verbose {
             let i = gpu.info();
             eprintln!(
@@ -34,5 +40,23 @@ impl GlobalArgs {
             );
         }
         Ok(gpu)
+    }
+}
+
+impl GlobalArgs {
+    /// After every device is gone (leaks are reported at destruction): the number of validation
+    /// errors, each printed.
+    pub fn report_validation(&self) -> u32 {
+        let mut errors = 0;
+        for log in self.validation_logs.borrow().iter() {
+            errors += log.errors();
+            for m in log.messages() {
+                eprintln!("validation: {m}");
+            }
+        }
+        if !self.validation_logs.borrow().is_empty() && (self.verbose || errors > 0) {
+            eprintln!("Vulkan validation layer: {errors} error(s)");
+        }
+        errors
     }
 }

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages lazysolid needs to build and run, and checks the Rust toolchain.
+#   lavapipe (Mesa's CPU Vulkan driver), the Vulkan loader and the Khronos validation layer;
+#   shaderc, glslang and SPIRV-Tools with their static archives (Debian's libshaderc.so cannot be
+#   linked, so build.rs links libshaderc_combined.a with the static glslang/SPIRV-Tools ones).
+set -euo pipefail
+
+packages=(
+  mesa-vulkan-drivers libvulkan1 libvulkan-dev vulkan-tools vulkan-validationlayers
+  libshaderc-dev glslang-dev glslang-tools spirv-tools
+  build-essential pkg-config git ca-certificates xz-utils
+)
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: run as root or install sudo" >&2; exit 1; }
+  sudo="sudo"
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install-deps: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+if ! command -v cargo >/dev/null; then
+  echo "install-deps: cargo not found; lazysolid needs Rust 1.85 or newer (rustup.rs)" >&2
+  exit 1
+fi
+echo "install-deps: system packages present; $(cargo --version)"
