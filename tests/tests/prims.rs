@@ -35,7 +35,7 @@ fn scan_edge_sizes() {
 }
 
 #[test]
-fn scan_and_reduce_with_short_segments_as_on_gpus() {
+fn scan_reduce_compaction_with_short_segments_as_on_gpus() {
     with_gpu(|gpu| {
         // GPUs get 16-word segments: deeper recursion and many more chunks per binding.
         let mut scan = Scan::new(gpu).unwrap();
@@ -223,5 +223,55 @@ fn radix_sort_u64_pairs_beyond_one_binding() {
                 .unwrap(),
             sort_pairs_cpu(&keys, &values, 64)
         );
+    });
+}
+
+#[test]
+fn compaction_of_flags_alone_gives_indices() {
+    use lazysolid_compute::gpu::GpuBuffer;
+    use lazysolid_compute::prims::Keep;
+    with_gpu(|gpu| {
+        let mut compactor = Compactor::new(gpu).unwrap();
+        for n in [1usize, 5, 4097, 300_001] {
+            let flags: Vec<u32> = random_u32(n, 43 + n as u64)
+                .iter()
+                .map(|v| v % 5 / 4)
+                .collect();
+            let f = GpuBuffer::from_slice(gpu, "flags", &flags).unwrap();
+            let dst = GpuBuffer::<u32>::new(gpu, "indices", n).unwrap();
+            let count = GpuBuffer::<u32>::new(gpu, "count", 1).unwrap();
+            gpu.submit(|rec| {
+                compactor.record(
+                    rec,
+                    None,
+                    Keep::Flags(&f),
+                    n,
+                    CompactOutput::Indices,
+                    &dst,
+                    &count,
+                )
+            })
+            .unwrap();
+            let kept = count.read().unwrap()[0] as usize;
+            let expected: Vec<u32> = (0..n as u32).filter(|&i| flags[i as usize] != 0).collect();
+            assert_eq!(dst.read_range(0, kept).unwrap(), expected, "n = {n}");
+        }
+        // Values are required for sentinel compaction and for value output.
+        let f = GpuBuffer::<u32>::zeroed(gpu, "flags", 8).unwrap();
+        let count = GpuBuffer::<u32>::new(gpu, "count", 1).unwrap();
+        let err = gpu
+            .submit(|rec| {
+                compactor.record(
+                    rec,
+                    None,
+                    Keep::NotEqual(0),
+                    8,
+                    CompactOutput::Indices,
+                    &f,
+                    &count,
+                )
+            })
+            .unwrap_err();
+        assert!(err.to_string().contains("needs Keep::Flags"), "{err}");
     });
 }

@@ -1,8 +1,11 @@
-//! Order-preserving stream compaction of `u32` elements: mark, scan, scatter.
+//! Order-preserving stream compaction of `u32` elements by segments: every invocation counts the
+//! kept words of its segment, a scan turns the counts into output offsets, and every invocation
+//! writes its kept words contiguously from its offset.
 
-use super::push::{CompactMarkPush, CompactScatterPush};
+use super::check_len;
+use super::push::{CompactCountPush, CompactWritePush};
 use super::scan::Scan;
-use super::{check_aligned, check_len};
+use super::segments::Split;
 use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{COMPACT_BY_FLAGS, COMPACT_BY_SENTINEL};
@@ -54,10 +57,13 @@ pub fn compact_cpu(values: &[u32], keep: KeepCpu<'_>, output: CompactOutput) -> 
 /// GPU stream compaction; keeps its scratch between calls.
 pub struct Compactor {
     gpu: Gpu,
-    mark: Kernel,
-    scatter: Kernel,
+    count: Kernel,
+    write: Kernel,
     scan: Scan,
     offsets: Option<GpuBuffer<u32>>,
+    trash: GpuBuffer<u32>,
+    /// Words per invocation; `None` picks by device type (as for [`Scan`]).
+    pub segment_length: Option<usize>,
 }
 
 impl Compactor {
@@ -65,10 +71,12 @@ impl Compactor {
     pub fn new(gpu: &Gpu) -> GpuResult<Compactor> {
         Ok(Compactor {
             gpu: gpu.clone(),
-            mark: Kernel::new(gpu, &prims::COMPACT_MARK)?,
-            scatter: Kernel::new(gpu, &prims::COMPACT_SCATTER)?,
+            count: Kernel::new(gpu, &prims::COMPACT_COUNT)?,
+            write: Kernel::new(gpu, &prims::COMPACT_WRITE)?,
             scan: Scan::new(gpu)?,
             offsets: None,
+            trash: GpuBuffer::new(gpu, "compaction trash word", 1)?,
+            segment_length: None,
         })
     }
 
@@ -88,7 +96,6 @@ impl Compactor {
     ) -> GpuResult<()> {
         if let Some(v) = values {
             check_len(&format!("compaction of {:?}", v.name()), n, v.len())?;
-            check_aligned(v.name(), v.address())?;
         } else if matches!(keep, Keep::NotEqual(_)) || output == CompactOutput::Values {
             return Err(GpuError::InvalidArgument(
                 "compaction without a values buffer needs Keep::Flags and CompactOutput::Indices"
@@ -108,41 +115,74 @@ impl Compactor {
             rec.fill(count, 0);
             return Ok(());
         }
-        if self.offsets.as_ref().is_none_or(|o| o.len() < n) {
-            self.offsets = Some(GpuBuffer::new(&self.gpu, "compaction offsets", n)?);
+        let split = Split::new(n, self.gpu.info(), self.segment_length);
+        if self
+            .offsets
+            .as_ref()
+            .is_none_or(|o| o.len() < split.segments)
+        {
+            self.offsets = Some(GpuBuffer::new(
+                &self.gpu,
+                "compaction segment offsets",
+                split.segments,
+            )?);
         }
         let offsets = self.offsets.as_ref().unwrap();
+        // The kernels always read both a value and a flag stream; bind what stands in for the
+        // one that is not used.
         let (mode, flags, sentinel) = match keep {
-            Keep::Flags(f) => (COMPACT_BY_FLAGS, f.address(), 0),
-            Keep::NotEqual(s) => (COMPACT_BY_SENTINEL, 0, s),
+            Keep::Flags(f) => (COMPACT_BY_FLAGS, f, 0),
+            Keep::NotEqual(s) => (COMPACT_BY_SENTINEL, values.expect("checked above"), s),
         };
-        let values_addr = values.map_or(0, |v| v.address());
-        let groups = self.mark.groups_for(n as u64);
-        rec.dispatch(
-            &self.mark,
-            groups,
-            &[],
-            &CompactMarkPush {
-                values: values_addr,
-                flags,
-                marks: offsets.address(),
-                n: n as u32,
+        let values = values.unwrap_or(flags);
+        for (first, words) in split.chunks() {
+            let first_segment = (first / split.seg_len) as u32;
+            let push = CompactCountPush {
+                n: words as u32,
+                seg_len: split.seg_len as u32,
+                first_segment,
                 mode,
                 sentinel,
-            },
-        )?;
-        self.scan.record(rec, offsets, offsets, n, Some(count))?;
-        let push = CompactScatterPush {
-            values: values_addr,
-            flags,
-            offsets: offsets.address(),
-            dst: dst.address(),
-            n: n as u32,
-            mode,
-            sentinel,
-            write_indices: (output == CompactOutput::Indices) as u32,
-        };
-        rec.dispatch(&self.scatter, self.scatter.groups_for(n as u64), &[], &push)
+            };
+            let bindings = [
+                ("Src", values.arg_range(first, words)?),
+                ("Flags", flags.arg_range(first, words)?),
+                ("Counts", offsets.arg()),
+            ];
+            rec.dispatch(
+                &self.count,
+                split.groups(&self.count, words),
+                &bindings,
+                &push,
+            )?;
+        }
+        self.scan
+            .record(rec, offsets, offsets, split.segments, Some(count))?;
+        for (first, words) in split.chunks() {
+            let push = CompactWritePush {
+                dst: dst.address(),
+                trash: self.trash.address(),
+                n: words as u32,
+                seg_len: split.seg_len as u32,
+                first_segment: (first / split.seg_len) as u32,
+                first_index: first as u32,
+                mode,
+                sentinel,
+                write_indices: (output == CompactOutput::Indices) as u32,
+            };
+            let bindings = [
+                ("Src", values.arg_range(first, words)?),
+                ("Flags", flags.arg_range(first, words)?),
+                ("Offsets", offsets.arg()),
+            ];
+            rec.dispatch(
+                &self.write,
+                split.groups(&self.write, words),
+                &bindings,
+                &push,
+            )?;
+        }
+        Ok(())
     }
 
     /// Compacts `values` on the GPU and reads the kept elements back.

@@ -5,24 +5,24 @@
 use bytemuck::{Pod, Zeroable};
 
 #[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub(crate) struct CompactMarkPush {
-    pub values: u64,
-    pub flags: u64,
-    pub marks: u64,
+#[repr(C)]
+pub(crate) struct CompactCountPush {
     pub n: u32,
+    pub seg_len: u32,
+    pub first_segment: u32,
     pub mode: u32,
     pub sentinel: u32,
 }
 
 #[derive(Clone, Copy, Pod, Zeroable)]
 #[repr(C, packed(4))]
-pub(crate) struct CompactScatterPush {
-    pub values: u64,
-    pub flags: u64,
-    pub offsets: u64,
+pub(crate) struct CompactWritePush {
     pub dst: u64,
+    pub trash: u64,
     pub n: u32,
+    pub seg_len: u32,
+    pub first_segment: u32,
+    pub first_index: u32,
     pub mode: u32,
     pub sentinel: u32,
     pub write_indices: u32,

@@ -192,34 +192,57 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         || Ok(time_cpu(|| reduce_cpu(&input, ReduceOp::Sum)).1),
     )?;
 
-    // Compaction, about half kept.
+    // Compaction, half kept: by sentinel (every other value range replaced by u32::MAX), and
+    // by flags.
     let case = "compaction u32 (50% kept)";
     let mut compactor = Compactor::new(&gpu)?;
     let count = GpuBuffer::<u32>::new(&gpu, "compaction count", 1)?;
-    bench.case(case, n as u64, "gpu", Throughput::Elements, None, || {
-        gpu_ms(&gpu, no_setup, |rec| {
-            compactor
-                .record(
+    let sparse: Vec<u32> = input
+        .iter()
+        .map(|&v| if v < 500 { v } else { u32::MAX })
+        .collect();
+    let sparse_buf = GpuBuffer::from_slice(&gpu, "compaction values with sentinels", &sparse)?;
+    let flags: Vec<u32> = input.iter().map(|&v| (v < 500) as u32).collect();
+    let flags_buf = GpuBuffer::from_slice(&gpu, "compaction flags", &flags)?;
+    let expected = compact_cpu(&input, KeepCpu::Flags(&flags), CompactOutput::Values);
+    bench.case(
+        case,
+        n as u64,
+        "cpu reference (1 thread)",
+        Throughput::Elements,
+        None,
+        || Ok(time_cpu(|| compact_cpu(&input, KeepCpu::Flags(&flags), CompactOutput::Values)).1),
+    )?;
+    bench.case(
+        case,
+        n as u64,
+        "gpu (by sentinel)",
+        Throughput::Elements,
+        Some("cpu reference (1 thread)"),
+        || {
+            gpu_ms(&gpu, no_setup, |rec| {
+                compactor.record(
                     rec,
-                    Some(&src),
+                    Some(&sparse_buf),
                     Keep::NotEqual(u32::MAX),
                     n,
                     CompactOutput::Values,
                     &dst,
                     &count,
                 )
-                .and(Ok(()))
-        })
-    })?;
-    // Keep values below 500 (half of 0..1000): rerun once with that predicate to check.
-    let flags: Vec<u32> = input.iter().map(|&v| (v < 500) as u32).collect();
-    let flags_buf = GpuBuffer::from_slice(&gpu, "compaction flags", &flags)?;
+            })
+        },
+    )?;
+    ensure!(
+        dst.read_range(0, count.read()?[0] as usize)? == expected,
+        "GPU compaction (sentinel) disagrees with the CPU reference"
+    );
     bench.case(
         case,
         n as u64,
         "gpu (by flags)",
         Throughput::Elements,
-        None,
+        Some("cpu reference (1 thread)"),
         || {
             gpu_ms(&gpu, no_setup, |rec| {
                 compactor.record(
@@ -234,20 +257,11 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             })
         },
     )?;
-    let expected = compact_cpu(&input, KeepCpu::Flags(&flags), CompactOutput::Values);
     ensure!(
         dst.read_range(0, count.read()?[0] as usize)? == expected,
-        "GPU compaction disagrees with the CPU reference"
+        "GPU compaction (flags) disagrees with the CPU reference"
     );
-    bench.case(
-        case,
-        n as u64,
-        "cpu reference (1 thread)",
-        Throughput::Elements,
-        Some("gpu (by flags)"),
-        || Ok(time_cpu(|| compact_cpu(&input, KeepCpu::Flags(&flags), CompactOutput::Values)).1),
-    )?;
-    drop((src, dst, flags_buf));
+    drop((src, dst, flags_buf, sparse_buf));
 
     // Radix sort of u32 keys against std's sort_unstable on the same keys.
     let case = "sort u32 keys";
