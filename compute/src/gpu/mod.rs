@@ -1,6 +1,6 @@
 //! The Vulkan core: device, validation, buffers, kernels, submission and timing.
 //!
-//! ```no_run
+//! ```
 //! use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuOptions};
 //! let gpu = Gpu::new(&GpuOptions::from_env())?;
 //! let data = GpuBuffer::from_slice(&gpu, "data", &[1u32, 2, 3])?;

@@ -130,7 +130,8 @@ impl Bench {
     }
 
     /// Times `run` (which returns the time of one run in ms) with warm-up, records the row and
-    /// returns its min time.
+    /// returns its min time. `baseline` names the implementation of the same case this row is
+    /// compared with: ratio = baseline min / this min, above 1 when this row is faster.
     pub fn case(
         &mut self,
         case: &str,
@@ -154,13 +155,6 @@ impl Bench {
             Throughput::Elements => (elements as f64 / (stats.min_ms * 1e-3) / 1e6, "Melem/s"),
             Throughput::Bytes(b) => (b as f64 / (stats.min_ms * 1e-3) / 1e9, "GB/s"),
         };
-        let ratio = baseline
-            .and_then(|b| {
-                self.rows
-                    .iter()
-                    .find(|r| r.case == case && r.implementation == b)
-            })
-            .map(|b| b.stats.min_ms / stats.min_ms);
         let min = stats.min_ms;
         self.rows.push(Row {
             case: case.into(),
@@ -170,15 +164,29 @@ impl Bench {
             throughput,
             throughput_unit: unit.into(),
             baseline: baseline.map(str::to_string),
-            ratio,
+            ratio: None,
         });
+        self.resolve_ratios();
         self.progress.inc(1);
         Ok(min)
     }
 
-    /// Adds a derived comparison row-free note (e.g. a bandwidth ratio) to the report.
+    /// Rows so far; a row's ratio is set once its baseline row exists (in either order).
     pub fn rows(&self) -> &[Row] {
         &self.rows
+    }
+
+    fn resolve_ratios(&mut self) {
+        for i in 0..self.rows.len() {
+            let r = &self.rows[i];
+            let base = r.baseline.as_ref().and_then(|b| {
+                self.rows
+                    .iter()
+                    .find(|o| o.case == r.case && &o.implementation == b)
+            });
+            let ratio = base.map(|b| b.stats.min_ms / r.stats.min_ms);
+            self.rows[i].ratio = ratio;
+        }
     }
 
     /// Prints the table and writes `<out>/<suite>-<date>.csv` and `.json`; returns their paths.

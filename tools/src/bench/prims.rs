@@ -77,7 +77,7 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         n as u64,
         "gpu copy kernel (bound uvec4)",
         Throughput::Bytes(bytes),
-        None,
+        Some("cpu memcpy (1 thread)"),
         || {
             gpu_ms(&gpu, no_setup, |rec| {
                 for first in (0..n).step_by(chunk) {
@@ -129,7 +129,7 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         n as u64,
         "cpu memcpy (1 thread)",
         Throughput::Bytes(bytes),
-        Some("gpu copy kernel (bound uvec4)"),
+        None,
         || {
             let mut out = vec![0u32; n];
             Ok(time_cpu(|| out.copy_from_slice(&input)).1)
@@ -145,7 +145,7 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         n as u64,
         "gpu",
         Throughput::Bytes(bytes),
-        None,
+        Some("cpu reference (1 thread)"),
         || {
             gpu_ms(&gpu, no_setup, |rec| {
                 scan.record(rec, &src, &dst, n, Some(&total))
@@ -162,7 +162,7 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         n as u64,
         "cpu reference (1 thread)",
         Throughput::Bytes(bytes),
-        Some("gpu"),
+        None,
         || Ok(time_cpu(|| exclusive_scan_cpu(&input)).1),
     )?;
     notes.push((
@@ -174,11 +174,18 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let case = "reduce sum u32";
     let mut reduce = Reduce::new(&gpu)?;
     let result = GpuBuffer::<u32>::new(&gpu, "reduce result", 1)?;
-    bench.case(case, n as u64, "gpu", Throughput::Elements, None, || {
-        gpu_ms(&gpu, no_setup, |rec| {
-            reduce.record(rec, &src, n, ReduceOp::Sum, &result)
-        })
-    })?;
+    bench.case(
+        case,
+        n as u64,
+        "gpu",
+        Throughput::Elements,
+        Some("cpu reference (1 thread)"),
+        || {
+            gpu_ms(&gpu, no_setup, |rec| {
+                reduce.record(rec, &src, n, ReduceOp::Sum, &result)
+            })
+        },
+    )?;
     ensure!(
         result.read()?[0] == reduce_cpu(&input, ReduceOp::Sum),
         "GPU reduce disagrees with the CPU reference"
@@ -188,7 +195,7 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         n as u64,
         "cpu reference (1 thread)",
         Throughput::Elements,
-        Some("gpu"),
+        None,
         || Ok(time_cpu(|| reduce_cpu(&input, ReduceOp::Sum)).1),
     )?;
 
