@@ -5,6 +5,7 @@
 //! Every GPU kernel has a plain-Rust reference next to it; tests compare the two.
 
 pub mod gpu;
+pub mod hash;
 pub mod prims;
 pub mod shader_constants;
 

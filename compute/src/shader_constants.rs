@@ -1,6 +1,6 @@
 //! Constants shared by Rust and GLSL, defined once here.
 //!
-//! `build.rs` reads this file and passes every `pub const NAME: u32 = VALUE;` line to the GLSL
+//! `build.rs` reads this file and passes every `pub const NAME: u32 = LITERAL;` line to the GLSL
 //! compiler as `#define NAME VALUE`, so a kernel and its host code can never disagree on a tile
 //! size or a digit width. Only plain `u32` literals are allowed on such lines.
 
@@ -34,3 +34,70 @@ pub const COMPACT_BY_FLAGS: u32 = 0;
 pub const COMPACT_BY_SENTINEL: u32 = 1;
 
 const _: () = assert!(RADIX_BUCKETS == 1 << RADIX_BITS);
+
+/// Largest probe age of the Robin Hood hashes: ages are stored in 4 bits, 0 meaning empty.
+pub const HASH_MAX_AGE: u32 = 15;
+/// Query result for an absent key (so payloads must be smaller).
+pub const HASH_NOT_FOUND: u32 = 4294967295;
+/// Probe sequences: coherent h_i(k) = k + o_i mod |H|, or randomizing.
+pub const HASH_PROBE_COHERENT: u32 = 0;
+/// See [`HASH_PROBE_COHERENT`].
+pub const HASH_PROBE_RANDOM: u32 = 1;
+/// Cuckoo hash functions are ((a k + b) mod CUCKOO_PRIME) mod |H| (Alcantara et al.).
+pub const CUCKOO_PRIME: u32 = 4294967291;
+/// Hash functions of the cuckoo table.
+pub const CUCKOO_FUNCTIONS: u32 = 4;
+
+/// The coherent probe offsets o_0 .. o_15 (o_0 = 0, then large fixed values), from García et
+/// al.'s reference implementation; age a probes offset o_(a-1).
+pub const COHERENT_OFFSET_0: u32 = 0;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_1: u32 = 3949349;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_2: u32 = 8984219;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_3: u32 = 9805709;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_4: u32 = 7732727;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_5: u32 = 1046459;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_6: u32 = 9883879;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_7: u32 = 4889399;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_8: u32 = 2914183;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_9: u32 = 3503623;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_10: u32 = 1734349;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_11: u32 = 8860463;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_12: u32 = 1326319;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_13: u32 = 1613597;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_14: u32 = 8604269;
+/// See [`COHERENT_OFFSET_0`].
+pub const COHERENT_OFFSET_15: u32 = 9647369;
+
+/// The offsets as an array, for the CPU side.
+pub const COHERENT_OFFSETS: [u32; 16] = [
+    COHERENT_OFFSET_0,
+    COHERENT_OFFSET_1,
+    COHERENT_OFFSET_2,
+    COHERENT_OFFSET_3,
+    COHERENT_OFFSET_4,
+    COHERENT_OFFSET_5,
+    COHERENT_OFFSET_6,
+    COHERENT_OFFSET_7,
+    COHERENT_OFFSET_8,
+    COHERENT_OFFSET_9,
+    COHERENT_OFFSET_10,
+    COHERENT_OFFSET_11,
+    COHERENT_OFFSET_12,
+    COHERENT_OFFSET_13,
+    COHERENT_OFFSET_14,
+    COHERENT_OFFSET_15,
+];

@@ -24,7 +24,8 @@ use crate::gpu::{GpuError, GpuResult};
 /// Largest element count a primitive accepts: SPIR-V indices are signed 32-bit.
 pub const MAX_ELEMENTS: usize = i32::MAX as usize;
 
-pub(crate) fn check_len(what: &str, n: usize, available: usize) -> GpuResult<()> {
+/// Checks that `n` elements are within the primitive limit and the buffer's length.
+pub fn check_len(what: &str, n: usize, available: usize) -> GpuResult<()> {
     if n > MAX_ELEMENTS {
         return Err(GpuError::InvalidArgument(format!(
             "{what}: {n} elements exceeds the primitive limit of {MAX_ELEMENTS}"

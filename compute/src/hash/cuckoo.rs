@@ -1,0 +1,289 @@
+//! Single-pass cuckoo hashing on the GPU (Alcantara et al.): one table, four hash functions, a
+//! bounded chain of evictions per key, and a rebuild with new hash constants when keys are
+//! left unplaced. The constant-probe baseline of the coherent hash.
+
+use super::cuckoo_cpu::CuckooFunctions;
+use super::error::HashError;
+use super::kernels::HashKernels;
+use super::keys::Universe;
+use super::robin_hood::table_size_for;
+use super::validate::validate_keys_gpu;
+use crate::gpu::{GpuBuffer, GpuResult, Recorder};
+use crate::prims::ReduceOp;
+use crate::shader_constants::HASH_NOT_FOUND;
+use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
+
+/// How a cuckoo table is built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CuckooConfig {
+    /// keys / cells.
+    pub load_factor: f64,
+    /// Seed of the hash constants.
+    pub seed: u64,
+    /// Builds tried with fresh constants before giving up.
+    pub attempts: u32,
+    /// Check keys and payloads first.
+    pub validate: bool,
+}
+
+impl Default for CuckooConfig {
+    fn default() -> Self {
+        CuckooConfig {
+            load_factor: 0.85,
+            seed: 0x5eed,
+            attempts: 8,
+            validate: true,
+        }
+    }
+}
+
+/// Swaps one key may make before it counts as unplaced: 7 log2(n), at least 32 (the bound
+/// the CUDPP lineage of this scheme uses).
+pub fn max_iterations(n: usize) -> u32 {
+    (7 * (usize::BITS - n.max(1).leading_zeros())).max(32)
+}
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct InsertPush {
+    cells: u64,
+    keys: u64,
+    payloads: u64,
+    counters: u64,
+    a: [u32; 4],
+    b: [u32; 4],
+    n: u32,
+    table_size: u32,
+    max_iterations: u32,
+}
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct QueryPush {
+    cells: u64,
+    keys: u64,
+    results: u64,
+    a: [u32; 4],
+    b: [u32; 4],
+    n: u32,
+    table_size: u32,
+}
+
+/// A cuckoo hash table on the GPU. Keys must be below 2³² − 1.
+pub struct CuckooTable {
+    kernels: Arc<HashKernels>,
+    cells: GpuBuffer<u64>,
+    table_size: u32,
+    /// The hash functions that succeeded.
+    pub functions: CuckooFunctions,
+    /// Builds that failed before this one (each with fresh constants).
+    pub failed_attempts: u32,
+    len: u64,
+}
+
+impl CuckooTable {
+    /// Builds a table of `keys[..n]` → `payloads[..n]`.
+    ///
+    /// # Errors
+    /// Duplicate keys, keys outside `universe` or ≥ 2³² − 1, payloads equal to
+    /// `HASH_NOT_FOUND`, and construction failure with every set of constants.
+    pub fn build(
+        kernels: &Arc<HashKernels>,
+        universe: Universe,
+        keys: &GpuBuffer<u64>,
+        payloads: &GpuBuffer<u32>,
+        n: usize,
+        config: CuckooConfig,
+    ) -> Result<CuckooTable, HashError> {
+        if !(config.load_factor > 0.0 && config.load_factor <= 1.0) {
+            return Err(HashError::InvalidArgument(format!(
+                "load factor {} is outside (0, 1]",
+                config.load_factor
+            )));
+        }
+        if universe.key_count() > u32::MAX as u64 {
+            return Err(HashError::UniverseTooLarge {
+                universe: universe.describe(),
+                key_bits: universe.key_bits(),
+                cell_bits: 64,
+            });
+        }
+        crate::prims::check_len("hash keys", n, keys.len().min(payloads.len()))?;
+        let gpu = kernels.gpu.clone();
+        if config.validate {
+            if let Some(e) = validate_keys_gpu(kernels, keys, n, &universe)?.error(n, &universe) {
+                return Err(e);
+            }
+            if n > 0 {
+                let result = GpuBuffer::<u32>::new(&gpu, "payload maximum", 1)?;
+                let mut reduce = kernels.reduce.lock().unwrap();
+                gpu.submit(|rec| reduce.record(rec, payloads, n, ReduceOp::Max, &result))?;
+                let max = result.read()?[0];
+                if max == HASH_NOT_FOUND {
+                    return Err(HashError::PayloadTooLarge {
+                        payload: max,
+                        format: "cuckoo cells".into(),
+                        bits: 32,
+                        max: HASH_NOT_FOUND - 1,
+                    });
+                }
+            }
+        }
+        let table_size = table_size_for(n as u64, config.load_factor)?;
+        let mut table = CuckooTable {
+            kernels: kernels.clone(),
+            cells: GpuBuffer::new(&gpu, "cuckoo cells", table_size as usize)?,
+            table_size,
+            functions: CuckooFunctions::from_seed(config.seed, 0),
+            failed_attempts: 0,
+            len: n as u64,
+        };
+        let mut last_failed = 0;
+        for attempt in 0..config.attempts.max(1) {
+            table.functions = CuckooFunctions::from_seed(config.seed, attempt);
+            let counters = GpuBuffer::<u32>::zeroed(&gpu, "cuckoo counters", 4)?;
+            gpu.submit(|rec| {
+                rec.fill(&table.cells, 0);
+                table.record_insert(rec, keys, payloads, n, &counters)
+            })?;
+            let c = counters.read()?;
+            if c[1] > 0 {
+                return Err(HashError::DuplicateKey {
+                    key: 0,
+                    count: c[1] as u64,
+                });
+            }
+            if c[0] == 0 {
+                table.failed_attempts = attempt;
+                return Ok(table);
+            }
+            last_failed = c[0];
+        }
+        Err(HashError::CuckooFailed {
+            attempts: config.attempts.max(1),
+            load_factor: n as f64 / table_size as f64,
+            failed: last_failed,
+        })
+    }
+
+    /// Builds from host slices.
+    pub fn build_from_slices(
+        kernels: &Arc<HashKernels>,
+        universe: Universe,
+        keys: &[u64],
+        payloads: &[u32],
+        config: CuckooConfig,
+    ) -> Result<CuckooTable, HashError> {
+        let gpu = &kernels.gpu;
+        let k = GpuBuffer::from_slice(gpu, "hash keys", keys)?;
+        let p = GpuBuffer::from_slice(gpu, "hash payloads", payloads)?;
+        Self::build(kernels, universe, &k, &p, keys.len(), config)
+    }
+
+    fn record_insert(
+        &self,
+        rec: &mut Recorder<'_>,
+        keys: &GpuBuffer<u64>,
+        payloads: &GpuBuffer<u32>,
+        n: usize,
+        counters: &GpuBuffer<u32>,
+    ) -> GpuResult<()> {
+        let push = InsertPush {
+            cells: self.cells.address(),
+            keys: keys.address(),
+            payloads: payloads.address(),
+            counters: counters.address(),
+            a: self.functions.a,
+            b: self.functions.b,
+            n: n as u32,
+            table_size: self.table_size,
+            max_iterations: max_iterations(n),
+        };
+        let k = &self.kernels.cuckoo_insert;
+        rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+    }
+
+    /// Rebuilds from the same keys with the constants that worked, returning the GPU time of
+    /// clearing and inserting in ms (what the insertion benchmarks measure).
+    pub fn rebuild_timed(
+        &mut self,
+        keys: &GpuBuffer<u64>,
+        payloads: &GpuBuffer<u32>,
+        n: usize,
+    ) -> Result<f64, HashError> {
+        let gpu = self.kernels.gpu.clone();
+        let counters = GpuBuffer::<u32>::zeroed(&gpu, "cuckoo counters", 4)?;
+        let ((), t) = gpu.submit_timed(|rec| {
+            rec.timestamp()?;
+            rec.fill(&self.cells, 0);
+            self.record_insert(rec, keys, payloads, n, &counters)?;
+            rec.timestamp()
+        })?;
+        let c = counters.read()?;
+        if c[0] > 0 || c[1] > 0 {
+            return Err(HashError::CuckooFailed {
+                attempts: 1,
+                load_factor: n as f64 / self.table_size as f64,
+                failed: c[0] + c[1],
+            });
+        }
+        Ok((t[1] - t[0]) * 1e-6)
+    }
+
+    /// Records `results[i]` = the payload of `keys[i]` or `HASH_NOT_FOUND`.
+    pub fn record_query(
+        &self,
+        rec: &mut Recorder<'_>,
+        keys: &GpuBuffer<u64>,
+        results: &GpuBuffer<u32>,
+        n: usize,
+    ) -> GpuResult<()> {
+        crate::prims::check_len("hash queries", n, keys.len().min(results.len()))?;
+        let push = QueryPush {
+            cells: self.cells.address(),
+            keys: keys.address(),
+            results: results.address(),
+            a: self.functions.a,
+            b: self.functions.b,
+            n: n as u32,
+            table_size: self.table_size,
+        };
+        let k = &self.kernels.cuckoo_query;
+        rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+    }
+
+    /// Queries `keys` and reads the results back.
+    pub fn query(&self, keys: &[u64]) -> GpuResult<Vec<u32>> {
+        let gpu = &self.kernels.gpu;
+        let k = GpuBuffer::from_slice(gpu, "hash queries", keys)?;
+        let r = GpuBuffer::<u32>::new(gpu, "hash query results", keys.len())?;
+        gpu.submit(|rec| self.record_query(rec, &k, &r, keys.len()))?;
+        r.read()
+    }
+
+    /// The cells.
+    pub fn cells(&self) -> GpuResult<Vec<u64>> {
+        self.cells.read()
+    }
+
+    /// Exact GPU bytes of the table.
+    pub fn bytes(&self) -> u64 {
+        self.cells.bytes()
+    }
+
+    /// Cells.
+    pub fn table_size(&self) -> u32 {
+        self.table_size
+    }
+
+    /// Keys stored.
+    pub fn len(&self) -> u64 {
+        self.len
+    }
+
+    /// True when no key is stored.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}

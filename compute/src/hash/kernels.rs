@@ -1,0 +1,72 @@
+//! Every hash kernel, built once per device and shared by the tables (pipelines are compiled at
+//! their first dispatch on lavapipe, so rebuilding a table must not rebuild them).
+
+use super::cell::CellWidth;
+use crate::gpu::{Gpu, GpuResult, Kernel};
+use crate::kernels::hash;
+use crate::prims::{RadixSort, Reduce};
+use std::sync::{Arc, Mutex};
+
+/// The Robin Hood kernels of one cell width.
+pub(crate) struct RobinHoodKernels {
+    pub insert: Kernel,
+    pub max_age: Kernel,
+    pub set_ages: Kernel,
+    pub query: Kernel,
+}
+
+/// All kernels of the hash tables, plus the primitives they use.
+pub struct HashKernels {
+    pub(crate) gpu: Gpu,
+    pub(crate) cells64: RobinHoodKernels,
+    pub(crate) cells32: RobinHoodKernels,
+    pub(crate) open_addressing: Kernel,
+    pub(crate) cuckoo_insert: Kernel,
+    pub(crate) cuckoo_query: Kernel,
+    pub(crate) dense_scatter: Kernel,
+    pub(crate) dense_query: Kernel,
+    pub(crate) check_keys: Kernel,
+    pub(crate) sort: Mutex<RadixSort>,
+    pub(crate) reduce: Mutex<Reduce>,
+}
+
+impl HashKernels {
+    /// Builds every kernel for `gpu`.
+    pub fn new(gpu: &Gpu) -> GpuResult<Arc<HashKernels>> {
+        Ok(Arc::new(HashKernels {
+            gpu: gpu.clone(),
+            cells64: RobinHoodKernels {
+                insert: Kernel::new(gpu, &hash::ROBIN_HOOD_INSERT64)?,
+                max_age: Kernel::new(gpu, &hash::ROBIN_HOOD_MAX_AGE64)?,
+                set_ages: Kernel::new(gpu, &hash::ROBIN_HOOD_SET_AGES64)?,
+                query: Kernel::new(gpu, &hash::ROBIN_HOOD_QUERY64)?,
+            },
+            cells32: RobinHoodKernels {
+                insert: Kernel::new(gpu, &hash::ROBIN_HOOD_INSERT32)?,
+                max_age: Kernel::new(gpu, &hash::ROBIN_HOOD_MAX_AGE32)?,
+                set_ages: Kernel::new(gpu, &hash::ROBIN_HOOD_SET_AGES32)?,
+                query: Kernel::new(gpu, &hash::ROBIN_HOOD_QUERY32)?,
+            },
+            open_addressing: Kernel::new(gpu, &hash::OPEN_ADDRESSING_AGES)?,
+            cuckoo_insert: Kernel::new(gpu, &hash::CUCKOO_INSERT)?,
+            cuckoo_query: Kernel::new(gpu, &hash::CUCKOO_QUERY)?,
+            dense_scatter: Kernel::new(gpu, &hash::DENSE_SCATTER)?,
+            dense_query: Kernel::new(gpu, &hash::DENSE_QUERY)?,
+            check_keys: Kernel::new(gpu, &hash::CHECK_KEYS)?,
+            sort: Mutex::new(RadixSort::new(gpu)?),
+            reduce: Mutex::new(Reduce::new(gpu)?),
+        }))
+    }
+
+    pub(crate) fn robin_hood(&self, width: CellWidth) -> &RobinHoodKernels {
+        match width {
+            CellWidth::Bits64 => &self.cells64,
+            CellWidth::Bits32 => &self.cells32,
+        }
+    }
+
+    /// The device the kernels belong to.
+    pub fn gpu(&self) -> &Gpu {
+        &self.gpu
+    }
+}

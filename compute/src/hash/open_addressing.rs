@@ -1,0 +1,53 @@
+//! Plain open addressing on the GPU (first come, first served): the age every key ends at,
+//! for the histograms that show what Robin Hood buys (thesis Fig. 4.16). The ages depend on the
+//! order in which invocations win their slots, so only their distribution is meaningful.
+
+use super::kernels::HashKernels;
+use super::probe::Probe;
+use crate::gpu::{GpuBuffer, GpuResult};
+use bytemuck::{Pod, Zeroable};
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct AgesPush {
+    cells: u64,
+    keys: u64,
+    ages: u64,
+    n: u32,
+    table_size: u32,
+    probe: u32,
+    max_age: u32,
+}
+
+/// Inserts `keys` into `table_size` empty cells without Robin Hood and returns each key's age
+/// (0 when it found no slot within `max_age` probes).
+pub fn plain_open_addressing_ages(
+    kernels: &HashKernels,
+    keys: &[u64],
+    table_size: u32,
+    probe: Probe,
+    max_age: u32,
+) -> GpuResult<Vec<u32>> {
+    let gpu = &kernels.gpu;
+    let k = GpuBuffer::from_slice(gpu, "open addressing keys", keys)?;
+    let cells = GpuBuffer::<u64>::zeroed(gpu, "open addressing cells", table_size as usize)?;
+    let ages = GpuBuffer::<u32>::new(gpu, "open addressing ages", keys.len())?;
+    let push = AgesPush {
+        cells: cells.address(),
+        keys: k.address(),
+        ages: ages.address(),
+        n: keys.len() as u32,
+        table_size,
+        probe: probe.id(),
+        max_age,
+    };
+    gpu.submit(|rec| {
+        rec.dispatch(
+            &kernels.open_addressing,
+            kernels.open_addressing.groups_for(keys.len() as u64),
+            &[],
+            &push,
+        )
+    })?;
+    ages.read()
+}

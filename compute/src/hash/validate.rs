@@ -1,0 +1,116 @@
+//! Key validation before a build: duplicates and keys outside the universe, on the GPU (a radix
+//! sort of a copy, then a count of equal neighbours) with a plain-Rust twin.
+
+use super::error::HashError;
+use super::kernels::HashKernels;
+use super::keys::Universe;
+use crate::gpu::{GpuBuffer, GpuResult};
+use bytemuck::{Pod, Zeroable};
+
+/// What the check found: the largest key and the duplicates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct KeyCheck {
+    /// Largest key (0 when there are none).
+    pub max_key: u64,
+    /// Occurrences that repeat an earlier key.
+    pub duplicates: u64,
+    /// The smallest repeated key, if any.
+    pub first_duplicate: Option<u64>,
+}
+
+impl KeyCheck {
+    /// The error this check implies for `universe`, if any.
+    pub fn error(&self, n: usize, universe: &Universe) -> Option<HashError> {
+        if n > 0 && self.max_key >= universe.key_count() {
+            return Some(HashError::KeyOutsideUniverse {
+                key: self.max_key,
+                universe: universe.key_count(),
+                description: universe.describe(),
+            });
+        }
+        self.first_duplicate.map(|key| HashError::DuplicateKey {
+            key,
+            count: self.duplicates,
+        })
+    }
+}
+
+/// Plain-Rust reference.
+pub fn validate_keys_cpu(keys: &[u64]) -> KeyCheck {
+    let mut sorted = keys.to_vec();
+    sorted.sort_unstable();
+    let mut duplicates = 0;
+    let mut first_duplicate = None;
+    for w in sorted.windows(2) {
+        if w[0] == w[1] {
+            duplicates += 1;
+            first_duplicate = first_duplicate.or(Some(w[0]));
+        }
+    }
+    KeyCheck {
+        max_key: sorted.last().copied().unwrap_or(0),
+        duplicates,
+        first_duplicate,
+    }
+}
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct CheckPush {
+    sorted: u64,
+    counters: u64,
+    key_count: u64,
+    n: u32,
+}
+
+/// Checks `keys[..n]` on the GPU: sorts a copy by the universe's key bits, then visits every
+/// element for equal neighbours and for keys outside the universe.
+pub(crate) fn validate_keys_gpu(
+    kernels: &HashKernels,
+    keys: &GpuBuffer<u64>,
+    n: usize,
+    universe: &Universe,
+) -> GpuResult<KeyCheck> {
+    let gpu = &kernels.gpu;
+    if n == 0 {
+        return Ok(KeyCheck {
+            max_key: 0,
+            duplicates: 0,
+            first_duplicate: None,
+        });
+    }
+    let copy = GpuBuffer::<u64>::new(gpu, "key check copy", n)?;
+    let counters = GpuBuffer::<u64>::from_slice(gpu, "key check counters", &[0, u64::MAX, 0, 0])?;
+    let mut sort = kernels.sort.lock().unwrap();
+    gpu.submit(|rec| {
+        rec.copy(keys, 0, &copy, 0, n)?;
+        sort.record_u64(rec, &copy, None, n, universe.key_bits())?;
+        let push = CheckPush {
+            sorted: copy.address(),
+            counters: counters.address(),
+            key_count: universe.key_count(),
+            n: n as u32,
+        };
+        rec.dispatch(
+            &kernels.check_keys,
+            kernels.check_keys.groups_for(n as u64),
+            &[],
+            &push,
+        )
+    })?;
+    drop(sort);
+    let [duplicates, first, outside, max_outside] = counters.read()?[..] else {
+        unreachable!()
+    };
+    // Inside the universe the sort was complete, so the largest key is the last one.
+    let max_key = if outside > 0 {
+        max_outside
+    } else {
+        copy.read_range(n - 1, 1)?[0]
+    };
+    Ok(KeyCheck {
+        max_key,
+        duplicates,
+        first_duplicate: (duplicates > 0).then_some(first),
+    })
+}

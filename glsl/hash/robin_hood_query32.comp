@@ -1,0 +1,4 @@
+#version 460
+// 32-bit cells; see glsl/include/hash/robin_hood_query.glsl.
+#define CELL_BITS 32
+#include "hash/robin_hood_query.glsl"
