@@ -9,6 +9,7 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t cells;
+    uint64_t fastmod_m;
     uint64_t keys;
     uint64_t ages;
     uint n;
@@ -26,7 +27,7 @@ void main() {
     U64Ptr cells = U64Ptr(pc.cells);
     uint found = 0u;
     for (uint age = 1u; age <= pc.max_age; ++age) {
-        uint slot = hash_slot(key, age, pc.probe, pc.table_size);
+        uint slot = hash_slot(key, age, pc.probe, pc.table_size, pc.fastmod_m);
         if (atomicCompSwap(cells.v[slot], 0ul, key + 1ul) == 0ul) {
             found = age;
             break;

@@ -195,22 +195,23 @@ fn coherent_image_keys_at_load_factor_0_99_stay_within_the_age_field() {
 fn age_overflow_is_reported_or_grown_never_silent() {
     with_gpu(|gpu| {
         let kernels = HashKernels::new(gpu).unwrap();
-        // Random keys in a completely full table: some would need ages above 15.
-        let u = Universe::new_2d(4096, 4096, KeyLayout::RowMajor).unwrap();
-        let (keys, _) = sample(&u, 40_000, 0, 19);
-        let payloads = payloads_for(&keys, 1 << 20);
+        // Under coherent probing, keys congruent modulo |H| share one probe sequence: 17 of
+        // them cannot fit in 15 steps, at any load factor.
+        let u = Universe::new_2d(100, 100, KeyLayout::RowMajor).unwrap();
+        let size = 35; // 17 keys at load factor 0.5
+        let keys: Vec<u64> = (0..17).map(|i| 5 + size * i).collect();
+        let payloads: Vec<u32> = (0..17).collect();
         let strict = RobinHoodConfig {
-            probe: Probe::Random,
-            load_factor: 1.0,
-            max_load_factor: 1.0,
+            probe: Probe::Coherent,
+            load_factor: 0.5,
             grow: false,
             ..Default::default()
         };
         let err = RobinHoodTable::build_from_slices(&kernels, u, &keys, &payloads, strict)
             .err()
-            .expect("a full random table overflows the age field");
+            .expect("17 keys on one probe sequence overflow the age field");
         assert!(
-            matches!(err, HashError::AgeOverflow { .. })
+            matches!(err, HashError::AgeOverflow { failed, .. } if failed >= 2)
                 && err.to_string().contains("age above 15"),
             "{err}"
         );
@@ -225,6 +226,7 @@ fn age_overflow_is_reported_or_grown_never_silent() {
             "{:?}",
             table.report.rebuilds
         );
+        assert!(table.table_size() > size as u32);
         assert_eq!(table.query(&keys).unwrap(), payloads);
     });
 }

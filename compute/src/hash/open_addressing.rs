@@ -11,6 +11,7 @@ use bytemuck::{Pod, Zeroable};
 #[repr(C, packed(4))]
 struct AgesPush {
     cells: u64,
+    fastmod_m: u64,
     keys: u64,
     ages: u64,
     n: u32,
@@ -34,6 +35,7 @@ pub fn plain_open_addressing_ages(
     let ages = GpuBuffer::<u32>::new(gpu, "open addressing ages", keys.len())?;
     let push = AgesPush {
         cells: cells.address(),
+        fastmod_m: super::probe::fastmod_multiplier(table_size),
         keys: k.address(),
         ages: ages.address(),
         n: keys.len() as u32,

@@ -44,12 +44,49 @@ fn coherent_offset(age: u32) -> u64 {
     }
 }
 
+/// ceil(2^64 / d): the multiplier of the division-free `x mod d` that the kernels use
+/// (`fastmod32` in `glsl/include/hash/probe.glsl`; 0 for d = 1, where every remainder is 0).
+pub fn fastmod_multiplier(d: u32) -> u64 {
+    (u64::MAX / d.max(1) as u64).wrapping_add(1)
+}
+
 /// The slot that `key` probes at step `age` (1-based) in a table of `table_size` cells.
+///
+/// Coherent: (key + o_(age−1)) mod |H|, computed as ((key mod |H|) + (o mod |H|)) mod |H|.
+/// Random: a 32-bit hash of (key, age) scaled to the table by a multiply and a shift.
 pub fn probe_slot(probe: Probe, key: u64, age: u32, table_size: u32) -> u32 {
+    let d = table_size as u64;
     match probe {
-        Probe::Coherent => (key.wrapping_add(coherent_offset(age)) % table_size as u64) as u32,
+        Probe::Coherent => ((key % d + coherent_offset(age) % d) % d) as u32,
         Probe::Random => {
-            (mix64(key.wrapping_mul(16).wrapping_add(age as u64)) % table_size as u64) as u32
+            (((mix64(key.wrapping_mul(16).wrapping_add(age as u64)) >> 32) * d) >> 32) as u32
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kernels' division-free remainder, as GLSL computes it.
+    fn fastmod32(x: u32, m: u64, d: u32) -> u32 {
+        let low = m.wrapping_mul(x as u64);
+        let t = (low as u32 as u64) * d as u64;
+        let t2 = (low >> 32) * d as u64 + (t >> 32);
+        (t2 >> 32) as u32
+    }
+
+    #[test]
+    fn fastmod_is_exact() {
+        let mut x = 0x9e3779b9u32;
+        for d in [1u32, 3, 5, 7, 1_000_003, 7_624_331, 0x7fff_ffff, u32::MAX] {
+            let m = fastmod_multiplier(d);
+            for _ in 0..10_000 {
+                x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+                assert_eq!(fastmod32(x, m, d), x % d, "{x} mod {d}");
+            }
+            assert_eq!(fastmod32(u32::MAX, m, d), u32::MAX % d);
+            assert_eq!(fastmod32(0, m, d), 0);
         }
     }
 }

@@ -5,7 +5,7 @@ use super::cell::{CellFormat, CellWidth};
 use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
-use super::probe::Probe;
+use super::probe::{fastmod_multiplier, Probe};
 use super::validate::validate_keys_gpu;
 use crate::gpu::{Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::prims::ReduceOp;
@@ -126,6 +126,7 @@ impl CellBuffer {
 #[repr(C, packed(4))]
 struct InsertPush {
     cells: u64,
+    fastmod_m: u64,
     keys: u64,
     payloads: u64,
     counters: u64,
@@ -139,6 +140,7 @@ struct InsertPush {
 #[repr(C, packed(4))]
 struct MaxAgePush {
     cells: u64,
+    fastmod_m: u64,
     mat: u64,
     histogram: u64,
     table_size: u32,
@@ -150,6 +152,7 @@ struct MaxAgePush {
 #[repr(C, packed(4))]
 struct SetAgesPush {
     cells: u64,
+    fastmod_m: u64,
     mat: u64,
     table_size: u32,
     key_bits: u32,
@@ -161,6 +164,7 @@ struct SetAgesPush {
 #[repr(C, packed(4))]
 struct QueryPush {
     cells: u64,
+    fastmod_m: u64,
     keys: u64,
     results: u64,
     n: u32,
@@ -340,6 +344,7 @@ impl RobinHoodTable {
         let k = self.kernels.robin_hood(self.config.width);
         let push = InsertPush {
             cells: self.cells.address(),
+            fastmod_m: fastmod_multiplier(self.table_size),
             keys: keys.address(),
             payloads: payloads.address(),
             counters: counters.address(),
@@ -360,6 +365,7 @@ impl RobinHoodTable {
         let k = self.kernels.robin_hood(self.config.width);
         let push = SetAgesPush {
             cells: self.cells.address(),
+            fastmod_m: fastmod_multiplier(self.table_size),
             mat: mat.address(),
             table_size: self.table_size,
             key_bits: self.format.key_bits,
@@ -387,6 +393,7 @@ impl RobinHoodTable {
         }
         let push = MaxAgePush {
             cells: self.cells.address(),
+            fastmod_m: fastmod_multiplier(self.table_size),
             mat: mat.address(),
             histogram: histogram.map_or(0, |h| h.address()),
             table_size: self.table_size,
@@ -608,6 +615,7 @@ impl RobinHoodTable {
         let k = self.kernels.robin_hood(self.config.width);
         let push = QueryPush {
             cells: self.cells.address(),
+            fastmod_m: fastmod_multiplier(self.table_size),
             keys: keys.address(),
             results: results.address(),
             n: n as u32,

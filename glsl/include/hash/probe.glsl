@@ -24,11 +24,38 @@ uint coherent_offset(uint age) {
     return age <= 16u ? COHERENT_OFFSETS[age - 1u] : uint(hash_mix64(uint64_t(age)) >> 40);
 }
 
-uint hash_slot(uint64_t key, uint age, uint probe, uint table_size) {
+// x mod d for 32-bit x without a division (Lemire, Kaser and Kurz 2019): m = ceil(2^64 / d),
+// computed on the host (`probe::fastmod_multiplier`). Integer division runs lane by lane on
+// CPU drivers and is slow on GPUs; this is three multiplications.
+uint fastmod32(uint x, uint64_t m, uint d) {
+    uint64_t low = m * uint64_t(x);
+    uint64_t t = uint64_t(uint(low)) * uint64_t(d);
+    uint64_t t2 = uint64_t(uint(low >> 32)) * uint64_t(d) + (t >> 32);
+    return uint(t2 >> 32);
+}
+
+// key mod table_size (keys of 2^32 and more take the slow path).
+uint table_mod(uint64_t key, uint table_size, uint64_t m) {
+    return key < (1ul << 32) ? fastmod32(uint(key), m, table_size) : uint(key % uint64_t(table_size));
+}
+
+// The slot of step `age` (1-based) of `key`; `base` is table_mod(key) for the coherent probe
+// (computed once per key), unused for the random one.
+uint hash_slot_from(uint64_t key, uint base, uint age, uint probe, uint table_size, uint64_t m) {
     if (probe == HASH_PROBE_COHERENT) {
-        return uint((key + uint64_t(coherent_offset(age))) % uint64_t(table_size));
+        if (age == 1u) {
+            return base;
+        }
+        uint s = base + fastmod32(coherent_offset(age), m, table_size);
+        return s >= table_size ? s - table_size : s;
     }
-    return uint(hash_mix64(key * 16ul + uint64_t(age)) % uint64_t(table_size));
+    // Multiply-shift range reduction of a 32-bit hash: no division.
+    return uint((uint64_t(uint(hash_mix64(key * 16ul + uint64_t(age)) >> 32)) * uint64_t(table_size)) >> 32);
+}
+
+uint hash_slot(uint64_t key, uint age, uint probe, uint table_size, uint64_t m) {
+    uint base = probe == HASH_PROBE_COHERENT ? table_mod(key, table_size, m) : 0u;
+    return hash_slot_from(key, base, age, probe, table_size, m);
 }
 
 #endif

@@ -10,6 +10,7 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t cells;
+    uint64_t fastmod_m;
     uint64_t keys;
     uint64_t payloads;
     uint64_t counters;
@@ -32,7 +33,7 @@ void main() {
     uint64_t entry = cell_pack(1u, U64Ptr(pc.keys).v[i], U32Ptr(pc.payloads).v[i], pc.key_bits, AGE_SHIFT);
     for (uint step = 0u; step < MAX_STEPS; ++step) {
         uint64_t key = cell_key1(entry, pc.key_bits) - 1ul;
-        uint slot = hash_slot(key, cell_age(entry, AGE_SHIFT), pc.probe, pc.table_size);
+        uint slot = hash_slot(key, cell_age(entry, AGE_SHIFT), pc.probe, pc.table_size, pc.fastmod_m);
         uint64_t prev = uint64_t(atomicMax(cells.v[slot], CELL_T(entry)));
         if (prev < entry) {
             if (prev == 0ul) {

@@ -8,10 +8,11 @@
 #include "hash/robin_hood_cells.glsl"
 
 // The payload of `key`, or HASH_NOT_FOUND.
-uint robin_hood_lookup(uint64_t cells_address, uint table_size, uint key_bits, uint probe, uint64_t key) {
+uint robin_hood_lookup(uint64_t cells_address, uint table_size, uint64_t fastmod_m, uint key_bits, uint probe, uint64_t key) {
     Cells cells = Cells(cells_address);
     uint64_t key1 = key + 1ul;
-    uint home = hash_slot(key, 1u, probe, table_size);
+    uint base = probe == HASH_PROBE_COHERENT ? table_mod(key, table_size, fastmod_m) : 0u;
+    uint home = hash_slot_from(key, base, 1u, probe, table_size, fastmod_m);
     uint64_t cell = uint64_t(cells.v[home]);
     if (cell == 0ul) {
         return HASH_NOT_FOUND;
@@ -21,7 +22,7 @@ uint robin_hood_lookup(uint64_t cells_address, uint table_size, uint key_bits, u
         return cell_payload(cell, key_bits, AGE_SHIFT);
     }
     for (uint age = 2u; age <= max_age; ++age) {
-        uint64_t c = uint64_t(cells.v[hash_slot(key, age, probe, table_size)]);
+        uint64_t c = uint64_t(cells.v[hash_slot_from(key, base, age, probe, table_size, fastmod_m)]);
         if (cell_key1(c, key_bits) == key1) {
             return cell_payload(c, key_bits, AGE_SHIFT);
         }

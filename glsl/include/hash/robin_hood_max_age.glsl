@@ -5,6 +5,7 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t cells;
+    uint64_t fastmod_m;
     uint64_t mat;
     uint64_t histogram;
     uint table_size;
@@ -22,7 +23,7 @@ void main() {
         return;
     }
     uint age = cell_age(cell, AGE_SHIFT);
-    uint home = hash_slot(cell_key1(cell, pc.key_bits) - 1ul, 1u, pc.probe, pc.table_size);
+    uint home = hash_slot(cell_key1(cell, pc.key_bits) - 1ul, 1u, pc.probe, pc.table_size, pc.fastmod_m);
     atomicMax(U32Ptr(pc.mat).v[home], age);
     if (pc.histogram != 0ul) {
         atomicAdd(U32Ptr(pc.histogram).v[age], 1u);

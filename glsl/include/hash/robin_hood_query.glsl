@@ -4,6 +4,7 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t cells;
+    uint64_t fastmod_m;
     uint64_t keys;
     uint64_t results;
     uint n;
@@ -17,5 +18,5 @@ void main() {
     if (i >= pc.n) {
         return;
     }
-    U32Ptr(pc.results).v[i] = robin_hood_lookup(pc.cells, pc.table_size, pc.key_bits, pc.probe, U64Ptr(pc.keys).v[i]);
+    U32Ptr(pc.results).v[i] = robin_hood_lookup(pc.cells, pc.table_size, pc.fastmod_m, pc.key_bits, pc.probe, U64Ptr(pc.keys).v[i]);
 }

@@ -5,6 +5,7 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t cells;
+    uint64_t fastmod_m;
     uint64_t mat;
     uint table_size;
     uint key_bits;
@@ -28,7 +29,7 @@ void main() {
     } else {
         uint64_t key = cell_key1(cell, pc.key_bits) - 1ul;
         for (uint a = 1u; a <= HASH_MAX_AGE; ++a) {
-            if (hash_slot(key, a, pc.probe, pc.table_size) == s) {
+            if (hash_slot(key, a, pc.probe, pc.table_size, pc.fastmod_m) == s) {
                 age = a;
                 break;
             }

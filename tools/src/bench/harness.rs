@@ -79,6 +79,7 @@ pub struct Row {
 /// Collects rows for one suite and writes them out.
 pub struct Bench {
     pub info: RunInfo,
+    stamp: String,
     rows: Vec<Row>,
     out: PathBuf,
     progress: ProgressBar,
@@ -122,6 +123,7 @@ impl Bench {
             .unwrap(),
         );
         Ok(Bench {
+            stamp: chrono::Utc::now().format("%Y%m%d-%H%M%S").to_string(),
             info,
             rows: Vec::new(),
             out: common.out.clone(),
@@ -169,6 +171,13 @@ impl Bench {
         self.resolve_ratios();
         self.progress.inc(1);
         Ok(min)
+    }
+
+    /// `<out>/<suite>-<date>/`, created on first use: where a suite puts its figures.
+    pub fn artifact_dir(&self) -> anyhow::Result<PathBuf> {
+        let dir = self.out.join(format!("{}-{}", self.info.suite, self.stamp));
+        std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+        Ok(dir)
     }
 
     /// Rows so far; a row's ratio is set once its baseline row exists (in either order).

@@ -2,6 +2,8 @@
 //! median, ratios against a baseline measured in the same run, table + CSV + JSON).
 
 pub mod harness;
+mod hash;
+mod plot;
 mod prims;
 
 use crate::cli::GlobalArgs;
@@ -13,6 +15,8 @@ use std::path::PathBuf;
 pub enum BenchCommand {
     /// Scan, reduce, compaction and radix sort against their CPU references and a copy kernel.
     Prims(prims::PrimsArgs),
+    /// Coherent, random-probe and cuckoo hashing against a dense array and CPU hashbrown.
+    Hash(hash::HashArgs),
 }
 
 /// Options every suite shares.
@@ -33,5 +37,6 @@ pub struct CommonArgs {
 pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
     match command {
         BenchCommand::Prims(args) => prims::run(&args, global),
+        BenchCommand::Hash(args) => hash::run(&args, global),
     }
 }
