@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages lazysolid needs to build and run, and checks the Rust toolchain.
+#   fonts-dejavu-core is the font of the benchmark plots.
 #   lavapipe (Mesa's CPU Vulkan driver), the Vulkan loader and the Khronos validation layer;
 #   shaderc, glslang and SPIRV-Tools with their static archives (Debian's libshaderc.so cannot be
 #   linked, so build.rs links libshaderc_combined.a with the static glslang/SPIRV-Tools ones).
@@ -12,7 +13,7 @@ set -euo pipefail
 packages=(
   mesa-vulkan-drivers libvulkan1 libvulkan-dev vulkan-tools vulkan-validationlayers
   libshaderc-dev glslang-dev glslang-tools spirv-tools
-  build-essential pkg-config git ca-certificates xz-utils
+  build-essential pkg-config git ca-certificates xz-utils fonts-dejavu-core
 )
 
 sudo=""

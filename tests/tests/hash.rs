@@ -97,7 +97,7 @@ fn robin_hood_2d_every_layout_probe_and_load_factor() {
         for layout in KeyLayout::ALL {
             let u = Universe::new_2d(300, 200, layout).unwrap();
             for probe in [Probe::Coherent, Probe::Random] {
-                for lf in [0.5, 0.85, 0.95] {
+                for lf in [0.5, 0.85, 0.95, 0.99] {
                     let config = RobinHoodConfig {
                         probe,
                         load_factor: lf,

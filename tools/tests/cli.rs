@@ -148,3 +148,93 @@ fn bad_arguments_are_refused() {
     let (ok, _, err) = run(lazysolid().args(["bench", "prims", "--scan-elements", "lots"]));
     assert!(!ok && err.contains("invalid value"), "{err}");
 }
+
+#[test]
+fn bench_hash_writes_tables_files_and_figures() {
+    let mesh =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/meshes/armadillo.off");
+    assert!(
+        mesh.exists(),
+        "{} is missing: run scripts/fetch-assets.sh",
+        mesh.display()
+    );
+    let out = tempfile::tempdir().unwrap();
+    let (ok, stdout, err) = run(lazysolid()
+        .args([
+            "bench",
+            "hash",
+            "--image-size",
+            "256",
+            "--voxel-resolution",
+            "32",
+            "--random-keys",
+            "4096",
+            "--random-universe",
+            "512",
+        ])
+        .args([
+            "--load-factors",
+            "0.5,0.85,0.99",
+            "--runs",
+            "1",
+            "--warmup",
+            "0",
+            "--mesh",
+        ])
+        .arg(&mesh)
+        .arg("--out")
+        .arg(out.path())
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    for needle in [
+        "image lf 0.85 query sorted 100%",
+        "dense array (gpu)",
+        "hashbrown (cpu, 2 threads)",
+        "target: image lf 0.85 sorted queries coherent / random",
+    ] {
+        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
+    }
+    let entries: Vec<_> = std::fs::read_dir(out.path())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert!(entries
+        .iter()
+        .any(|p| p.extension().is_some_and(|e| e == "csv")));
+    assert!(entries
+        .iter()
+        .any(|p| p.extension().is_some_and(|e| e == "json")));
+    let figures = entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let names: Vec<String> = std::fs::read_dir(figures)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    for f in [
+        "age-histogram.png",
+        "image-insert-vs-load-factor.png",
+        "voxels-query-vs-load-factor.png",
+        "table-contents-coherent-lf0.99.png",
+        "max-age-map-random-lf0.85.png",
+    ] {
+        assert!(names.iter().any(|n| n == f), "missing {f} in {names:?}");
+    }
+    assert!(!names.iter().any(|n| n.contains("partial")), "{names:?}");
+}
+
+#[test]
+fn bench_hash_refuses_bad_load_factors_and_missing_meshes() {
+    let (ok, _, err) = run(lazysolid().args(["bench", "hash", "--load-factors", "0.5,1.5"]));
+    assert!(
+        !ok && err.contains("--load-factors must lie in (0, 1]"),
+        "{err}"
+    );
+    let (ok, _, err) =
+        run(lazysolid().args(["bench", "hash", "--quick", "--mesh", "/no/such/mesh.off"]));
+    assert!(
+        !ok && err.contains("/no/such/mesh.off") && err.contains("fetch-assets"),
+        "{err}"
+    );
+}
