@@ -34,9 +34,13 @@ uint fastmod32(uint x, uint64_t m, uint d) {
     return uint(t2 >> 32);
 }
 
-// key mod table_size (keys of 2^32 and more take the slow path).
+// key mod table_size (keys of 2^32 and more take the slow path). A branch, not `?:`: a select
+// would compute the 64-bit division for every key.
 uint table_mod(uint64_t key, uint table_size, uint64_t m) {
-    return key < (1ul << 32) ? fastmod32(uint(key), m, table_size) : uint(key % uint64_t(table_size));
+    if (key < (1ul << 32)) {
+        return fastmod32(uint(key), m, table_size);
+    }
+    return uint(key % uint64_t(table_size));
 }
 
 // The slot of step `age` (1-based) of `key`; `base` is table_mod(key) for the coherent probe
