@@ -7,9 +7,8 @@ use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
 use super::robin_hood::table_size_for;
-use super::validate::validate_keys_gpu;
+use super::validate::validate_entries;
 use crate::gpu::{GpuBuffer, GpuResult, Recorder};
-use crate::prims::ReduceOp;
 use crate::shader_constants::HASH_NOT_FOUND;
 use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
@@ -110,43 +109,45 @@ impl CuckooTable {
             });
         }
         crate::prims::check_len("hash keys", n, keys.len().min(payloads.len()))?;
-        let gpu = kernels.gpu.clone();
         if config.validate {
-            if let Some(e) = validate_keys_gpu(kernels, keys, n, &universe)?.error(n, &universe) {
-                return Err(e);
-            }
-            if n > 0 {
-                let result = GpuBuffer::<u32>::new(&gpu, "payload maximum", 1)?;
-                let mut reduce = kernels.reduce.lock().unwrap();
-                gpu.submit(|rec| reduce.record(rec, payloads, n, ReduceOp::Max, &result))?;
-                let max = result.read()?[0];
-                if max == HASH_NOT_FOUND {
-                    return Err(HashError::PayloadTooLarge {
-                        payload: max,
-                        format: "cuckoo cells".into(),
-                        bits: 32,
-                        max: HASH_NOT_FOUND - 1,
-                    });
-                }
-            }
+            let limit = (HASH_NOT_FOUND - 1, "cuckoo cells".to_string(), 32);
+            validate_entries(kernels, &universe, keys, payloads, n, limit)?;
         }
         let table_size = table_size_for(n as u64, config.load_factor)?;
         let mut table = CuckooTable {
             kernels: kernels.clone(),
-            cells: GpuBuffer::new(&gpu, "cuckoo cells", table_size as usize)?,
+            cells: GpuBuffer::new(&kernels.gpu, "cuckoo cells", table_size as usize)?,
             table_size,
             functions: CuckooFunctions::from_seed(config.seed, 0),
             failed_attempts: 0,
             len: n as u64,
         };
-        let mut last_failed = 0;
-        for attempt in 0..config.attempts.max(1) {
-            table.functions = CuckooFunctions::from_seed(config.seed, attempt);
+        table.insert_with_retries(keys, payloads, n, &config)?;
+        Ok(table)
+    }
+
+    /// Clears the table and inserts `keys[..n]` with the current hash constants; when keys are
+    /// left unplaced, tries the next constants of `config.seed`, up to `config.attempts`
+    /// attempts in all. Returns the GPU time of every attempt in ms.
+    fn insert_with_retries(
+        &mut self,
+        keys: &GpuBuffer<u64>,
+        payloads: &GpuBuffer<u32>,
+        n: usize,
+        config: &CuckooConfig,
+    ) -> Result<f64, HashError> {
+        let gpu = self.kernels.gpu.clone();
+        let mut total = 0.0;
+        let mut failed = 0;
+        for _ in 0..config.attempts.max(1) {
             let counters = GpuBuffer::<u32>::zeroed(&gpu, "cuckoo counters", 4)?;
-            gpu.submit(|rec| {
-                rec.fill(&table.cells, 0);
-                table.record_insert(rec, keys, payloads, n, &counters)
+            let ((), t) = gpu.submit_timed(|rec| {
+                rec.timestamp()?;
+                rec.fill(&self.cells, 0);
+                self.record_insert(rec, keys, payloads, n, &counters)?;
+                rec.timestamp()
             })?;
+            total += (t[1] - t[0]) * 1e-6;
             let c = counters.read()?;
             if c[1] > 0 {
                 return Err(HashError::DuplicateKey {
@@ -155,15 +156,16 @@ impl CuckooTable {
                 });
             }
             if c[0] == 0 {
-                table.failed_attempts = attempt;
-                return Ok(table);
+                return Ok(total);
             }
-            last_failed = c[0];
+            failed = c[0];
+            self.failed_attempts += 1;
+            self.functions = CuckooFunctions::from_seed(config.seed, self.failed_attempts);
         }
         Err(HashError::CuckooFailed {
             attempts: config.attempts.max(1),
-            load_factor: n as f64 / table_size as f64,
-            failed: last_failed,
+            load_factor: n as f64 / self.table_size as f64,
+            failed,
         })
     }
 
@@ -175,9 +177,7 @@ impl CuckooTable {
         payloads: &[u32],
         config: CuckooConfig,
     ) -> Result<CuckooTable, HashError> {
-        let gpu = &kernels.gpu;
-        let k = GpuBuffer::from_slice(gpu, "hash keys", keys)?;
-        let p = GpuBuffer::from_slice(gpu, "hash payloads", payloads)?;
+        let (k, p) = kernels.upload_pairs(keys, payloads)?;
         Self::build(kernels, universe, &k, &p, keys.len(), config)
     }
 
@@ -215,38 +215,7 @@ impl CuckooTable {
         n: usize,
         config: &CuckooConfig,
     ) -> Result<f64, HashError> {
-        let gpu = self.kernels.gpu.clone();
-        let mut total = 0.0;
-        let mut failed = 0;
-        for attempt in 0..config.attempts.max(1) {
-            let counters = GpuBuffer::<u32>::zeroed(&gpu, "cuckoo counters", 4)?;
-            let ((), t) = gpu.submit_timed(|rec| {
-                rec.timestamp()?;
-                rec.fill(&self.cells, 0);
-                self.record_insert(rec, keys, payloads, n, &counters)?;
-                rec.timestamp()
-            })?;
-            total += (t[1] - t[0]) * 1e-6;
-            let c = counters.read()?;
-            if c[1] > 0 {
-                return Err(HashError::DuplicateKey {
-                    key: 0,
-                    count: c[1] as u64,
-                });
-            }
-            if c[0] == 0 {
-                return Ok(total);
-            }
-            failed = c[0];
-            self.failed_attempts += 1;
-            self.functions =
-                CuckooFunctions::from_seed(config.seed, self.failed_attempts + attempt + 1);
-        }
-        Err(HashError::CuckooFailed {
-            attempts: config.attempts.max(1),
-            load_factor: n as f64 / self.table_size as f64,
-            failed,
-        })
+        self.insert_with_retries(keys, payloads, n, config)
     }
 
     /// Records `results[i]` = the payload of `keys[i]` or `HASH_NOT_FOUND`.
@@ -273,11 +242,8 @@ impl CuckooTable {
 
     /// Queries `keys` and reads the results back.
     pub fn query(&self, keys: &[u64]) -> GpuResult<Vec<u32>> {
-        let gpu = &self.kernels.gpu;
-        let k = GpuBuffer::from_slice(gpu, "hash queries", keys)?;
-        let r = GpuBuffer::<u32>::new(gpu, "hash query results", keys.len())?;
-        gpu.submit(|rec| self.record_query(rec, &k, &r, keys.len()))?;
-        r.read()
+        self.kernels
+            .run_queries(keys, |rec, k, r, n| self.record_query(rec, k, r, n))
     }
 
     /// The cells.

@@ -2,7 +2,8 @@
 //! their first dispatch on lavapipe, so rebuilding a table must not rebuild them).
 
 use super::cell::CellWidth;
-use crate::gpu::{Gpu, GpuResult, Kernel};
+use super::error::HashError;
+use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::kernels::hash;
 use crate::prims::{RadixSort, Reduce};
 use std::sync::{Arc, Mutex};
@@ -68,5 +69,39 @@ impl HashKernels {
     /// The device the kernels belong to.
     pub fn gpu(&self) -> &Gpu {
         &self.gpu
+    }
+}
+
+impl HashKernels {
+    /// Uploads `(key, payload)` pairs for a build.
+    pub(crate) fn upload_pairs(
+        &self,
+        keys: &[u64],
+        payloads: &[u32],
+    ) -> Result<(GpuBuffer<u64>, GpuBuffer<u32>), HashError> {
+        if keys.len() != payloads.len() {
+            return Err(HashError::InvalidArgument(format!(
+                "{} keys but {} payloads",
+                keys.len(),
+                payloads.len()
+            )));
+        }
+        Ok((
+            GpuBuffer::from_slice(&self.gpu, "hash keys", keys)?,
+            GpuBuffer::from_slice(&self.gpu, "hash payloads", payloads)?,
+        ))
+    }
+
+    /// Uploads `keys`, records the queries with `record(rec, keys, results, n)`, submits and
+    /// reads the results back.
+    pub(crate) fn run_queries(
+        &self,
+        keys: &[u64],
+        record: impl FnOnce(&mut Recorder<'_>, &GpuBuffer<u64>, &GpuBuffer<u32>, usize) -> GpuResult<()>,
+    ) -> GpuResult<Vec<u32>> {
+        let k = GpuBuffer::from_slice(&self.gpu, "hash queries", keys)?;
+        let r = GpuBuffer::<u32>::new(&self.gpu, "hash query results", keys.len())?;
+        self.gpu.submit(|rec| record(rec, &k, &r, keys.len()))?;
+        r.read()
     }
 }

@@ -6,7 +6,7 @@ use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
 use super::probe::{fastmod_multiplier, Probe};
-use super::validate::validate_keys_gpu;
+use super::validate::{validate_entries, validate_keys_gpu};
 use crate::gpu::{Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::prims::ReduceOp;
 use crate::shader_constants::HASH_MAX_AGE;
@@ -290,16 +290,7 @@ impl RobinHoodTable {
         payloads: &[u32],
         config: RobinHoodConfig,
     ) -> Result<RobinHoodTable, HashError> {
-        if keys.len() != payloads.len() {
-            return Err(HashError::InvalidArgument(format!(
-                "{} keys but {} payloads",
-                keys.len(),
-                payloads.len()
-            )));
-        }
-        let gpu = &kernels.gpu;
-        let k = GpuBuffer::from_slice(gpu, "hash keys", keys)?;
-        let p = GpuBuffer::from_slice(gpu, "hash payloads", payloads)?;
+        let (k, p) = kernels.upload_pairs(keys, payloads)?;
         Self::build(kernels, universe, &k, &p, keys.len(), config)
     }
 
@@ -311,26 +302,8 @@ impl RobinHoodTable {
         payloads: &GpuBuffer<u32>,
         n: usize,
     ) -> Result<(), HashError> {
-        if let Some(e) = validate_keys_gpu(kernels, keys, n, universe)?.error(n, universe) {
-            return Err(e);
-        }
-        if n > 0 {
-            let result = GpuBuffer::<u32>::new(&kernels.gpu, "payload maximum", 1)?;
-            let mut reduce = kernels.reduce.lock().unwrap();
-            kernels
-                .gpu
-                .submit(|rec| reduce.record(rec, payloads, n, ReduceOp::Max, &result))?;
-            let max = result.read()?[0];
-            if max > format.max_payload() {
-                return Err(HashError::PayloadTooLarge {
-                    payload: max,
-                    format: format.describe(),
-                    bits: format.payload_bits,
-                    max: format.max_payload(),
-                });
-            }
-        }
-        Ok(())
+        let limit = (format.max_payload(), format.describe(), format.payload_bits);
+        validate_entries(kernels, universe, keys, payloads, n, limit)
     }
 
     fn record_insert(
@@ -628,11 +601,8 @@ impl RobinHoodTable {
 
     /// Queries `keys` and reads the results back.
     pub fn query(&self, keys: &[u64]) -> GpuResult<Vec<u32>> {
-        let gpu = &self.kernels.gpu;
-        let k = GpuBuffer::from_slice(gpu, "hash queries", keys)?;
-        let r = GpuBuffer::<u32>::new(gpu, "hash query results", keys.len())?;
-        gpu.submit(|rec| self.record_query(rec, &k, &r, keys.len()))?;
-        r.read()
+        self.kernels
+            .run_queries(keys, |rec, k, r, n| self.record_query(rec, k, r, n))
     }
 
     /// The cells (widened to 64 bits), MAT in the age bits.

@@ -114,3 +114,35 @@ pub(crate) fn validate_keys_gpu(
         first_duplicate: (duplicates > 0).then_some(first),
     })
 }
+
+/// Checks `keys[..n]` (duplicates, universe) and that no payload exceeds `max_payload`, the
+/// limit of the table's cells (`format`, with `bits` payload bits), before a build or insert.
+pub(crate) fn validate_entries(
+    kernels: &HashKernels,
+    universe: &Universe,
+    keys: &GpuBuffer<u64>,
+    payloads: &GpuBuffer<u32>,
+    n: usize,
+    (max_payload, format, bits): (u32, String, u32),
+) -> Result<(), HashError> {
+    if let Some(e) = validate_keys_gpu(kernels, keys, n, universe)?.error(n, universe) {
+        return Err(e);
+    }
+    if n > 0 {
+        let result = GpuBuffer::<u32>::new(&kernels.gpu, "payload maximum", 1)?;
+        let mut reduce = kernels.reduce.lock().unwrap();
+        kernels
+            .gpu
+            .submit(|rec| reduce.record(rec, payloads, n, crate::prims::ReduceOp::Max, &result))?;
+        let max = result.read()?[0];
+        if max > max_payload {
+            return Err(HashError::PayloadTooLarge {
+                payload: max,
+                format,
+                bits,
+                max: max_payload,
+            });
+        }
+    }
+    Ok(())
+}

@@ -5,6 +5,7 @@
 use super::check_len;
 use super::push::{CompactCountPush, CompactWritePush};
 use super::scan::Scan;
+use super::scratch::grown;
 use super::segments::Split;
 use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
@@ -116,18 +117,12 @@ impl Compactor {
             return Ok(());
         }
         let split = Split::new(n, self.gpu.info(), self.segment_length);
-        if self
-            .offsets
-            .as_ref()
-            .is_none_or(|o| o.len() < split.segments)
-        {
-            self.offsets = Some(GpuBuffer::new(
-                &self.gpu,
-                "compaction segment offsets",
-                split.segments,
-            )?);
-        }
-        let offsets = self.offsets.as_ref().unwrap();
+        let offsets = grown(
+            &mut self.offsets,
+            &self.gpu,
+            "compaction segment offsets",
+            split.segments,
+        )?;
         // The kernels always read both a value and a flag stream; bind what stands in for the
         // one that is not used.
         let (mode, flags, sentinel) = match keep {

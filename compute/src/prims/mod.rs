@@ -12,6 +12,7 @@ pub mod push;
 mod radix_sort;
 mod reduce;
 mod scan;
+mod scratch;
 mod segments;
 
 pub use compact::{compact_cpu, CompactOutput, Compactor, Keep, KeepCpu};

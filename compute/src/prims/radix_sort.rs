@@ -8,6 +8,7 @@
 
 use super::push::{RadixCountPush, RadixScatterPush};
 use super::scan::Scan;
+use super::scratch::grown;
 use super::{check_aligned, check_len};
 use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
@@ -134,31 +135,27 @@ impl RadixSort {
         }
         let key64 = width == 64;
         let scratch_keys = if key64 {
-            if self.keys64.as_ref().is_none_or(|b| b.len() < n) {
-                self.keys64 = Some(GpuBuffer::new(
-                    &self.gpu,
-                    "radix sort scratch keys (u64)",
-                    n,
-                )?);
-            }
-            self.keys64.as_ref().unwrap().address()
+            grown(
+                &mut self.keys64,
+                &self.gpu,
+                "radix sort scratch keys (u64)",
+                n,
+            )?
+            .address()
         } else {
-            if self.keys32.as_ref().is_none_or(|b| b.len() < n) {
-                self.keys32 = Some(GpuBuffer::new(
-                    &self.gpu,
-                    "radix sort scratch keys (u32)",
-                    n,
-                )?);
-            }
-            self.keys32.as_ref().unwrap().address()
+            grown(
+                &mut self.keys32,
+                &self.gpu,
+                "radix sort scratch keys (u32)",
+                n,
+            )?
+            .address()
         };
         let scratch_values = match values {
-            Some(v) => {
-                if self.values.as_ref().is_none_or(|b| b.len() < n) {
-                    self.values = Some(GpuBuffer::new(&self.gpu, "radix sort scratch values", n)?);
-                }
-                Some((v.address(), self.values.as_ref().unwrap().address()))
-            }
+            Some(v) => Some((
+                v.address(),
+                grown(&mut self.values, &self.gpu, "radix sort scratch values", n)?.address(),
+            )),
             None => None,
         };
         let passes = key_bits.div_ceil(RADIX_BITS);
@@ -202,10 +199,7 @@ impl RadixSort {
         let seg_len = job.n.div_ceil(threads).next_multiple_of(4);
         let bits = RADIX_BITS;
         let hist_len = (RADIX_BUCKETS * threads) as usize;
-        if self.hist.as_ref().is_none_or(|h| h.len() < hist_len) {
-            self.hist = Some(GpuBuffer::new(&self.gpu, "radix sort histogram", hist_len)?);
-        }
-        let hist = self.hist.as_ref().unwrap();
+        let hist = grown(&mut self.hist, &self.gpu, "radix sort histogram", hist_len)?;
         let groups = self.count.groups_for(threads as u64);
         for pass in 0..job.key_bits.div_ceil(bits) {
             let (src, dst) = if pass % 2 == 0 {

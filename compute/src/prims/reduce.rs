@@ -2,6 +2,7 @@
 //! reductions until one word is left.
 
 use super::check_len;
+use super::scratch::grown_level;
 use super::segments::{reduce_segments, Split};
 use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
@@ -109,15 +110,7 @@ impl Reduce {
         }
         let sizes: Vec<usize> = splits.iter().map(|s| s.n).chain([1]).collect();
         for (level, &size) in sizes[1..sizes.len() - 1].iter().enumerate() {
-            if self.levels.get(level).is_none_or(|b| b.len() < size) {
-                let buffer =
-                    GpuBuffer::new(&self.gpu, format!("reduce partials (level {level})"), size)?;
-                if level < self.levels.len() {
-                    self.levels[level] = buffer;
-                } else {
-                    self.levels.push(buffer);
-                }
-            }
+            grown_level(&mut self.levels, &self.gpu, "reduce partials", level, size)?;
         }
         let kernel = &self.kernels[op.index()];
         for (i, split) in splits.iter().enumerate() {

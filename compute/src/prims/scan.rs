@@ -2,6 +2,7 @@
 //! those totals, then every segment scanned from its carry.
 
 use super::check_len;
+use super::scratch::grown_level;
 use super::segments::{reduce_segments, ScanPush, Split};
 use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
@@ -81,22 +82,13 @@ impl Scan {
         let mut split = Split::new(n, self.gpu.info(), self.segment_length);
         let mut level = 0;
         while split.segments > 1 {
-            if self
-                .levels
-                .get(level)
-                .is_none_or(|b| b.len() < split.segments)
-            {
-                let buffer = GpuBuffer::new(
-                    &self.gpu,
-                    format!("scan segment totals (level {level})"),
-                    split.segments,
-                )?;
-                if level < self.levels.len() {
-                    self.levels[level] = buffer;
-                } else {
-                    self.levels.push(buffer);
-                }
-            }
+            grown_level(
+                &mut self.levels,
+                &self.gpu,
+                "scan segment totals",
+                level,
+                split.segments,
+            )?;
             split = Split::new(split.segments, self.gpu.info(), self.segment_length);
             level += 1;
         }

@@ -63,6 +63,14 @@ fn absent_points(dims: [u32; 3], defined: &HashSet<u64>, count: usize, seed: u64
     out
 }
 
+/// The mesh at `path`, scaled into the unit cube.
+fn load_normalized(path: &Path) -> anyhow::Result<Mesh> {
+    let mut mesh = Mesh::load(path)
+        .with_context(|| format!("loading {} (run scripts/fetch-assets.sh)", path.display()))?;
+    mesh.normalize_to_unit_cube();
+    Ok(mesh)
+}
+
 /// `count` distinct uniformly random points of a `size`² universe (the paper: 1M keys in 8K²).
 pub fn random_2d(size: u32, count: usize, seed: u64) -> Dataset {
     let dims = [size, size, 1];
@@ -93,13 +101,7 @@ pub fn random_2d(size: u32, count: usize, seed: u64) -> Dataset {
 /// rasterized at `size`², each pixel holding its shaded colour (like the paper's flower and
 /// datafish images: coherent regions of defined pixels).
 pub fn armadillo_image(mesh_path: &Path, size: u32) -> anyhow::Result<Dataset> {
-    let mut mesh = Mesh::load(mesh_path).with_context(|| {
-        format!(
-            "loading {} (run scripts/fetch-assets.sh)",
-            mesh_path.display()
-        )
-    })?;
-    mesh.normalize_to_unit_cube();
+    let mesh = load_normalized(mesh_path)?;
     let s = size as f32;
     let mut depth = vec![f32::NEG_INFINITY; (size * size) as usize];
     let mut colour = vec![0u32; (size * size) as usize];
@@ -184,13 +186,7 @@ pub fn armadillo_image(mesh_path: &Path, size: u32) -> anyhow::Result<Dataset> {
 
 /// The voxelized surface of the armadillo at `resolution`³ (exact triangle–box overlap).
 pub fn armadillo_voxels(mesh_path: &Path, resolution: u32) -> anyhow::Result<Dataset> {
-    let mut mesh = Mesh::load(mesh_path).with_context(|| {
-        format!(
-            "loading {} (run scripts/fetch-assets.sh)",
-            mesh_path.display()
-        )
-    })?;
-    mesh.normalize_to_unit_cube();
+    let mesh = load_normalized(mesh_path)?;
     let keys =
         lazysolid_compute::voxel::surface_voxels_cpu(&mesh.positions, &mesh.triangles, resolution);
     let dims = [resolution; 3];
