@@ -4,3 +4,4 @@
 //! tobj and OFF (the format of the CGAL meshes `scripts/fetch-assets.sh` installs).
 
 pub mod mesh;
+pub mod scene;

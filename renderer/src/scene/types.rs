@@ -1,0 +1,196 @@
+//! The resolved scene: what a scene file describes once it is parsed, validated and its meshes
+//! loaded. Everything the GPU upload and the integrator need, nothing about TOML.
+
+use crate::mesh::Mesh;
+use glam::{Affine3A, Vec3};
+use std::path::PathBuf;
+
+/// A scene ready to be uploaded and rendered.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The scene file it came from (for messages and relative paths).
+    pub source: PathBuf,
+    /// The camera.
+    pub camera: Camera,
+    /// Resolution, sampling and seed.
+    pub render: RenderSettings,
+    /// Meshes, each loaded once and instanced any number of times.
+    pub meshes: Vec<SceneMesh>,
+    /// Materials; instances refer to them by index.
+    pub materials: Vec<Material>,
+    /// Placed meshes: the top level of the two-level BVH.
+    pub instances: Vec<Instance>,
+    /// Analytic area lights (sampled by next-event estimation and hit by rays).
+    pub lights: Vec<Light>,
+    /// What a ray that leaves the scene sees.
+    pub environment: Environment,
+}
+
+/// A named mesh in the rest pose that solid textures are evaluated in.
+#[derive(Clone, Debug)]
+pub struct SceneMesh {
+    /// Name instances refer to.
+    pub name: String,
+    /// The triangles, already normalized into the unit cube when the scene asked for it.
+    pub mesh: Mesh,
+}
+
+/// The camera model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub position: Vec3,
+    /// Point the camera looks at.
+    pub look_at: Vec3,
+    /// Up direction (need not be orthogonal to the view direction, must not be parallel).
+    pub up: Vec3,
+    /// Vertical field of view in degrees, in (0, 180).
+    pub fov_y_deg: f32,
+    /// Pinhole or thin lens.
+    pub lens: Lens,
+}
+
+/// Lens model of the camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Lens {
+    /// Everything in focus.
+    Pinhole,
+    /// Depth of field: a disc aperture focused at a distance.
+    ThinLens {
+        /// Radius of the aperture in scene units (> 0).
+        aperture_radius: f32,
+        /// Distance along the view direction that is in focus (> 0).
+        focus_distance: f32,
+    },
+}
+
+/// Resolution, sampling and determinism.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Maximum number of bounces (path vertices after the camera).
+    pub max_depth: u32,
+    /// Depth from which Russian roulette may end paths.
+    pub rr_depth: u32,
+    /// Seed of every random number of the render: same seed, same image.
+    pub seed: u32,
+}
+
+/// Scattering model of a material.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MaterialKind {
+    /// Ideal diffuse reflector.
+    Lambertian,
+    /// GGX microfacet metal with complex index of refraction (`color` = η, `k` = κ per channel).
+    Conductor,
+    /// Diffuse base under a GGX dielectric coat of index `ior`.
+    Plastic,
+    /// Glass: smooth when `roughness` is 0, GGX rough otherwise; `color` tints transmission.
+    Dielectric,
+    /// Emits `emission`, reflects nothing.
+    Emissive,
+}
+
+/// A material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Name instances refer to.
+    pub name: String,
+    /// Scattering model.
+    pub kind: MaterialKind,
+    /// Albedo (Lambertian, plastic), η (conductor) or transmission tint (dielectric).
+    pub color: Vec3,
+    /// Extinction κ of a conductor (unused otherwise).
+    pub k: Vec3,
+    /// Emitted radiance (emissive; zero otherwise).
+    pub emission: Vec3,
+    /// GGX α = roughness² convention: `roughness` in [0, 1].
+    pub roughness: f32,
+    /// Index of refraction of a dielectric or of the plastic coat (> 1).
+    pub ior: f32,
+    /// Solid texture replacing `color` as albedo, evaluated in rest-pose object coordinates.
+    pub texture: Option<SolidTexture>,
+}
+
+/// A solid (3D) texture evaluated at the rest-pose object-space hit point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidTexture {
+    /// Which pattern.
+    pub kind: SolidTextureKind,
+    /// First colour of the pattern.
+    pub color_a: Vec3,
+    /// Second colour of the pattern.
+    pub color_b: Vec3,
+    /// Pattern frequency: features per unit of object space.
+    pub scale: f32,
+}
+
+/// Procedural solid patterns (until the sparse stores and the synthesizer provide matter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SolidTextureKind {
+    /// Turbulent veins (sine of x plus fractal noise).
+    Marble,
+    /// Concentric rings around the y axis perturbed by noise.
+    Wood,
+    /// A 3D checkerboard (exact, handy for tests).
+    Checker,
+}
+
+/// A placed mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance {
+    /// Index into [`Scene::meshes`].
+    pub mesh: usize,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+    /// Object-to-world rigid (or uniformly scaled) transform.
+    pub transform: Affine3A,
+}
+
+/// Analytic area lights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// A sphere emitting uniformly in all directions.
+    Sphere {
+        /// Centre.
+        center: Vec3,
+        /// Radius (> 0).
+        radius: f32,
+        /// Emitted radiance.
+        radiance: Vec3,
+    },
+    /// A parallelogram `corner + s·edge_u + t·edge_v`, s, t in [0, 1].
+    Quad {
+        /// One corner.
+        corner: Vec3,
+        /// First edge.
+        edge_u: Vec3,
+        /// Second edge; emission faces `edge_u × edge_v` unless two-sided.
+        edge_v: Vec3,
+        /// Emitted radiance.
+        radiance: Vec3,
+        /// Emits on both faces.
+        two_sided: bool,
+    },
+}
+
+/// Radiance arriving from infinity.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Environment {
+    /// The same radiance from every direction (black for none).
+    Constant(Vec3),
+    /// A lat-long (equirectangular) HDR map, +y up, u = 0 at −z turning towards +x.
+    LatLong {
+        /// The EXR file.
+        path: PathBuf,
+        /// Multiplier of the map's radiance (> 0).
+        intensity: f32,
+        /// Rotation about +y in degrees.
+        rotation_deg: f32,
+    },
+}
