@@ -3,5 +3,6 @@
 //! For now it holds mesh loading, which every structure builder and benchmark needs: OBJ through
 //! tobj and OFF (the format of the CGAL meshes `scripts/fetch-assets.sh` installs).
 
+pub mod accel;
 pub mod mesh;
 pub mod scene;

@@ -1,0 +1,102 @@
+//! Batches of ray queries on the GPU: what the traversal tests and `lazysolid bench trace`
+//! run. The path tracer includes the same traversal in its own kernel.
+
+use super::device::DeviceBvh;
+use super::gpu_types::{GpuRay, GpuRayHit};
+use bytemuck::{Pod, Zeroable};
+use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use lazysolid_compute::kernels::render::TRACE_RAYS;
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Push {
+    first: u32,
+    n: u32,
+    any_hit: u32,
+}
+
+/// Whether a query wants the closest hit or any hit (shadow rays).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QueryKind {
+    /// The nearest intersection.
+    Closest,
+    /// Any intersection in range: traversal stops at the first one found.
+    Any,
+}
+
+/// The ray-query kernel.
+pub struct RayQueries {
+    kernel: Kernel,
+}
+
+impl RayQueries {
+    /// Creates the kernel.
+    ///
+    /// # Errors
+    /// Pipeline creation failures.
+    pub fn new(gpu: &Gpu) -> GpuResult<RayQueries> {
+        Ok(RayQueries {
+            kernel: Kernel::new(gpu, &TRACE_RAYS)?,
+        })
+    }
+
+    /// Records the queries of `rays` into `hits` (same length).
+    ///
+    /// # Errors
+    /// Length mismatch or a binding over a device limit.
+    pub fn record(
+        &self,
+        rec: &mut Recorder<'_>,
+        bvh: &DeviceBvh,
+        rays: &GpuBuffer<GpuRay>,
+        hits: &GpuBuffer<GpuRayHit>,
+        kind: QueryKind,
+    ) -> GpuResult<()> {
+        assert_eq!(rays.len(), hits.len(), "one hit record per ray");
+        let n = rays.len() as u32;
+        if n == 0 {
+            return Ok(());
+        }
+        let [b0, b1, b2, b3, b4] = bvh.bindings();
+        let bindings = [
+            b0,
+            b1,
+            b2,
+            b3,
+            b4,
+            ("Rays", rays.arg()),
+            ("Hits", hits.arg()),
+        ];
+        let push = Push {
+            first: 0,
+            n,
+            any_hit: (kind == QueryKind::Any) as u32,
+        };
+        rec.dispatch(
+            &self.kernel,
+            self.kernel.groups_for(n as u64),
+            &bindings,
+            &push,
+        )
+    }
+
+    /// Uploads `rays`, traces them and reads the hits back.
+    ///
+    /// # Errors
+    /// Allocation, dispatch or readback failures.
+    pub fn run(
+        &self,
+        gpu: &Gpu,
+        bvh: &DeviceBvh,
+        rays: &[GpuRay],
+        kind: QueryKind,
+    ) -> GpuResult<Vec<GpuRayHit>> {
+        if rays.is_empty() {
+            return Ok(Vec::new());
+        }
+        let ray_buf = GpuBuffer::from_slice(gpu, "rays", rays)?;
+        let hit_buf = GpuBuffer::<GpuRayHit>::zeroed(gpu, "ray hits", rays.len())?;
+        gpu.submit(|rec| self.record(rec, bvh, &ray_buf, &hit_buf, kind))?;
+        hit_buf.read()
+    }
+}
