@@ -156,7 +156,10 @@ fn two_level_traversal_matches_the_cpu_over_many_transformed_instances() {
                 material: i as u32,
                 transform: Affine3A::from_scale_rotation_translation(
                     Vec3::splat(r.random_range(0.3..1.2)),
-                    Quat::from_axis_angle(axis.normalize(), r.random_range(0.0..6.28)),
+                    Quat::from_axis_angle(
+                        axis.normalize(),
+                        r.random_range(0.0..std::f32::consts::TAU),
+                    ),
                     Vec3::new(
                         r.random_range(-2.0..2.0),
                         r.random_range(-2.0..2.0),
