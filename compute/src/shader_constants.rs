@@ -101,3 +101,7 @@ pub const COHERENT_OFFSETS: [u32; 16] = [
     COHERENT_OFFSET_14,
     COHERENT_OFFSET_15,
 ];
+
+/// Workgroup width of kernels that trace rays through `render/cwbvh.glsl`: their traversal
+/// stacks (32 entries of 8 bytes per invocation) fill lavapipe's 32 KiB of shared memory.
+pub const CWBVH_WORKGROUP_SIZE: u32 = 128;

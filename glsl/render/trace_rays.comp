@@ -41,7 +41,7 @@ void main() {
     out_hit.triangle = found ? cwbvh_mesh_triangle(h.triangle) : 0xffffffffu;
     out_hit.u = h.u;
     out_hit.v = h.v;
-    out_hit.pad0 = 0u;
+    out_hit.pad0 = cwbvh_stack_overflowed ? 1u : 0u;
     out_hit.pad1 = 0u;
     out_hit.pad2 = 0u;
     hits[pc.first + i] = out_hit;

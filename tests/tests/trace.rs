@@ -69,6 +69,7 @@ fn compare(gpu: &[GpuRayHit], cpu: &[GpuRayHit]) -> Agreement {
         ..Default::default()
     };
     for (i, (g, c)) in gpu.iter().zip(cpu).enumerate() {
+        assert_eq!(g.overflow, 0, "ray {i}: the traversal stack overflowed");
         if c.instance != NO_HIT {
             a.hits += 1;
         }

@@ -29,9 +29,18 @@ layout(binding = 4, scalar) readonly buffer BvhInstances { BvhInstance bvh_insta
 // Nearest distance a node's box may start at (obvhs's EPSILON): boxes entirely closer are
 // skipped, as on the CPU.
 #define CWBVH_NODE_TMIN 0.0001
-// Entries of the traversal stack: enough for both levels of any obvhs CWBVH (8-wide trees
-// are shallow; each level needs at most its depth plus the postponed leaf groups).
-#define CWBVH_STACK_SIZE 64
+// Entries of each invocation's traversal stack (obvhs's CPU traversal uses 32).
+#ifndef CWBVH_STACK_SIZE
+#define CWBVH_STACK_SIZE 32
+#endif
+// The stacks live in shared memory: lavapipe turns a dynamically indexed private array into a
+// ladder of selects over every entry, which made each push and pop cost as much as a node test.
+// 32 entries of 8 bytes for 128 invocations fill lavapipe's 32 KiB: kernels that include this
+// file run workgroups of CWBVH_WORKGROUP_SIZE.
+shared uvec2 cwbvh_stacks[gl_WorkGroupSize.x * CWBVH_STACK_SIZE];
+// Set when a traversal would have overflowed its stack (it then stops early): checked by the
+// tests, never expected for obvhs trees.
+bool cwbvh_stack_overflowed = false;
 
 struct TraceHit {
     float t;
@@ -133,7 +142,7 @@ vec3 cwbvh_transform_vector(vec4 rows[3], vec3 v) {
 
 // Closest hit (any_hit false) or any hit (any_hit true) of the ray o + t d, t in [tmin, tmax].
 bool cwbvh_trace(vec3 world_o, vec3 world_d, float tmin, float tmax, bool any_hit, out TraceHit hit) {
-    uvec2 stack[CWBVH_STACK_SIZE];
+    uint stack_base = gl_LocalInvocationIndex * CWBVH_STACK_SIZE;
     uint stack_size = 0u;
     hit.t = 1.0 / 0.0;
     hit.instance = 0xffffffffu;
@@ -161,7 +170,11 @@ bool cwbvh_trace(vec3 world_o, vec3 world_d, float tmin, float tmax, bool any_hi
             uint child_index_base = current.x;
             current.y &= ~(1u << child_index_offset);
             if ((current.y & 0xff000000u) != 0u) {
-                stack[stack_size++] = current;
+                if (stack_size == CWBVH_STACK_SIZE) {
+                    cwbvh_stack_overflowed = true;
+                    break;
+                }
+                cwbvh_stacks[stack_base + stack_size++] = current;
             }
             uint slot_index = (child_index_offset - 24u) ^ (oct_inv4 & 0xffu);
             uint relative_index = bitCount(hits_imask & ~(0xffffffffu << slot_index));
@@ -182,11 +195,15 @@ bool cwbvh_trace(vec3 world_o, vec3 world_d, float tmin, float tmax, bool any_hi
             uint slot = prims.x + local;
             if (tlas_stack_size == 0xffffffffu) {
                 // Top level leaf: continue in the instance's mesh BVH, in object space.
+                if (stack_size + 2u > CWBVH_STACK_SIZE) {
+                    cwbvh_stack_overflowed = true;
+                    return false;
+                }
                 if (prims.y != 0u) {
-                    stack[stack_size++] = prims;
+                    cwbvh_stacks[stack_base + stack_size++] = prims;
                 }
                 if ((current.y & 0xff000000u) != 0u) {
-                    stack[stack_size++] = current;
+                    cwbvh_stacks[stack_base + stack_size++] = current;
                 }
                 tlas_stack_size = stack_size;
                 instance = bvh_tlas_instances[slot];
@@ -231,7 +248,7 @@ bool cwbvh_trace(vec3 world_o, vec3 world_d, float tmin, float tmax, bool any_hi
             if (stack_size == 0u) {
                 break;
             }
-            current = stack[--stack_size];
+            current = cwbvh_stacks[stack_base + --stack_size];
         }
     }
     return hit.instance != 0xffffffffu;

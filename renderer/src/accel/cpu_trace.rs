@@ -46,7 +46,8 @@ impl SceneBvh {
                     triangle,
                     u: bary[0],
                     v: bary[1],
-                    pad: [0; 3],
+                    overflow: 0,
+                    pad: [0; 2],
                 };
                 hit.t
             } else {

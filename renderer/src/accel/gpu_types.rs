@@ -107,8 +107,10 @@ pub struct GpuRayHit {
     pub u: f32,
     /// Barycentric weight of vertex 2.
     pub v: f32,
+    /// 1 when the traversal ran out of stack (never expected; the tests check it).
+    pub overflow: u32,
     /// Unused (alignment to 16 bytes).
-    pub pad: [u32; 3],
+    pub pad: [u32; 2],
 }
 
 const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);

@@ -6,6 +6,7 @@ use super::gpu_types::{GpuRay, GpuRayHit};
 use bytemuck::{Pod, Zeroable};
 use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use lazysolid_compute::kernels::render::TRACE_RAYS;
+use lazysolid_compute::shader_constants::CWBVH_WORKGROUP_SIZE;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -36,7 +37,7 @@ impl RayQueries {
     /// Pipeline creation failures.
     pub fn new(gpu: &Gpu) -> GpuResult<RayQueries> {
         Ok(RayQueries {
-            kernel: Kernel::new(gpu, &TRACE_RAYS)?,
+            kernel: Kernel::with_constants(gpu, &TRACE_RAYS, CWBVH_WORKGROUP_SIZE, &[])?,
         })
     }
 

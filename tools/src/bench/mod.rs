@@ -5,6 +5,7 @@ pub mod harness;
 mod hash;
 mod plot;
 mod prims;
+mod trace;
 
 use crate::cli::GlobalArgs;
 use clap::{Args, Subcommand};
@@ -17,6 +18,8 @@ pub enum BenchCommand {
     Prims(prims::PrimsArgs),
     /// Coherent, random-probe and cuckoo hashing against a dense array and CPU hashbrown.
     Hash(hash::HashArgs),
+    /// GLSL CWBVH ray traversal against obvhs's CPU traversal of the same rays, BVH builds.
+    Trace(trace::TraceArgs),
 }
 
 /// Options every suite shares.
@@ -38,5 +41,6 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
     match command {
         BenchCommand::Prims(args) => prims::run(&args, global),
         BenchCommand::Hash(args) => hash::run(&args, global),
+        BenchCommand::Trace(args) => trace::run(&args, global),
     }
 }
