@@ -1,0 +1,289 @@
+#version 460
+// One sample per pixel of a unidirectional path tracer: next-event estimation of the analytic
+// lights and the environment combined with BSDF sampling by multiple importance sampling
+// (power heuristic), Russian roulette, accumulation into a float film. Random numbers depend
+// only on (pixel, sample, seed): the same seed gives the same image on any run.
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#include "common.glsl"
+#include "render/cwbvh.glsl"
+#include "render/rng.glsl"
+#include "render/sampling.glsl"
+#include "render/material.glsl"
+#include "render/bsdf.glsl"
+#include "render/solid_texture.glsl"
+#include "render/lights.glsl"
+#include "render/environment.glsl"
+
+struct Frame {
+    vec3 eye;
+    float lens_radius;
+    vec3 forward;       // unit view direction
+    float focus_distance;
+    vec3 right;         // scaled by tan(fov/2) * aspect
+    uint width;
+    vec3 up;            // scaled by tan(fov/2)
+    uint height;
+    uint seed;
+    uint max_depth;
+    uint rr_depth;
+    uint light_count;
+    uint env_sampled;   // 1 when the environment is a next-event strategy (not black)
+    uint aovs;          // 1 when this pass writes albedo, normal and depth
+    uint pad0, pad1;
+};
+
+layout(binding = 5, scalar) readonly buffer FrameBlock { Frame frame; };
+layout(binding = 6, scalar) readonly buffer Materials { Material materials[]; };
+layout(binding = 7, scalar) readonly buffer Lights { Light lights[]; };
+layout(binding = 8, scalar) readonly buffer EnvironmentBlock { Environment env; };
+layout(binding = 9, scalar) buffer Film { vec4 film[]; };          // rgb sum, w samples
+layout(binding = 10, scalar) buffer Aovs { vec4 aovs[]; };         // albedo | normal, depth per pixel (2 vec4)
+layout(binding = 11, scalar) buffer RayCount { uint ray_count[]; };
+
+layout(push_constant, scalar) uniform Push {
+    uint sample_index;
+    uint first_pixel;
+    uint pixel_count;
+} pc;
+
+float power_heuristic(float a, float b) {
+    float a2 = a * a;
+    float b2 = b * b;
+    return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
+}
+
+float max3(vec3 v) {
+    return max(v.x, max(v.y, v.z));
+}
+
+// Pixel of the i-th invocation: 8x8 tiles, so the lanes of a SIMD group trace nearby rays.
+uvec2 pixel_of(uint i) {
+    uint tiles_x = (frame.width + 7u) / 8u;
+    uint tile = i / 64u;
+    uint within = i % 64u;
+    return uvec2((tile % tiles_x) * 8u + within % 8u, (tile / tiles_x) * 8u + within / 8u);
+}
+
+struct SurfaceHit {
+    vec3 p;        // world position
+    vec3 ng;       // world geometric normal (outward, as the mesh winds)
+    vec3 ns;       // world shading normal, on the same side as ng
+    vec3 p_object; // rest-pose object position (where solid textures live)
+    uint material;
+};
+
+SurfaceHit surface_of(TraceHit h) {
+    BvhInstance inst = bvh_instances[h.instance];
+    vec3 v0 = bvh_triangles[h.triangle * 3u + 0u].xyz;
+    vec3 e1 = bvh_triangles[h.triangle * 3u + 1u].xyz;  // v0 - v1
+    vec3 e2 = bvh_triangles[h.triangle * 3u + 2u].xyz;  // v2 - v0
+    vec3 v1 = v0 - e1;
+    vec3 v2 = v0 + e2;
+    float w = 1.0 - h.u - h.v;
+    SurfaceHit s;
+    s.p_object = v0 * w + v1 * h.u + v2 * h.v;
+    s.p = cwbvh_transform_point(inst.object_to_world, s.p_object);
+    // Rigid transforms with uniform scale: the linear part maps normals too.
+    s.ng = normalize(cwbvh_transform_vector(inst.object_to_world, cross(v1 - v0, v2 - v0)));
+    uvec4 packed = bvh_normals[h.triangle];
+    vec3 n_obj = cwbvh_decode_octahedral(packed.x) * w + cwbvh_decode_octahedral(packed.y) * h.u +
+                 cwbvh_decode_octahedral(packed.z) * h.v;
+    vec3 ns = normalize(cwbvh_transform_vector(inst.object_to_world, n_obj));
+    s.ns = dot(ns, s.ng) < 0.0 ? -ns : ns;
+    s.material = inst.material;
+    return s;
+}
+
+// Start of a ray leaving p in direction d: moved off the surface along the geometric normal,
+// by an amount relative to the magnitude of the coordinates.
+vec3 offset_origin(vec3 p, vec3 ng, vec3 d) {
+    float eps = 1e-4 * max(1.0, max3(abs(p)));
+    return p + ng * (dot(d, ng) >= 0.0 ? eps : -eps);
+}
+
+// Nearest analytic light along the ray before tmax: its index, or -1.
+int hit_lights(vec3 o, vec3 d, inout float tmax, out vec3 radiance) {
+    int found = -1;
+    radiance = vec3(0.0);
+    for (uint i = 0u; i < frame.light_count; i++) {
+        float t;
+        vec3 le;
+        if (light_intersect(lights[i], o, d, tmax, t, le)) {
+            tmax = t;
+            found = int(i);
+            radiance = le;
+        }
+    }
+    return found;
+}
+
+void main() {
+    uint i = uint(global_index());
+    uint rays = 0u;
+    if (i < pc.pixel_count) {
+        uvec2 px = pixel_of(pc.first_pixel + i);
+        if (px.x < frame.width && px.y < frame.height) {
+            uint pixel = px.y * frame.width + px.x;
+            uint rng = rng_init(px, pc.sample_index, frame.seed);
+
+            // Camera ray through a jittered point of the pixel.
+            vec2 jitter = rng_next2(rng);
+            vec2 ndc = vec2((float(px.x) + jitter.x) / float(frame.width) * 2.0 - 1.0,
+                            1.0 - (float(px.y) + jitter.y) / float(frame.height) * 2.0);
+            vec3 dir = normalize(frame.forward + frame.right * ndc.x + frame.up * ndc.y);
+            vec3 origin = frame.eye;
+            vec2 lens_u = rng_next2(rng);
+            if (frame.lens_radius > 0.0) {
+                vec3 focus = frame.eye + dir * (frame.focus_distance / dot(dir, frame.forward));
+                vec2 disk = sample_concentric_disk(lens_u) * frame.lens_radius;
+                vec3 r = normalize(frame.right);
+                vec3 u = normalize(frame.up);
+                origin = frame.eye + r * disk.x + u * disk.y;
+                dir = normalize(focus - origin);
+            }
+
+            uint strategies = frame.light_count + frame.env_sampled;
+            float select_pdf = strategies > 0u ? 1.0 / float(strategies) : 0.0;
+            vec3 radiance = vec3(0.0);
+            vec3 beta = vec3(1.0);
+            bool specular = true;   // the camera "bounce" is not a NEE strategy
+            float bsdf_pdf_prev = 0.0;
+            vec3 prev_p = origin;
+            vec3 aov_albedo = vec3(0.0);
+            vec3 aov_normal = vec3(0.0);
+            float aov_depth = 1.0 / 0.0;
+
+            for (uint depth = 0u; depth <= frame.max_depth; depth++) {
+                TraceHit h;
+                rays++;
+                bool hit_mesh = cwbvh_trace(origin, dir, 0.0, 1.0 / 0.0, false, h);
+                float t_near = hit_mesh ? h.t : 1.0 / 0.0;
+                vec3 le;
+                int light = hit_lights(origin, dir, t_near, le);
+                if (light >= 0) {
+                    float w = 1.0;
+                    if (!specular) {
+                        float lp = select_pdf * light_pdf(lights[uint(light)], prev_p, dir, t_near);
+                        w = power_heuristic(bsdf_pdf_prev, lp);
+                    }
+                    radiance += beta * le * w;
+                    if (depth == 0u) {
+                        aov_albedo = le / max(max3(le), 1e-6);
+                        aov_depth = t_near;
+                    }
+                    break;
+                }
+                if (!hit_mesh) {
+                    vec3 le_env = env_eval(env, dir);
+                    float w = 1.0;
+                    if (!specular && frame.env_sampled != 0u) {
+                        w = power_heuristic(bsdf_pdf_prev, select_pdf * env_pdf(env, dir));
+                    }
+                    radiance += beta * le_env * w;
+                    break;
+                }
+
+                SurfaceHit s = surface_of(h);
+                Material m = materials[s.material];
+                vec3 albedo = solid_texture_albedo(m, s.p_object);
+                if (depth == 0u) {
+                    aov_albedo = m.kind == MATERIAL_EMISSIVE ? m.emission / max(max3(m.emission), 1e-6) : albedo;
+                    aov_normal = s.ns;
+                    aov_depth = h.t;
+                }
+                if (m.kind == MATERIAL_EMISSIVE) {
+                    // Emissive meshes are found by BSDF sampling only (they are not NEE lights).
+                    if (dot(dir, s.ng) < 0.0) {
+                        radiance += beta * m.emission;
+                    }
+                    break;
+                }
+
+                vec3 t_axis, b_axis;
+                make_frame(s.ns, t_axis, b_axis);
+                vec3 wo = vec3(dot(-dir, t_axis), dot(-dir, b_axis), dot(-dir, s.ns));
+                bool transmissive = m.kind == MATERIAL_DIELECTRIC;
+                float wo_side = dot(-dir, s.ng);
+
+                // Next-event estimation: one light or the environment, chosen uniformly.
+                if (strategies > 0u && bsdf_has_smooth_lobe(m)) {
+                    vec2 u_light = rng_next2(rng);
+                    float u_pick = rng_next(rng);
+                    uint pick = min(uint(u_pick * float(strategies)), strategies - 1u);
+                    vec3 wi;
+                    vec3 li;
+                    float lpdf;
+                    float dist;
+                    bool ok;
+                    if (pick < frame.light_count) {
+                        LightSample ls;
+                        ok = light_sample(lights[pick], s.p, u_light, ls);
+                        wi = ls.wi;
+                        li = ls.radiance;
+                        lpdf = ls.pdf;
+                        dist = ls.dist;
+                    } else {
+                        ok = env_sample(env, u_light, wi, li, lpdf);
+                        dist = 1.0 / 0.0;
+                    }
+                    bool same_side = dot(wi, s.ng) * wo_side > 0.0;
+                    if (ok && lpdf > 0.0 && max3(li) > 0.0 && (same_side || transmissive)) {
+                        vec3 wi_l = vec3(dot(wi, t_axis), dot(wi, b_axis), dot(wi, s.ns));
+                        vec3 f = bsdf_eval(m, albedo, wo, wi_l);
+                        if (max3(f) > 0.0) {
+                            vec3 o2 = offset_origin(s.p, s.ng, wi);
+                            float tmax = dist < 1.0 / 0.0 ? dist * (1.0 - 1e-4) - 1e-4 : dist;
+                            TraceHit sh;
+                            rays++;
+                            if (!cwbvh_trace(o2, wi, 0.0, tmax, true, sh)) {
+                                float lp = select_pdf * lpdf;
+                                float w = power_heuristic(lp, bsdf_pdf(m, albedo, wo, wi_l));
+                                radiance += beta * f * li * (w / lp);
+                            }
+                        }
+                    }
+                }
+
+                // Continue the path by sampling the BSDF.
+                BsdfSample bs;
+                if (!bsdf_sample(m, albedo, wo, vec3(rng_next2(rng), rng_next(rng)), bs)) {
+                    break;
+                }
+                vec3 wi = t_axis * bs.wi.x + b_axis * bs.wi.y + s.ns * bs.wi.z;
+                if (!transmissive && dot(wi, s.ng) * wo_side <= 0.0) {
+                    break;  // the shading normal sent the path through the surface
+                }
+                beta *= bs.weight;
+                specular = bs.specular;
+                bsdf_pdf_prev = bs.pdf;
+                prev_p = s.p;
+                origin = offset_origin(s.p, s.ng, wi);
+                dir = wi;
+                if (depth + 1u >= frame.rr_depth) {
+                    float survive = clamp(max3(beta), 0.05, 1.0);
+                    if (rng_next(rng) >= survive) {
+                        break;
+                    }
+                    beta /= survive;
+                }
+                if (max3(beta) <= 0.0) {
+                    break;
+                }
+            }
+
+            if (any(isnan(radiance)) || any(isinf(radiance))) {
+                radiance = vec3(0.0);  // counted as a black sample rather than poisoning the pixel
+            }
+            film[pixel] += vec4(radiance, 1.0);
+            if (frame.aovs != 0u) {
+                aovs[pixel * 2u] = vec4(aov_albedo, 0.0);
+                aovs[pixel * 2u + 1u] = vec4(aov_normal, aov_depth);
+            }
+        }
+    }
+    uint total = subgroupAdd(rays);
+    if (subgroupElect()) {
+        atomicAdd(ray_count[0], total);
+    }
+}

@@ -1,0 +1,10 @@
+//! The path tracer on the device: scene upload, one dispatch per sample pass, progressive
+//! accumulation into a float film, and the film read back with its AOVs.
+
+mod error;
+mod frame;
+mod path_tracer;
+
+pub use error::RenderError;
+pub use frame::GpuFrame;
+pub use path_tracer::{PassReport, PathTracer, RenderStats};

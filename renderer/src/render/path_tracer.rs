@@ -1,0 +1,222 @@
+//! The path tracer: owns the scene's device data and the film, and adds one sample per pixel
+//! per pass, so callers can show progress and stop at any sample count.
+
+use super::error::RenderError;
+use super::frame::GpuFrame;
+use crate::accel::{DeviceBvh, SceneBvh};
+use crate::output::Film;
+use crate::scene::{Environment, RenderSettings, Scene};
+use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
+use bytemuck::{Pod, Zeroable};
+use lazysolid_compute::gpu::{Gpu, GpuBuffer, Kernel};
+use lazysolid_compute::kernels::render::PATH_TRACE;
+use lazysolid_compute::shader_constants::CWBVH_WORKGROUP_SIZE;
+use std::time::{Duration, Instant};
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Push {
+    sample_index: u32,
+    first_pixel: u32,
+    pixel_count: u32,
+}
+
+/// What one pass did.
+#[derive(Clone, Copy, Debug)]
+pub struct PassReport {
+    /// Samples per pixel accumulated so far.
+    pub samples: u32,
+    /// Rays traced by the pass (camera, bounce and shadow rays).
+    pub rays: u64,
+    /// Wall time of the pass.
+    pub time: Duration,
+}
+
+/// Facts about the prepared scene, for messages and benchmarks.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderStats {
+    /// Time to build every mesh BVH.
+    pub blas_time: Duration,
+    /// Time to build the instance BVH.
+    pub tlas_time: Duration,
+    /// Triangles over all instances.
+    pub instanced_triangles: u64,
+    /// GPU bytes of the BVHs.
+    pub bvh_bytes: u64,
+}
+
+/// A scene on the device with its film.
+pub struct PathTracer {
+    gpu: Gpu,
+    kernel: Kernel,
+    bvh: DeviceBvh,
+    frame: GpuFrame,
+    frame_buf: GpuBuffer<GpuFrame>,
+    materials: GpuBuffer<GpuMaterial>,
+    lights: GpuBuffer<GpuLight>,
+    environment: GpuEnvironment,
+    environment_params: GpuBuffer<u8>,
+    film: GpuBuffer<[f32; 4]>,
+    aovs: GpuBuffer<[f32; 4]>,
+    ray_count: GpuBuffer<u32>,
+    settings: RenderSettings,
+    samples: u32,
+    stats: RenderStats,
+}
+
+impl PathTracer {
+    /// Builds the BVHs and uploads everything the kernel reads.
+    ///
+    /// # Errors
+    /// Device failures and limits, or shading data that cannot be prepared (an unreadable
+    /// environment map).
+    pub fn new(gpu: &Gpu, scene: &Scene) -> Result<PathTracer, RenderError> {
+        let settings = scene.render;
+        let scene_bvh = SceneBvh::from_scene(scene);
+        let bvh = DeviceBvh::upload(gpu, &scene_bvh)?;
+        let materials: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::from).collect();
+        let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
+        let environment = GpuEnvironment::from_scene(gpu, &scene.environment)?;
+        let env_sampled = match &scene.environment {
+            Environment::Constant(c) => c.max_element() > 0.0,
+            Environment::LatLong { .. } => true,
+        };
+        let frame = GpuFrame::new(&scene.camera, &settings, lights.len() as u32, env_sampled);
+        let pixels = settings.width as usize * settings.height as usize;
+        let stats = RenderStats {
+            blas_time: scene_bvh.blas_time,
+            tlas_time: scene_bvh.tlas_time,
+            instanced_triangles: scene_bvh.instanced_triangles(),
+            bvh_bytes: bvh.bytes(),
+        };
+        Ok(PathTracer {
+            gpu: gpu.clone(),
+            kernel: Kernel::with_constants(gpu, &PATH_TRACE, CWBVH_WORKGROUP_SIZE, &[])?,
+            frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
+            materials: GpuBuffer::from_slice(gpu, "render materials", &materials)?,
+            // A binding cannot be empty: a scene without lights still gets one (unused) record.
+            lights: GpuBuffer::from_slice(
+                gpu,
+                "render lights",
+                if lights.is_empty() { &[GpuLight::zeroed()] } else { &lights },
+            )?,
+            environment_params: GpuBuffer::from_slice(
+                gpu,
+                "render environment",
+                bytemuck::bytes_of(&environment.params()),
+            )?,
+            environment,
+            film: GpuBuffer::zeroed(gpu, "render film", pixels)?,
+            aovs: GpuBuffer::zeroed(gpu, "render aovs", 2 * pixels)?,
+            ray_count: GpuBuffer::zeroed(gpu, "render ray count", 1)?,
+            bvh,
+            frame,
+            settings,
+            samples: 0,
+            stats,
+        })
+    }
+
+    /// Adds one sample to every pixel.
+    ///
+    /// # Errors
+    /// Device failures.
+    pub fn pass(&mut self) -> Result<PassReport, RenderError> {
+        let start = Instant::now();
+        let aovs = self.samples == 0;
+        if aovs != (self.frame.aovs != 0) {
+            self.frame.aovs = aovs as u32;
+            self.frame_buf.write(0, &[self.frame])?;
+        }
+        let tiles = self.settings.width.div_ceil(8) as u64 * self.settings.height.div_ceil(8) as u64;
+        let invocations = tiles * 64;
+        let push = Push {
+            sample_index: self.samples,
+            first_pixel: 0,
+            pixel_count: invocations as u32,
+        };
+        let [b0, b1, b2, b3, b4] = self.bvh.bindings();
+        let bindings = [
+            b0,
+            b1,
+            b2,
+            b3,
+            b4,
+            ("FrameBlock", self.frame_buf.arg()),
+            ("Materials", self.materials.arg()),
+            ("Lights", self.lights.arg()),
+            ("EnvironmentBlock", self.environment_params.arg()),
+            ("Film", self.film.arg()),
+            ("Aovs", self.aovs.arg()),
+            ("RayCount", self.ray_count.arg()),
+        ];
+        let env_bindings = self.environment.bindings();
+        let mut all: Vec<_> = bindings.into_iter().collect();
+        all.extend(env_bindings);
+        self.ray_count.write(0, &[0])?;
+        self.gpu.submit(|rec| {
+            rec.dispatch(&self.kernel, self.kernel.groups_for(invocations), &all, &push)
+        })?;
+        self.samples += 1;
+        let rays = self.ray_count.read()?[0] as u64;
+        Ok(PassReport {
+            samples: self.samples,
+            rays,
+            time: start.elapsed(),
+        })
+    }
+
+    /// Renders the remaining samples of the scene's `spp`, calling `on_pass` after each.
+    ///
+    /// # Errors
+    /// Device failures.
+    pub fn render(&mut self, mut on_pass: impl FnMut(&PassReport)) -> Result<Film, RenderError> {
+        while self.samples < self.settings.spp {
+            let report = self.pass()?;
+            on_pass(&report);
+        }
+        self.film()
+    }
+
+    /// The film so far: mean radiance per pixel, with albedo, normal and depth of the first
+    /// sample's primary hit.
+    ///
+    /// # Errors
+    /// Readback failures; a film without samples.
+    pub fn film(&self) -> Result<Film, RenderError> {
+        if self.samples == 0 {
+            return Err(RenderError::Settings("no sample was rendered yet".into()));
+        }
+        let sums = self.film.read()?;
+        let aovs = self.aovs.read()?;
+        let color = sums
+            .iter()
+            .map(|s| {
+                let n = s[3].max(1.0);
+                [s[0] / n, s[1] / n, s[2] / n]
+            })
+            .collect();
+        let albedo = aovs.chunks(2).map(|a| [a[0][0], a[0][1], a[0][2]]).collect();
+        let normal = aovs.chunks(2).map(|a| [a[1][0], a[1][1], a[1][2]]).collect();
+        let depth = aovs.chunks(2).map(|a| a[1][3]).collect();
+        Ok(Film::new(self.settings.width, self.settings.height, color)?
+            .with_albedo(albedo)?
+            .with_normal(normal)?
+            .with_depth(depth)?)
+    }
+
+    /// Samples per pixel so far.
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
+    /// The render settings.
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// Facts about the prepared scene.
+    pub fn stats(&self) -> RenderStats {
+        self.stats
+    }
+}

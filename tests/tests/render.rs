@@ -1,0 +1,232 @@
+//! The path tracer against answers known in closed form, against itself (determinism) and
+//! against reference images of the test scenes (FLIP).
+
+use glam::{Affine3A, Vec3};
+use lazysolid_renderer::diff::flip_images;
+use lazysolid_renderer::output::{write_png, Film, Operator, ToneMap};
+use lazysolid_renderer::render::PathTracer;
+use lazysolid_renderer::scene::{
+    Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
+    SceneMesh,
+};
+use lazysolid_renderer::mesh::Mesh;
+use lazysolid_tests::{asset_mesh, with_gpu};
+use std::path::{Path, PathBuf};
+
+fn material(kind: MaterialKind, color: Vec3) -> Material {
+    Material {
+        name: format!("{kind:?}"),
+        kind,
+        color,
+        k: Vec3::ZERO,
+        emission: Vec3::ZERO,
+        roughness: 0.0,
+        ior: 1.5,
+        texture: None,
+    }
+}
+
+fn unit_mesh(name: &str) -> Mesh {
+    let mut m = Mesh::load(asset_mesh(name)).unwrap();
+    m.normalize_to_unit_cube();
+    m
+}
+
+fn settings(width: u32, height: u32, spp: u32, max_depth: u32) -> RenderSettings {
+    RenderSettings {
+        width,
+        height,
+        spp,
+        max_depth,
+        rr_depth: 3,
+        seed: 1,
+    }
+}
+
+/// One mesh at the origin seen from the front, in a constant environment.
+fn furnace_scene(mesh: Mesh, m: Material, env: f32) -> Scene {
+    Scene {
+        source: PathBuf::from("furnace (built in the test)"),
+        camera: Camera {
+            position: Vec3::new(0.5, 0.5, 2.5),
+            look_at: Vec3::splat(0.5),
+            up: Vec3::Y,
+            fov_y_deg: 30.0,
+            lens: Lens::Pinhole,
+        },
+        render: settings(24, 24, 64, 64),
+        meshes: vec![SceneMesh {
+            name: "mesh".into(),
+            mesh,
+        }],
+        materials: vec![m],
+        instances: vec![Instance {
+            mesh: 0,
+            material: 0,
+            transform: Affine3A::IDENTITY,
+        }],
+        lights: vec![],
+        environment: Environment::Constant(Vec3::splat(env)),
+    }
+}
+
+fn render(scene: &Scene) -> Film {
+    with_gpu(|gpu| {
+        let mut t = PathTracer::new(gpu, scene).unwrap();
+        t.render(|_| {}).unwrap()
+    })
+}
+
+fn mean(film: &Film) -> Vec3 {
+    film.color().iter().map(|c| Vec3::from(*c)).sum::<Vec3>() / film.len() as f32
+}
+
+/// A white object in a white furnace is invisible: every pixel sees the environment's radiance,
+/// whatever the paths do, as long as the material neither creates nor loses energy.
+#[test]
+fn white_furnace_lambertian_and_glass_bunnies_disappear() {
+    for (name, m) in [
+        ("lambertian", material(MaterialKind::Lambertian, Vec3::ONE)),
+        ("smooth glass", material(MaterialKind::Dielectric, Vec3::ONE)),
+    ] {
+        let film = render(&furnace_scene(unit_mesh("bunny00.off"), m, 0.75));
+        let avg = mean(&film);
+        println!("{name}: mean {avg}");
+        assert!(
+            (avg - Vec3::splat(0.75)).abs().max_element() < 0.01,
+            "{name}: mean radiance {avg}, expected 0.75"
+        );
+        let worst = film
+            .color()
+            .iter()
+            .map(|c| (Vec3::from(*c) - 0.75).abs().max_element())
+            .fold(0.0f32, f32::max);
+        assert!(worst < 0.2, "{name}: a pixel is {worst} away from 0.75");
+    }
+}
+
+/// A Lambertian plane lit by a sphere light straight above: the radiance below the centre is
+/// albedo · L · (r / d)², the closed form of the irradiance of a sphere.
+#[test]
+fn sphere_light_over_a_plane_matches_the_closed_form() {
+    let plane = Mesh {
+        positions: vec![
+            Vec3::new(-10.0, 0.0, -10.0),
+            Vec3::new(10.0, 0.0, -10.0),
+            Vec3::new(10.0, 0.0, 10.0),
+            Vec3::new(-10.0, 0.0, 10.0),
+        ],
+        triangles: vec![[0, 2, 1], [0, 3, 2]],
+        source: "plane".into(),
+    };
+    let (albedo, radiance, r, d) = (0.6f32, 20.0f32, 0.25f32, 2.0f32);
+    let mut scene = furnace_scene(plane, material(MaterialKind::Lambertian, Vec3::splat(albedo)), 0.0);
+    scene.lights = vec![Light::Sphere {
+        center: Vec3::new(0.0, d, 0.0),
+        radius: r,
+        radiance: Vec3::splat(radiance),
+    }];
+    scene.camera = Camera {
+        position: Vec3::new(0.0, 1.0, 1.0),
+        look_at: Vec3::ZERO,
+        up: Vec3::Y,
+        fov_y_deg: 2.0,
+        lens: Lens::Pinhole,
+    };
+    scene.render = settings(8, 8, 256, 4);
+    let film = render(&scene);
+    let expected = albedo * radiance * (r / d).powi(2);
+    let avg = mean(&film);
+    println!("plane under a sphere light: {avg}, expected {expected}");
+    assert!(
+        (avg - Vec3::splat(expected)).abs().max_element() < 0.02 * expected,
+        "{avg} vs {expected}"
+    );
+}
+
+#[test]
+fn same_seed_same_image_other_seed_other_image() {
+    let mut scene = furnace_scene(
+        unit_mesh("bunny00.off"),
+        material(MaterialKind::Lambertian, Vec3::splat(0.5)),
+        1.0,
+    );
+    scene.render = settings(16, 16, 4, 8);
+    let a = render(&scene);
+    let b = render(&scene);
+    assert_eq!(a.color(), b.color(), "same seed, different image");
+    scene.render.seed = 2;
+    let c = render(&scene);
+    assert_ne!(a.color(), c.color(), "the seed does not change the image");
+}
+
+/// Largest FLIP mean allowed between a test render and its reference: the reference has 16×
+/// the samples, so what remains is the test render's noise (measured below 0.1 on lavapipe).
+const FLIP_MEAN_LIMIT: f32 = 0.12;
+/// Samples per pixel of the references, relative to the scene's.
+const REFERENCE_SPP_FACTOR: u32 = 16;
+
+fn reference_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("reference")
+        .join(format!("{name}.png"))
+}
+
+fn tone_map() -> ToneMap {
+    ToneMap {
+        exposure_ev: 0.0,
+        operator: Operator::AcesFitted,
+    }
+}
+
+/// Renders `scenes/test/NAME.toml` and compares it with `tests/reference/NAME.png`.
+/// `LAZYSOLID_BLESS=1` re-renders the reference at 16× the samples instead.
+fn check_reference(name: &str) {
+    let scene_path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes/test")
+        .join(format!("{name}.toml"));
+    let mut scene = Scene::load(&scene_path).unwrap();
+    let reference = reference_path(name);
+    if std::env::var_os("LAZYSOLID_BLESS").is_some() {
+        scene.render.spp *= REFERENCE_SPP_FACTOR;
+        scene.render.seed += 1000;
+        let film = render(&scene);
+        std::fs::create_dir_all(reference.parent().unwrap()).unwrap();
+        write_png(&film, &reference, &tone_map()).unwrap();
+        println!("wrote {}", reference.display());
+        return;
+    }
+    let film = render(&scene);
+    let dir = tempfile::tempdir().unwrap();
+    let test_png = dir.path().join(format!("{name}.png"));
+    write_png(&film, &test_png, &tone_map()).unwrap();
+    let a = image::open(&reference)
+        .unwrap_or_else(|e| panic!("{}: {e} (LAZYSOLID_BLESS=1 writes it)", reference.display()))
+        .to_rgb8();
+    let b = image::open(&test_png).unwrap().to_rgb8();
+    let report = flip_images(&a, &b).unwrap();
+    println!(
+        "{name}: FLIP mean {:.4}, p95 {:.4}, max {:.4}",
+        report.mean, report.p95, report.max
+    );
+    assert!(
+        report.mean <= FLIP_MEAN_LIMIT,
+        "{name}: FLIP mean {} > {FLIP_MEAN_LIMIT}",
+        report.mean
+    );
+}
+
+#[test]
+fn reference_textured() {
+    check_reference("textured");
+}
+
+#[test]
+fn reference_glass_metal() {
+    check_reference("glass_metal");
+}
+
+#[test]
+fn reference_interior() {
+    check_reference("interior");
+}

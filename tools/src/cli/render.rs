@@ -1,0 +1,156 @@
+//! `lazysolid render SCENE.toml -o out.png`: path-trace a scene file on the device.
+
+use super::GlobalArgs;
+use anyhow::{ensure, Context};
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+use lazysolid_renderer::output::{write_exr, write_png, Operator, ToneMap};
+use lazysolid_renderer::render::PathTracer;
+use lazysolid_renderer::scene::Scene;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Tone-mapping curves for the PNG.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum ToneCurve {
+    /// Clip to [0, 1].
+    Clamp,
+    /// x / (1 + x).
+    Reinhard,
+    /// The fitted ACES filmic curve.
+    Aces,
+}
+
+/// What to render and where to write it.
+#[derive(Args)]
+pub struct RenderArgs {
+    /// The scene file (TOML; see docs/scenes.md).
+    pub scene: PathBuf,
+    /// The tone-mapped 8-bit PNG to write.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Also write the HDR film (with albedo, normal and depth layers) as OpenEXR; default:
+    /// the PNG's path with the extension .exr.
+    #[arg(long)]
+    pub exr: Option<PathBuf>,
+    /// Do not write the EXR.
+    #[arg(long, conflicts_with = "exr")]
+    pub no_exr: bool,
+    /// Samples per pixel, overriding the scene's.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Resolution WIDTHxHEIGHT, overriding the scene's.
+    #[arg(long, value_parser = parse_resolution)]
+    pub res: Option<(u32, u32)>,
+    /// Seed of the random numbers, overriding the scene's.
+    #[arg(long)]
+    pub seed: Option<u32>,
+    /// Exposure in stops applied before tone mapping.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Tone-mapping curve of the PNG.
+    #[arg(long, value_enum, default_value_t = ToneCurve::Aces)]
+    pub tonemap: ToneCurve,
+}
+
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("{s:?} is not WIDTHxHEIGHT (e.g. 640x480)"))?;
+    let parse = |v: &str, what: &str| -> Result<u32, String> {
+        let n: u32 = v
+            .trim()
+            .parse()
+            .map_err(|_| format!("{what} {v:?} in {s:?} is not a whole number"))?;
+        if !(1..=8192).contains(&n) {
+            return Err(format!("{what} {n} in {s:?} is out of range (1..=8192)"));
+        }
+        Ok(n)
+    };
+    Ok((parse(w, "width")?, parse(h, "height")?))
+}
+
+/// Runs the command.
+pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    let mut scene = Scene::load(&args.scene)?;
+    if let Some(spp) = args.spp {
+        ensure!(
+            (1..=1_048_576).contains(&spp),
+            "--spp {spp} is out of range (1..=1048576)"
+        );
+        scene.render.spp = spp;
+    }
+    if let Some((w, h)) = args.res {
+        scene.render.width = w;
+        scene.render.height = h;
+    }
+    if let Some(seed) = args.seed {
+        scene.render.seed = seed;
+    }
+    let exr = if args.no_exr {
+        None
+    } else {
+        Some(args.exr.clone().unwrap_or_else(|| args.output.with_extension("exr")))
+    };
+    let gpu = global.gpu()?;
+    let start = Instant::now();
+    let mut tracer = PathTracer::new(&gpu, &scene)
+        .with_context(|| format!("preparing {}", args.scene.display()))?;
+    let stats = tracer.stats();
+    let s = scene.render;
+    eprintln!(
+        "{}: {}x{}, {} spp, {} instances, {} triangles, BVH {:.1} MB built in {:.0} ms",
+        args.scene.display(),
+        s.width,
+        s.height,
+        s.spp,
+        scene.instances.len(),
+        stats.instanced_triangles,
+        stats.bvh_bytes as f64 / 1e6,
+        (stats.blas_time + stats.tlas_time).as_secs_f64() * 1e3
+    );
+    let bar = ProgressBar::new(s.spp as u64);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} spp  {msg}  eta {eta}",
+        )
+        .expect("valid template"),
+    );
+    let mut rays = 0u64;
+    let mut trace_time = 0.0f64;
+    let film = tracer.render(|pass| {
+        rays += pass.rays;
+        trace_time += pass.time.as_secs_f64();
+        bar.set_position(pass.samples as u64);
+        bar.set_message(format!(
+            "{:.2} Mrays/s",
+            pass.rays as f64 / pass.time.as_secs_f64() / 1e6
+        ));
+    })?;
+    bar.finish_and_clear();
+    let tone_map = ToneMap {
+        exposure_ev: args.exposure,
+        operator: match args.tonemap {
+            ToneCurve::Clamp => Operator::Clamp,
+            ToneCurve::Reinhard => Operator::Reinhard,
+            ToneCurve::Aces => Operator::AcesFitted,
+        },
+    };
+    write_png(&film, &args.output, &tone_map)?;
+    if let Some(exr) = &exr {
+        write_exr(&film, exr)?;
+    }
+    eprintln!(
+        "rendered {} spp in {:.2} s ({:.2} Mrays/s, {} rays), total {:.2} s",
+        tracer.samples(),
+        trace_time,
+        rays as f64 / trace_time / 1e6,
+        rays,
+        start.elapsed().as_secs_f64()
+    );
+    println!("image: {}", args.output.display());
+    if let Some(exr) = &exr {
+        println!("hdr:   {}", exr.display());
+    }
+    Ok(())
+}
