@@ -12,7 +12,7 @@ mod light;
 mod material;
 pub mod reference;
 
-pub use environment_map::EnvironmentMap;
+pub use environment_map::{EnvironmentMap, MAX_ENVIRONMENT_TEXELS};
 pub use error::ShadingError;
 pub use gpu_environment::{EnvironmentParams, GpuEnvironment};
 pub use light::GpuLight;
