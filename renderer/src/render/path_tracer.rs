@@ -150,12 +150,9 @@ impl PathTracer {
             ("Aovs", self.aovs.arg()),
             ("RayCount", self.ray_count.arg()),
         ];
-        let env_bindings = self.environment.bindings();
-        let mut all: Vec<_> = bindings.into_iter().collect();
-        all.extend(env_bindings);
         self.ray_count.write(0, &[0])?;
         self.gpu.submit(|rec| {
-            rec.dispatch(&self.kernel, self.kernel.groups_for(invocations), &all, &push)
+            rec.dispatch(&self.kernel, self.kernel.groups_for(invocations), &bindings, &push)
         })?;
         self.samples += 1;
         let rays = self.ray_count.read()?[0] as u64;
