@@ -1,10 +1,15 @@
-//! lazysolid's renderer crate: scenes, meshes and (as it lands) the path tracer.
+//! lazysolid's renderer crate: meshes, scenes and the path tracer.
 //!
-//! It holds mesh loading, which every structure builder and benchmark needs (OBJ through tobj
-//! and OFF, the format of the CGAL meshes `scripts/fetch-assets.sh` installs), the resolved scene
-//! types, and the shading data of the path tracer with a CPU reference of its GLSL library.
+//! - [`mesh`]: OBJ (tobj) and OFF loading, built-in shapes, the unit-cube normalization.
+//! - [`scene`]: the TOML scene loader (`docs/scenes.md`) and the resolved scene types.
+//! - [`accel`]: obvhs CWBVHs per mesh and over instances, uploaded for the GLSL traversal.
+//! - [`shading`]: the GPU records of materials, lights and environment, with a CPU reference
+//!   of the GLSL shading library.
+//! - [`render`]: the path-tracing kernel's driver (progressive passes into a float film).
+//! - [`output`] and [`diff`]: EXR/PNG writing and FLIP image comparison.
 
 pub mod accel;
 pub mod mesh;
+pub mod render;
 pub mod scene;
 pub mod shading;

@@ -1,11 +1,13 @@
 //! Triangle meshes: loading (OBJ, OFF), validation, bounds and the unit-cube normalization that
-//! every voxel grid of lazysolid is defined in.
+//! every voxel grid of lazysolid is defined in, and the built-in shapes scenes may use.
 
 mod error;
 mod obj;
 mod off;
+mod shapes;
 
 pub use error::MeshError;
+pub use shapes::MAX_ICOSPHERE_SUBDIVISIONS;
 
 use glam::Vec3;
 use std::path::{Path, PathBuf};

@@ -1,0 +1,256 @@
+//! `[[material]]` tables: which keys each kind needs and accepts, the measured metal presets,
+//! and solid textures.
+
+use super::check::ColorKind;
+use super::location::{join, Doc};
+use super::raw::{RawMaterial, RawMaterialKind, RawPreset, RawTexture, RawTextureKind};
+use super::{Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind};
+use glam::Vec3;
+use std::ops::Range;
+use toml::Spanned;
+
+/// Index of refraction of the plastic coat when the file gives none (a typical polymer).
+pub(super) const DEFAULT_PLASTIC_IOR: f32 = 1.5;
+
+/// Complex index of refraction (η, κ) at the red, green and blue wavelengths of the common
+/// sRGB reductions of measured spectral data, so that scenes get real metals by name.
+pub(super) fn preset_eta_k(preset: RawPreset) -> (Vec3, Vec3) {
+    match preset {
+        RawPreset::Gold => (
+            Vec3::new(0.143_119, 0.374_957, 1.442_48),
+            Vec3::new(3.983_16, 2.385_72, 1.603_22),
+        ),
+        RawPreset::Silver => (
+            Vec3::new(0.155_265, 0.116_723, 0.138_342),
+            Vec3::new(4.828_35, 3.122_25, 2.146_96),
+        ),
+        RawPreset::Copper => (
+            Vec3::new(0.200_438, 0.924_033, 1.102_21),
+            Vec3::new(3.912_95, 2.452_85, 2.142_19),
+        ),
+        RawPreset::Aluminium => (
+            Vec3::new(1.657_46, 0.880_369, 0.521_229),
+            Vec3::new(9.223_87, 6.269_52, 4.837),
+        ),
+    }
+}
+
+/// "a lambertian", "an emissive", … for messages.
+fn a_kind(kind: RawMaterialKind) -> String {
+    let name = kind_name(kind);
+    let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        "an"
+    } else {
+        "a"
+    };
+    format!("{article} {name}")
+}
+
+fn kind_name(kind: RawMaterialKind) -> &'static str {
+    match kind {
+        RawMaterialKind::Lambertian => "lambertian",
+        RawMaterialKind::Conductor => "conductor",
+        RawMaterialKind::Plastic => "plastic",
+        RawMaterialKind::Dielectric => "dielectric",
+        RawMaterialKind::Emissive => "emissive",
+    }
+}
+
+/// The kinds that accept each optional key, for "does not apply" messages.
+const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 7] = {
+    use RawMaterialKind::*;
+    [
+        ("color", &[Lambertian, Conductor, Plastic, Dielectric]),
+        ("k", &[Conductor]),
+        ("emission", &[Emissive]),
+        ("roughness", &[Conductor, Plastic, Dielectric]),
+        ("ior", &[Plastic, Dielectric]),
+        ("preset", &[Conductor]),
+        ("texture", &[Lambertian, Plastic]),
+    ]
+};
+
+/// Fails on the first key present in `raw` that its kind does not accept.
+fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), SceneError> {
+    let kind = *raw.kind.get_ref();
+    let spans: [(&str, Option<Range<usize>>); 7] = [
+        ("color", raw.color.as_ref().map(Spanned::span)),
+        ("k", raw.k.as_ref().map(Spanned::span)),
+        ("emission", raw.emission.as_ref().map(Spanned::span)),
+        ("roughness", raw.roughness.as_ref().map(Spanned::span)),
+        ("ior", raw.ior.as_ref().map(Spanned::span)),
+        ("preset", raw.preset.as_ref().map(Spanned::span)),
+        ("texture", raw.texture.as_ref().map(Spanned::span)),
+    ];
+    for ((key, span), (_, kinds)) in spans.into_iter().zip(ACCEPTED_BY) {
+        if let Some(span) = span {
+            if !kinds.contains(&kind) {
+                let accepted: Vec<&str> = kinds.iter().map(|&k| kind_name(k)).collect();
+                return Err(doc.invalid(
+                    span,
+                    join(label, key),
+                    format!(
+                        "does not apply to {} material (accepted by: {})",
+                        a_kind(kind),
+                        accepted.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Validates one material table; `label` is its field path prefix (`material "glass"`).
+pub(super) fn resolve(
+    doc: &Doc,
+    raw: &Spanned<RawMaterial>,
+    label: &str,
+) -> Result<Material, SceneError> {
+    let table = raw.span();
+    let raw = raw.get_ref();
+    reject_inapplicable(doc, raw, label)?;
+    let kind = *raw.kind.get_ref();
+    let field = |key: &str| join(label, key);
+    let roughness = |required: bool| -> Result<f32, SceneError> {
+        let why = format!("{} material needs it, in [0, 1]", a_kind(kind));
+        match (&raw.roughness, required) {
+            (None, false) => Ok(0.0),
+            (r, _) => doc.number(
+                doc.require(r, &table, label, "roughness", &why)?,
+                &field("roughness"),
+                |v| (0.0..=1.0).contains(&v),
+                "in [0, 1]",
+            ),
+        }
+    };
+    let ior = |default: Option<f32>| -> Result<f32, SceneError> {
+        match (&raw.ior, default) {
+            (None, Some(d)) => Ok(d),
+            (r, _) => doc.number(
+                doc.require(r, &table, label, "ior", "a dielectric needs it, in (1, 4]")?,
+                &field("ior"),
+                |v| v > 1.0 && v <= 4.0,
+                "in (1, 4]",
+            ),
+        }
+    };
+    let mut material = Material {
+        name: raw.name.get_ref().clone(),
+        kind: MaterialKind::Lambertian,
+        color: Vec3::ZERO,
+        k: Vec3::ZERO,
+        emission: Vec3::ZERO,
+        roughness: 0.0,
+        ior: 1.0,
+        texture: None,
+    };
+    match kind {
+        RawMaterialKind::Lambertian | RawMaterialKind::Plastic => {
+            (material.color, material.texture) = albedo(doc, raw, &table, label)?;
+            if kind == RawMaterialKind::Plastic {
+                material.kind = MaterialKind::Plastic;
+                material.roughness = roughness(true)?;
+                material.ior = ior(Some(DEFAULT_PLASTIC_IOR))?;
+            }
+        }
+        RawMaterialKind::Conductor => {
+            material.kind = MaterialKind::Conductor;
+            (material.color, material.k) = eta_k(doc, raw, &table, label)?;
+            material.roughness = roughness(true)?;
+        }
+        RawMaterialKind::Dielectric => {
+            material.kind = MaterialKind::Dielectric;
+            material.color = match &raw.color {
+                Some(c) => doc.color(c, &field("color"), ColorKind::Albedo)?,
+                None => Vec3::ONE,
+            };
+            material.roughness = roughness(false)?;
+            material.ior = ior(None)?;
+        }
+        RawMaterialKind::Emissive => {
+            material.kind = MaterialKind::Emissive;
+            let e = doc.require(
+                &raw.emission,
+                &table,
+                label,
+                "emission",
+                "an emissive material needs it",
+            )?;
+            material.emission = doc.color(e, &field("emission"), ColorKind::Unbounded)?;
+        }
+    }
+    Ok(material)
+}
+
+/// The albedo of a Lambertian or plastic material: a colour or a solid texture, not both.
+/// With a texture, `color` is the mean of its two colours (a flat stand-in for previews).
+fn albedo(
+    doc: &Doc,
+    raw: &RawMaterial,
+    table: &Range<usize>,
+    label: &str,
+) -> Result<(Vec3, Option<SolidTexture>), SceneError> {
+    match (&raw.color, &raw.texture) {
+        (Some(_), Some(t)) => Err(doc.invalid(
+            t.span(),
+            join(label, "texture"),
+            "color and texture are exclusive: the texture replaces color as albedo",
+        )),
+        (Some(c), None) => Ok((
+            doc.color(c, &join(label, "color"), ColorKind::Albedo)?,
+            None,
+        )),
+        (None, Some(t)) => {
+            let texture = texture(doc, t.get_ref(), &join(label, "texture"))?;
+            Ok(((texture.color_a + texture.color_b) * 0.5, Some(texture)))
+        }
+        (None, None) => Err(doc.invalid(
+            table.clone(),
+            join(label, "color"),
+            format!(
+                "missing ({} material needs color or texture)",
+                a_kind(*raw.kind.get_ref())
+            ),
+        )),
+    }
+}
+
+/// η and κ of a conductor: a preset or both colours, not a mix.
+fn eta_k(
+    doc: &Doc,
+    raw: &RawMaterial,
+    table: &Range<usize>,
+    label: &str,
+) -> Result<(Vec3, Vec3), SceneError> {
+    if let Some(preset) = &raw.preset {
+        let why = "a preset gives both η and κ; give either preset or color and k";
+        doc.reject(&raw.color, label, "color", why)?;
+        doc.reject(&raw.k, label, "k", why)?;
+        return Ok(preset_eta_k(*preset.get_ref()));
+    }
+    let why = "a conductor needs preset, or color (η) and k (κ)";
+    let eta = doc.require(&raw.color, table, label, "color", why)?;
+    let k = doc.require(&raw.k, table, label, "k", why)?;
+    Ok((
+        doc.color(eta, &join(label, "color"), ColorKind::Unbounded)?,
+        doc.color(k, &join(label, "k"), ColorKind::Unbounded)?,
+    ))
+}
+
+/// A solid texture table.
+fn texture(doc: &Doc, raw: &RawTexture, label: &str) -> Result<SolidTexture, SceneError> {
+    Ok(SolidTexture {
+        kind: match raw.kind.get_ref() {
+            RawTextureKind::Marble => SolidTextureKind::Marble,
+            RawTextureKind::Wood => SolidTextureKind::Wood,
+            RawTextureKind::Checker => SolidTextureKind::Checker,
+        },
+        color_a: doc.color(&raw.color_a, &join(label, "color_a"), ColorKind::Albedo)?,
+        color_b: doc.color(&raw.color_b, &join(label, "color_b"), ColorKind::Albedo)?,
+        scale: match &raw.scale {
+            Some(s) => doc.number(s, &join(label, "scale"), |v| v > 0.0, "> 0")?,
+            None => 1.0,
+        },
+    })
+}

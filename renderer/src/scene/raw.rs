@@ -1,0 +1,169 @@
+//! The scene file as serde reads it: one struct per TOML table, every value wrapped in
+//! [`Spanned`] so that validation can point at the line it came from. Nothing here is checked
+//! beyond TOML types and key names (`deny_unknown_fields`); `resolve` does the rest.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// Three numbers (a point, a direction or an RGB colour) with their place in the file.
+pub(super) type SVec3 = Spanned<[f32; 3]>;
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawScene {
+    pub camera: Spanned<RawCamera>,
+    pub render: Spanned<RawRender>,
+    #[serde(default)]
+    pub mesh: Vec<Spanned<RawMesh>>,
+    #[serde(default)]
+    pub material: Vec<Spanned<RawMaterial>>,
+    #[serde(default)]
+    pub instance: Vec<Spanned<RawInstance>>,
+    #[serde(default)]
+    pub light: Vec<Spanned<RawLight>>,
+    pub environment: Option<Spanned<RawEnvironment>>,
+}
+
+/// `[camera]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawCamera {
+    pub position: SVec3,
+    pub look_at: SVec3,
+    pub up: Option<SVec3>,
+    pub fov_y: Spanned<f32>,
+    pub aperture_radius: Option<Spanned<f32>>,
+    pub focus_distance: Option<Spanned<f32>>,
+}
+
+/// `[render]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRender {
+    pub width: Spanned<u32>,
+    pub height: Spanned<u32>,
+    pub spp: Spanned<u32>,
+    pub max_depth: Option<Spanned<u32>>,
+    pub rr_depth: Option<Spanned<u32>>,
+    pub seed: Option<Spanned<u32>>,
+}
+
+/// Built-in generated meshes.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawShape {
+    Quad,
+    Cube,
+    Sphere,
+}
+
+/// `[[mesh]]`: a file or a built-in shape.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMesh {
+    pub name: Spanned<String>,
+    pub path: Option<Spanned<String>>,
+    pub shape: Option<Spanned<RawShape>>,
+    pub subdivisions: Option<Spanned<u32>>,
+    pub normalize: Option<Spanned<bool>>,
+}
+
+/// Material kinds as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawMaterialKind {
+    Lambertian,
+    Conductor,
+    Plastic,
+    Dielectric,
+    Emissive,
+}
+
+/// Measured metals a conductor may name instead of giving η and κ.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawPreset {
+    Gold,
+    Silver,
+    Copper,
+    Aluminium,
+}
+
+/// `[[material]]`: one flat table for every kind, so that a key another kind accepts gets a
+/// message naming that kind instead of serde's generic "unknown field".
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMaterial {
+    pub name: Spanned<String>,
+    pub kind: Spanned<RawMaterialKind>,
+    pub color: Option<SVec3>,
+    pub k: Option<SVec3>,
+    pub emission: Option<SVec3>,
+    pub roughness: Option<Spanned<f32>>,
+    pub ior: Option<Spanned<f32>>,
+    pub preset: Option<Spanned<RawPreset>>,
+    pub texture: Option<Spanned<RawTexture>>,
+}
+
+/// Solid texture kinds as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawTextureKind {
+    Marble,
+    Wood,
+    Checker,
+}
+
+/// `texture = { … }` of a material.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawTexture {
+    pub kind: Spanned<RawTextureKind>,
+    pub color_a: SVec3,
+    pub color_b: SVec3,
+    pub scale: Option<Spanned<f32>>,
+}
+
+/// `[[instance]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawInstance {
+    pub mesh: Spanned<String>,
+    pub material: Spanned<String>,
+    pub translate: Option<SVec3>,
+    pub rotate: Option<SVec3>,
+    pub scale: Option<Spanned<f32>>,
+}
+
+/// Light kinds as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawLightKind {
+    Sphere,
+    Quad,
+}
+
+/// `[[light]]`: flat like materials, for the same reason.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawLight {
+    pub kind: Spanned<RawLightKind>,
+    pub radiance: SVec3,
+    pub center: Option<SVec3>,
+    pub radius: Option<Spanned<f32>>,
+    pub corner: Option<SVec3>,
+    pub edge_u: Option<SVec3>,
+    pub edge_v: Option<SVec3>,
+    pub two_sided: Option<Spanned<bool>>,
+}
+
+/// `[environment]`: a constant radiance or an EXR map.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawEnvironment {
+    pub radiance: Option<SVec3>,
+    pub path: Option<Spanned<String>>,
+    pub intensity: Option<Spanned<f32>>,
+    pub rotation: Option<Spanned<f32>>,
+}

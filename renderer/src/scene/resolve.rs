@@ -1,0 +1,194 @@
+//! From text to [`Scene`]: deserialize, validate every table, resolve names into indices and
+//! load the meshes (last, so that cheap mistakes are reported before slow loads).
+
+use super::location::{element_label, join, Doc};
+use super::raw::{RawInstance, RawScene};
+use super::{camera, lights, material, meshes};
+use super::{Instance, Scene, SceneError};
+use glam::{Affine3A, Quat, Vec3};
+use std::collections::HashMap;
+use std::path::Path;
+use toml::Spanned;
+
+impl Scene {
+    /// Reads and parses a scene file; relative paths inside it are resolved against its folder.
+    ///
+    /// # Errors
+    /// An unreadable file, or any error of [`Scene::parse`].
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            file: path.to_path_buf(),
+            source,
+        })?;
+        Scene::parse(&text, path)
+    }
+
+    /// Parses scene text as if read from `source`: `source` names the file in messages and
+    /// its folder is where relative mesh and map paths start (the text itself is not read
+    /// from it, which lets tests and tools build scenes in memory).
+    ///
+    /// # Errors
+    /// TOML syntax, unknown keys, wrong types, missing or out-of-range values, unknown or
+    /// duplicate names, no instance, missing files and mesh loading errors, each with the
+    /// scene file, the line and the field path.
+    pub fn parse(text: &str, source: &Path) -> Result<Scene, SceneError> {
+        let doc = Doc { file: source, text };
+        let raw: RawScene = doc.deserialize()?;
+        let base = source.parent().unwrap_or(Path::new(""));
+
+        let camera = camera::camera(&doc, &raw.camera)?;
+        let render = camera::render(&doc, raw.render.get_ref())?;
+        let mesh_names = names(&doc, "mesh", raw.mesh.iter().map(|m| &m.get_ref().name))?;
+        let material_names = names(
+            &doc,
+            "material",
+            raw.material.iter().map(|m| &m.get_ref().name),
+        )?;
+        let materials = raw
+            .material
+            .iter()
+            .map(|m| {
+                let label = element_label("material", 0, Some(m.get_ref().name.get_ref()));
+                material::resolve(&doc, m, &label)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        if raw.instance.is_empty() {
+            return Err(doc.invalid(
+                doc.text.trim_end().len()..doc.text.len(),
+                "instance",
+                "the scene has no [[instance]]: there would be nothing to render",
+            ));
+        }
+        let instances = raw
+            .instance
+            .iter()
+            .enumerate()
+            .map(|(i, inst)| {
+                let label = element_label("instance", i, None);
+                instance(&doc, inst.get_ref(), &label, &mesh_names, &material_names)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let lights = raw
+            .light
+            .iter()
+            .enumerate()
+            .map(|(i, l)| lights::light(&doc, l, &element_label("light", i, None)))
+            .collect::<Result<Vec<_>, _>>()?;
+        let environment = lights::environment(&doc, raw.environment.as_ref(), base)?;
+        let meshes = raw
+            .mesh
+            .iter()
+            .map(|m| {
+                let label = element_label("mesh", 0, Some(m.get_ref().name.get_ref()));
+                meshes::mesh(&doc, m, &label, base)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+
+        Ok(Scene {
+            source: source.to_path_buf(),
+            camera,
+            render,
+            meshes,
+            materials,
+            instances,
+            lights,
+            environment,
+        })
+    }
+}
+
+/// Index of every name of a section; names must be non-empty and unique.
+fn names<'a>(
+    doc: &Doc,
+    section: &str,
+    names: impl Iterator<Item = &'a Spanned<String>>,
+) -> Result<HashMap<&'a str, usize>, SceneError> {
+    let mut index: HashMap<&str, (usize, usize)> = HashMap::new();
+    for (i, name) in names.enumerate() {
+        let label = join(&element_label(section, i, None), "name");
+        let line = doc.line(name.span().start);
+        if name.get_ref().is_empty() {
+            return Err(doc.invalid(name.span(), label, "must not be empty"));
+        }
+        if let Some(&(_, first_line)) = index.get(name.get_ref().as_str()) {
+            return Err(doc.invalid(
+                name.span(),
+                label,
+                format!(
+                    "duplicate name: {section} {:?} is already defined on line {first_line}",
+                    name.get_ref()
+                ),
+            ));
+        }
+        index.insert(name.get_ref(), (i, line));
+    }
+    Ok(index.into_iter().map(|(k, (i, _))| (k, i)).collect())
+}
+
+/// Looks a name up, listing the defined ones when it is unknown.
+fn lookup(
+    doc: &Doc,
+    names: &HashMap<&str, usize>,
+    name: &Spanned<String>,
+    section: &str,
+    field: String,
+) -> Result<usize, SceneError> {
+    names.get(name.get_ref().as_str()).copied().ok_or_else(|| {
+        let mut known: Vec<String> = names.keys().map(|k| format!("{k:?}")).collect();
+        known.sort();
+        let known = if known.is_empty() {
+            format!("the scene defines no [[{section}]]")
+        } else {
+            format!("defined: {}", known.join(", "))
+        };
+        doc.invalid(
+            name.span(),
+            field,
+            format!("unknown {section} {:?} ({known})", name.get_ref()),
+        )
+    })
+}
+
+/// Validates one instance: names resolved, transform built as translate · rotate · scale with
+/// the rotation about x first, then y, then z (all fixed world axes).
+fn instance(
+    doc: &Doc,
+    raw: &RawInstance,
+    label: &str,
+    mesh_names: &HashMap<&str, usize>,
+    material_names: &HashMap<&str, usize>,
+) -> Result<Instance, SceneError> {
+    let field = |key: &str| join(label, key);
+    let mesh = lookup(doc, mesh_names, &raw.mesh, "mesh", field("mesh"))?;
+    let material = lookup(
+        doc,
+        material_names,
+        &raw.material,
+        "material",
+        field("material"),
+    )?;
+    let translate = match &raw.translate {
+        Some(t) => doc.vec3(t, &field("translate"))?,
+        None => Vec3::ZERO,
+    };
+    let rotate = match &raw.rotate {
+        Some(r) => doc.vec3(r, &field("rotate"))?,
+        None => Vec3::ZERO,
+    };
+    let scale = match &raw.scale {
+        Some(s) => doc.number(s, &field("scale"), |v| v > 0.0, "> 0")?,
+        None => 1.0,
+    };
+    let r = rotate * (std::f32::consts::PI / 180.0);
+    let rotation =
+        Quat::from_rotation_z(r.z) * Quat::from_rotation_y(r.y) * Quat::from_rotation_x(r.x);
+    Ok(Instance {
+        mesh,
+        material,
+        transform: Affine3A::from_scale_rotation_translation(
+            Vec3::splat(scale),
+            rotation,
+            translate,
+        ),
+    })
+}
