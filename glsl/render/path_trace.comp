@@ -82,8 +82,13 @@ SurfaceHit surface_of(TraceHit h) {
     vec3 v2 = v0 + e2;
     float w = 1.0 - h.u - h.v;
     SurfaceHit s;
-    s.p_object = v0 * w + v1 * h.u + v2 * h.v;
-    s.p = cwbvh_transform_point(inst.object_to_world, s.p_object);
+    vec3 p_surface = v0 * w + v1 * h.u + v2 * h.v;
+    s.p = cwbvh_transform_point(inst.object_to_world, p_surface);
+    // Solid textures are read a hair inside the matter, so a face lying exactly on a cell
+    // boundary of the texture (a ground plane at y = 0) sees one side of it, not both.
+    vec3 n_object = cross(v1 - v0, v2 - v0);
+    float n_len = length(n_object);
+    s.p_object = n_len > 0.0 ? p_surface - n_object * (1e-5 / n_len) : p_surface;
     // Rigid transforms with uniform scale: the linear part maps normals too.
     s.ng = normalize(cwbvh_transform_vector(inst.object_to_world, cross(v1 - v0, v2 - v0)));
     uvec4 packed = bvh_normals[h.triangle];
