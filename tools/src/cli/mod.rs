@@ -1,6 +1,7 @@
 //! Subcommands that are not benchmarks, and what every subcommand shares.
 
 pub mod device;
+pub mod diff;
 
 use lazysolid_compute::gpu::{Gpu, GpuOptions, ValidationLog};
 use std::cell::RefCell;
