@@ -9,7 +9,9 @@
 //! - [`output`] and [`diff`]: EXR/PNG writing and FLIP image comparison.
 
 pub mod accel;
+pub mod diff;
 pub mod mesh;
+pub mod output;
 pub mod render;
 pub mod scene;
 pub mod shading;

@@ -3,13 +3,13 @@
 
 use glam::{Affine3A, Vec3};
 use lazysolid_renderer::diff::flip_images;
+use lazysolid_renderer::mesh::Mesh;
 use lazysolid_renderer::output::{write_png, Film, Operator, ToneMap};
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::{
     Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
     SceneMesh,
 };
-use lazysolid_renderer::mesh::Mesh;
 use lazysolid_tests::{asset_mesh, with_gpu};
 use std::path::{Path, PathBuf};
 
@@ -87,7 +87,10 @@ fn mean(film: &Film) -> Vec3 {
 fn white_furnace_lambertian_and_glass_bunnies_disappear() {
     for (name, m) in [
         ("lambertian", material(MaterialKind::Lambertian, Vec3::ONE)),
-        ("smooth glass", material(MaterialKind::Dielectric, Vec3::ONE)),
+        (
+            "smooth glass",
+            material(MaterialKind::Dielectric, Vec3::ONE),
+        ),
     ] {
         let film = render(&furnace_scene(unit_mesh("bunny00.off"), m, 0.75));
         let avg = mean(&film);
@@ -120,7 +123,11 @@ fn sphere_light_over_a_plane_matches_the_closed_form() {
         source: "plane".into(),
     };
     let (albedo, radiance, r, d) = (0.6f32, 20.0f32, 0.25f32, 2.0f32);
-    let mut scene = furnace_scene(plane, material(MaterialKind::Lambertian, Vec3::splat(albedo)), 0.0);
+    let mut scene = furnace_scene(
+        plane,
+        material(MaterialKind::Lambertian, Vec3::splat(albedo)),
+        0.0,
+    );
     scene.lights = vec![Light::Sphere {
         center: Vec3::new(0.0, d, 0.0),
         radius: r,
@@ -161,8 +168,9 @@ fn same_seed_same_image_other_seed_other_image() {
 }
 
 /// Largest FLIP mean allowed between a test render and its reference: the reference has 16×
-/// the samples, so what remains is the test render's noise (measured below 0.1 on lavapipe).
-const FLIP_MEAN_LIMIT: f32 = 0.12;
+/// the samples, so what remains is the test render's noise (0.037–0.060 measured on lavapipe;
+/// the interior rendered with direct light only scores 0.17).
+const FLIP_MEAN_LIMIT: f32 = 0.09;
 /// Samples per pixel of the references, relative to the scene's.
 const REFERENCE_SPP_FACTOR: u32 = 16;
 

@@ -30,6 +30,11 @@ enum Command {
     /// Run a benchmark suite; tables go to stdout, CSV and JSON to the results folder.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
+    /// Compare an image with a reference using FLIP: statistics, an optional error map, and
+    /// exit status 1 above an optional mean-error threshold.
+    Diff(cli::diff::DiffArgs),
+    /// Path-trace a scene file (TOML) into a PNG and an HDR EXR.
+    Render(cli::render::RenderArgs),
 }
 
 fn main() {
@@ -46,6 +51,8 @@ fn main() {
     let result = match cli.command {
         Command::Device => cli::device::run(cli.device.as_deref()),
         Command::Bench(b) => bench::run(b, &global),
+        Command::Diff(d) => cli::diff::run(&d),
+        Command::Render(r) => cli::render::run(&r, &global),
     };
     // Every device is dropped by now, so leak reports are in the logs.
     let validation_errors = global.report_validation();

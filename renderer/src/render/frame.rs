@@ -44,7 +44,12 @@ const _: () = assert!(std::mem::size_of::<GpuFrame>() == 96);
 
 impl GpuFrame {
     /// The frame of `camera` rendered with `settings`.
-    pub fn new(camera: &Camera, settings: &RenderSettings, light_count: u32, env_sampled: bool) -> GpuFrame {
+    pub fn new(
+        camera: &Camera,
+        settings: &RenderSettings,
+        light_count: u32,
+        env_sampled: bool,
+    ) -> GpuFrame {
         let forward = (camera.look_at - camera.position).normalize();
         let right = forward.cross(camera.up).normalize();
         let up = right.cross(forward);

@@ -54,7 +54,8 @@ pub struct PathTracer {
     frame_buf: GpuBuffer<GpuFrame>,
     materials: GpuBuffer<GpuMaterial>,
     lights: GpuBuffer<GpuLight>,
-    environment: GpuEnvironment,
+    // Owns the buffers that the device addresses in `environment_params` point into.
+    _environment: GpuEnvironment,
     environment_params: GpuBuffer<u8>,
     film: GpuBuffer<[f32; 4]>,
     aovs: GpuBuffer<[f32; 4]>,
@@ -76,6 +77,12 @@ impl PathTracer {
         let bvh = DeviceBvh::upload(gpu, &scene_bvh)?;
         let materials: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::from).collect();
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
+        // A binding cannot be empty: a scene without lights still gets one (unused) record.
+        let light_records = if lights.is_empty() {
+            vec![GpuLight::zeroed()]
+        } else {
+            lights.clone()
+        };
         let environment = GpuEnvironment::from_scene(gpu, &scene.environment)?;
         let env_sampled = match &scene.environment {
             Environment::Constant(c) => c.max_element() > 0.0,
@@ -94,18 +101,13 @@ impl PathTracer {
             kernel: Kernel::with_constants(gpu, &PATH_TRACE, CWBVH_WORKGROUP_SIZE, &[])?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
             materials: GpuBuffer::from_slice(gpu, "render materials", &materials)?,
-            // A binding cannot be empty: a scene without lights still gets one (unused) record.
-            lights: GpuBuffer::from_slice(
-                gpu,
-                "render lights",
-                if lights.is_empty() { &[GpuLight::zeroed()] } else { &lights },
-            )?,
+            lights: GpuBuffer::from_slice(gpu, "render lights", &light_records)?,
             environment_params: GpuBuffer::from_slice(
                 gpu,
                 "render environment",
                 bytemuck::bytes_of(&environment.params()),
             )?,
-            environment,
+            _environment: environment,
             film: GpuBuffer::zeroed(gpu, "render film", pixels)?,
             aovs: GpuBuffer::zeroed(gpu, "render aovs", 2 * pixels)?,
             ray_count: GpuBuffer::zeroed(gpu, "render ray count", 1)?,
@@ -128,7 +130,8 @@ impl PathTracer {
             self.frame.aovs = aovs as u32;
             self.frame_buf.write(0, &[self.frame])?;
         }
-        let tiles = self.settings.width.div_ceil(8) as u64 * self.settings.height.div_ceil(8) as u64;
+        let tiles =
+            self.settings.width.div_ceil(8) as u64 * self.settings.height.div_ceil(8) as u64;
         let invocations = tiles * 64;
         let push = Push {
             sample_index: self.samples,
@@ -152,7 +155,12 @@ impl PathTracer {
         ];
         self.ray_count.write(0, &[0])?;
         self.gpu.submit(|rec| {
-            rec.dispatch(&self.kernel, self.kernel.groups_for(invocations), &bindings, &push)
+            rec.dispatch(
+                &self.kernel,
+                self.kernel.groups_for(invocations),
+                &bindings,
+                &push,
+            )
         })?;
         self.samples += 1;
         let rays = self.ray_count.read()?[0] as u64;
@@ -193,8 +201,14 @@ impl PathTracer {
                 [s[0] / n, s[1] / n, s[2] / n]
             })
             .collect();
-        let albedo = aovs.chunks(2).map(|a| [a[0][0], a[0][1], a[0][2]]).collect();
-        let normal = aovs.chunks(2).map(|a| [a[1][0], a[1][1], a[1][2]]).collect();
+        let albedo = aovs
+            .chunks(2)
+            .map(|a| [a[0][0], a[0][1], a[0][2]])
+            .collect();
+        let normal = aovs
+            .chunks(2)
+            .map(|a| [a[1][0], a[1][1], a[1][2]])
+            .collect();
         let depth = aovs.chunks(2).map(|a| a[1][3]).collect();
         Ok(Film::new(self.settings.width, self.settings.height, color)?
             .with_albedo(albedo)?

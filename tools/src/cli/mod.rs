@@ -1,6 +1,8 @@
 //! Subcommands that are not benchmarks, and what every subcommand shares.
 
 pub mod device;
+pub mod diff;
+pub mod render;
 
 use lazysolid_compute::gpu::{Gpu, GpuOptions, ValidationLog};
 use std::cell::RefCell;

@@ -90,7 +90,11 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let exr = if args.no_exr {
         None
     } else {
-        Some(args.exr.clone().unwrap_or_else(|| args.output.with_extension("exr")))
+        Some(
+            args.exr
+                .clone()
+                .unwrap_or_else(|| args.output.with_extension("exr")),
+        )
     };
     let gpu = global.gpu()?;
     let start = Instant::now();
