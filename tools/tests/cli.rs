@@ -362,3 +362,60 @@ fn diff_bad_paths_are_named() {
         "{err}"
     );
 }
+
+fn repo(path: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(path)
+}
+
+#[test]
+fn render_writes_png_and_exr_and_says_where() {
+    let out = tempfile::tempdir().unwrap();
+    let png = out.path().join("interior.png");
+    let (ok, stdout, err) = run(lazysolid()
+        .arg("render")
+        .arg(repo("scenes/test/interior.toml"))
+        .arg("-o")
+        .arg(&png)
+        .args(["--spp", "2", "--res", "40x30"])
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    assert!(stdout.contains(&png.display().to_string()), "{stdout}");
+    assert!(err.contains("Mrays/s"), "{err}");
+    let img = image::open(&png).unwrap();
+    assert_eq!((img.width(), img.height()), (40, 30));
+    assert!(out.path().join("interior.exr").exists());
+}
+
+#[test]
+fn render_refuses_bad_scenes_and_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("bad.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\nfov_y = 40\n\n[render]\nwidth = 8\nheight = 8\nspp = 1\nfocus = 2\n",
+    )
+    .unwrap();
+    let png = dir.path().join("out.png");
+    let (ok, _, err) = run(lazysolid().arg("render").arg(&scene).arg("-o").arg(&png));
+    assert!(!ok);
+    assert!(
+        err.contains("bad.toml:10") && err.contains("focus"),
+        "the unknown key is named with its line: {err}"
+    );
+    assert!(!png.exists(), "no image is written for a bad scene");
+    let (ok, _, err) = run(lazysolid()
+        .arg("render")
+        .arg(repo("scenes/test/interior.toml"))
+        .arg("-o")
+        .arg(&png)
+        .args(["--res", "40by30"]));
+    assert!(!ok && err.contains("WIDTHxHEIGHT"), "{err}");
+    let (ok, _, err) = run(lazysolid()
+        .arg("render")
+        .arg(dir.path().join("missing.toml"))
+        .arg("-o")
+        .arg(&png));
+    assert!(!ok && err.contains("missing.toml"), "{err}");
+}
