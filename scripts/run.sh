@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The main job: installs what is needed, builds, and runs lazysolid on the default device
-# (lavapipe when no GPU is present). For now: the device listing and the primitive benchmark.
+# The main job: installs what is needed, builds, and path-traces the default scene on the
+# default device (lavapipe when no GPU is present), then says where the images are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -8,7 +8,7 @@ bash scripts/fetch-assets.sh
 cargo build --release --locked -p lazysolid-tools
 bin=target/release/lazysolid
 "$bin" device
-"$bin" bench prims --runs 3 --out results
+mkdir -p results
+"$bin" render scenes/default.toml -o results/default.png
 echo
-echo "Benchmark tables are in $(pwd)/results (CSV and JSON, newest last):"
-ls -1 results/bench-prims-* | tail -2
+echo "The rendered image is $(pwd)/results/default.png (HDR with albedo, normal and depth: $(pwd)/results/default.exr)"
