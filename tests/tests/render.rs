@@ -4,7 +4,7 @@
 use glam::{Affine3A, Vec3};
 use lazysolid_renderer::diff::flip_images;
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_renderer::output::{write_png, Film, Operator, ToneMap};
+use lazysolid_renderer::output::{write_exr, write_png, Film, Operator, ToneMap};
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::{
     Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
@@ -106,6 +106,32 @@ fn white_furnace_lambertian_and_glass_bunnies_disappear() {
             .fold(0.0f32, f32::max);
         assert!(worst < 0.2, "{name}: a pixel is {worst} away from 0.75");
     }
+}
+
+/// The same furnace lit by a lat-long EXR map of constant radiance: the map's importance
+/// sampling and its MIS weights must also add up to exactly the environment.
+#[test]
+fn white_furnace_with_a_lat_long_environment_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let exr = dir.path().join("uniform.exr");
+    let map = Film::new(64, 32, vec![[0.5, 0.5, 0.5]; 64 * 32]).unwrap();
+    write_exr(&map, &exr).unwrap();
+    let mut scene = furnace_scene(
+        unit_mesh("bunny00.off"),
+        material(MaterialKind::Lambertian, Vec3::ONE),
+        0.0,
+    );
+    scene.environment = Environment::LatLong {
+        path: exr,
+        intensity: 1.5,
+        rotation_deg: 30.0,
+    };
+    let avg = mean(&render(&scene));
+    println!("lat-long furnace: mean {avg}");
+    assert!(
+        (avg - Vec3::splat(0.75)).abs().max_element() < 0.01,
+        "mean radiance {avg}, expected 0.75"
+    );
 }
 
 /// A Lambertian plane lit by a sphere light straight above: the radiance below the centre is
