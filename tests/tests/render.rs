@@ -193,6 +193,43 @@ fn same_seed_same_image_other_seed_other_image() {
     assert_ne!(a.color(), c.color(), "the seed does not change the image");
 }
 
+fn to_rgb8(film: &Film) -> image::RgbImage {
+    let t = tone_map();
+    let mut img = image::RgbImage::new(film.width(), film.height());
+    for (p, c) in img.pixels_mut().zip(film.color()) {
+        *p = image::Rgb(t.to_srgb8(*c).unwrap());
+    }
+    img
+}
+
+/// A thin lens focused on the subject keeps it as sharp as a pinhole does; focused far behind
+/// it, the same lens blurs it.
+#[test]
+fn thin_lens_blurs_only_out_of_focus() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/test/textured.toml");
+    let mut scene = Scene::load(&path).unwrap();
+    scene.render.spp = 64;
+    let pinhole = to_rgb8(&render(&scene));
+    let subject = (scene.camera.look_at - scene.camera.position).length();
+    let lens = |focus_distance: f32| Lens::ThinLens {
+        aperture_radius: 0.08,
+        focus_distance,
+    };
+    scene.camera.lens = lens(subject);
+    let in_focus = flip_images(&pinhole, &to_rgb8(&render(&scene)))
+        .unwrap()
+        .mean;
+    scene.camera.lens = lens(subject * 6.0);
+    let out_of_focus = flip_images(&pinhole, &to_rgb8(&render(&scene)))
+        .unwrap()
+        .mean;
+    println!("thin lens vs pinhole: in focus {in_focus:.4}, out of focus {out_of_focus:.4}");
+    assert!(
+        out_of_focus > 1.5 * in_focus,
+        "defocus should show: {in_focus} vs {out_of_focus}"
+    );
+}
+
 /// Largest FLIP mean allowed between a test render and its reference: the reference has 16×
 /// the samples, so what remains is the test render's noise (0.037–0.060 measured on lavapipe;
 /// the interior rendered with direct light only scores 0.17).
