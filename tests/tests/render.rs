@@ -301,3 +301,25 @@ fn reference_glass_metal() {
 fn reference_interior() {
     check_reference("interior");
 }
+
+/// Scenes built in code skip the loader's checks; the path tracer refuses what it cannot render
+/// with an error instead of a panic.
+#[test]
+fn scenes_built_in_code_are_checked() {
+    let mut scene = furnace_scene(
+        unit_mesh("cube.off"),
+        material(MaterialKind::Lambertian, Vec3::ONE),
+        1.0,
+    );
+    scene.instances.clear();
+    let no_instance = with_gpu(|gpu| PathTracer::new(gpu, &scene).err().unwrap().to_string());
+    assert!(no_instance.contains("no instance"), "{no_instance}");
+    let mut scene = furnace_scene(
+        unit_mesh("cube.off"),
+        material(MaterialKind::Lambertian, Vec3::ONE),
+        1.0,
+    );
+    scene.instances[0].material = 3;
+    let bad_ref = with_gpu(|gpu| PathTracer::new(gpu, &scene).err().unwrap().to_string());
+    assert!(bad_ref.contains("material 3 of 1"), "{bad_ref}");
+}

@@ -72,6 +72,7 @@ impl PathTracer {
     /// Device failures and limits, or shading data that cannot be prepared (an unreadable
     /// environment map).
     pub fn new(gpu: &Gpu, scene: &Scene) -> Result<PathTracer, RenderError> {
+        check_scene(scene)?;
         let settings = scene.render;
         let scene_bvh = SceneBvh::from_scene(scene);
         let bvh = DeviceBvh::upload(gpu, &scene_bvh)?;
@@ -230,4 +231,39 @@ impl PathTracer {
     pub fn stats(&self) -> RenderStats {
         self.stats
     }
+}
+
+/// What [`SceneBvh`] and the kernel rely on, for scenes built in code rather than loaded (the
+/// loader checks all of it with line numbers).
+fn check_scene(scene: &Scene) -> Result<(), RenderError> {
+    let file = scene.source.display();
+    let bad = |problem: String| Err(RenderError::Settings(format!("{file}: {problem}")));
+    let s = &scene.render;
+    if s.width == 0 || s.height == 0 || s.spp == 0 || s.max_depth == 0 {
+        return bad(format!(
+            "render settings {}x{}, {} spp, depth {} (each must be at least 1)",
+            s.width, s.height, s.spp, s.max_depth
+        ));
+    }
+    if s.width as u64 * s.height as u64 > 1 << 26 {
+        return bad(format!("{}x{} pixels is more than 2^26", s.width, s.height));
+    }
+    if scene.instances.is_empty() {
+        return bad("the scene has no instance".into());
+    }
+    for (i, inst) in scene.instances.iter().enumerate() {
+        if inst.mesh >= scene.meshes.len() || inst.material >= scene.materials.len() {
+            return bad(format!(
+                "instance {i} refers to mesh {} of {} / material {} of {}",
+                inst.mesh,
+                scene.meshes.len(),
+                inst.material,
+                scene.materials.len()
+            ));
+        }
+        if inst.transform.matrix3.determinant().abs() < 1e-12 {
+            return bad(format!("instance {i} has a singular transform"));
+        }
+    }
+    Ok(())
 }
