@@ -822,3 +822,63 @@ fn documented_example_loads() {
         }
     );
 }
+
+#[test]
+fn textures_baked_into_stores() {
+    use lazysolid_renderer::scene::{StoreFilter, StoreKind, StoreSpec};
+    let tex = |extra: &str| {
+        edit(
+            15,
+            &format!(
+                "texture = {{ kind = \"marble\", color_a = [1, 1, 1], color_b = [0, 0, 0]{extra} }}"
+            ),
+        )
+    };
+    let s = parse(&tex(
+        ", store = \"octree\", resolution = 256, filter = \"trilinear\"",
+    ))
+    .unwrap();
+    assert_eq!(
+        s.materials[0].texture.unwrap().store,
+        Some(StoreSpec {
+            kind: StoreKind::Octree,
+            resolution: 256,
+            filter: StoreFilter::Trilinear
+        })
+    );
+    let s = parse(&tex(", store = \"coherent_hash\", resolution = 64")).unwrap();
+    assert_eq!(
+        s.materials[0].texture.unwrap().store.unwrap().filter,
+        StoreFilter::Nearest
+    );
+    assert!(parse(&tex("")).unwrap().materials[0]
+        .texture
+        .unwrap()
+        .store
+        .is_none());
+    expect(
+        &tex(", store = \"octree\""),
+        15,
+        "material \"white\".texture.resolution: is required with `store`",
+    );
+    expect(
+        &tex(", resolution = 64"),
+        15,
+        "material \"white\".texture.store: is required with `resolution`",
+    );
+    expect(
+        &tex(", store = \"octree\", resolution = 4096"),
+        15,
+        "material \"white\".texture.resolution: 4096 is out of range (must be in 2..=2048)",
+    );
+    expect(
+        &tex(", filter = \"trilinear\""),
+        15,
+        "material \"white\".texture.filter: applies only to a texture baked into a store",
+    );
+    let e = error(&tex(", store = \"kd_tree\", resolution = 64"));
+    assert!(
+        e.contains("scenes/t.toml:15") && e.contains("kd_tree"),
+        "{e}"
+    );
+}

@@ -3,8 +3,14 @@
 
 use super::check::ColorKind;
 use super::location::{join, Doc};
-use super::raw::{RawMaterial, RawMaterialKind, RawPreset, RawTexture, RawTextureKind};
-use super::{Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind};
+use super::raw::{
+    RawMaterial, RawMaterialKind, RawPreset, RawStoreFilter, RawStoreKind, RawTexture,
+    RawTextureKind,
+};
+use super::{
+    Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind, StoreFilter, StoreKind,
+    StoreSpec,
+};
 use glam::Vec3;
 use std::ops::Range;
 use toml::Spanned;
@@ -252,5 +258,47 @@ fn texture(doc: &Doc, raw: &RawTexture, label: &str) -> Result<SolidTexture, Sce
             Some(s) => doc.number(s, &join(label, "scale"), |v| v > 0.0, "> 0")?,
             None => 1.0,
         },
+        store: store(doc, raw, label)?,
     })
+}
+
+/// Largest resolution a solid texture may be baked at (the voxel grids' limit).
+pub const MAX_STORE_RESOLUTION: u32 = 2048;
+
+/// The optional `store`, `resolution` and `filter` of a texture: all or none of `store` and
+/// `resolution`; `filter` only with a store (default nearest).
+fn store(doc: &Doc, raw: &RawTexture, label: &str) -> Result<Option<StoreSpec>, SceneError> {
+    match (&raw.store, &raw.resolution) {
+        (None, None) => {
+            if let Some(f) = &raw.filter {
+                return Err(doc.invalid(
+                    f.span(),
+                    &join(label, "filter"),
+                    "applies only to a texture baked into a store (give `store` and `resolution`)",
+                ));
+            }
+            Ok(None)
+        }
+        (Some(kind), Some(res)) => Ok(Some(StoreSpec {
+            kind: match kind.get_ref() {
+                RawStoreKind::CoherentHash => StoreKind::CoherentHash,
+                RawStoreKind::Octree => StoreKind::Octree,
+            },
+            resolution: doc.integer(res, &join(label, "resolution"), 2..=MAX_STORE_RESOLUTION)?,
+            filter: match raw.filter.as_ref().map(|f| *f.get_ref()) {
+                None | Some(RawStoreFilter::Nearest) => StoreFilter::Nearest,
+                Some(RawStoreFilter::Trilinear) => StoreFilter::Trilinear,
+            },
+        })),
+        (Some(kind), None) => Err(doc.invalid(
+            kind.span(),
+            &join(label, "resolution"),
+            "is required with `store`",
+        )),
+        (None, Some(res)) => Err(doc.invalid(
+            res.span(),
+            &join(label, "store"),
+            "is required with `resolution` (coherent_hash or octree)",
+        )),
+    }
 }

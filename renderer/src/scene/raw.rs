@@ -123,6 +123,25 @@ pub(super) struct RawTexture {
     pub color_a: SVec3,
     pub color_b: SVec3,
     pub scale: Option<Spanned<f32>>,
+    pub store: Option<Spanned<RawStoreKind>>,
+    pub resolution: Option<Spanned<u32>>,
+    pub filter: Option<Spanned<RawStoreFilter>>,
+}
+
+/// Sparse stores as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub(super) enum RawStoreKind {
+    CoherentHash,
+    Octree,
+}
+
+/// Store filters as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawStoreFilter {
+    Nearest,
+    Trilinear,
 }
 
 /// `[[instance]]`.

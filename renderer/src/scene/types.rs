@@ -128,6 +128,39 @@ pub struct SolidTexture {
     pub color_b: Vec3,
     /// Pattern frequency: features per unit of object space.
     pub scale: f32,
+    /// When set, the pattern is baked into a sparse store over the mesh's surface voxels and the
+    /// renderer reads the store instead of evaluating the pattern: how the structures that will
+    /// hold synthesized matter are rendered and compared.
+    pub store: Option<StoreSpec>,
+}
+
+/// Which sparse store holds a baked solid texture, at what resolution, read how.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StoreSpec {
+    /// The structure.
+    pub kind: StoreKind,
+    /// Voxels per unit of object space along each axis (the mesh's unit cube).
+    pub resolution: u32,
+    /// Nearest texel or trilinear interpolation.
+    pub filter: StoreFilter,
+}
+
+/// Sparse stores a solid texture can be baked into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StoreKind {
+    /// The coherent parallel hash keyed by voxel Morton codes.
+    CoherentHash,
+    /// The N³ octree texture.
+    Octree,
+}
+
+/// How a store is sampled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StoreFilter {
+    /// The texel containing the point.
+    Nearest,
+    /// Trilinear interpolation of the 8 surrounding texel centres.
+    Trilinear,
 }
 
 /// Procedural solid patterns (until the sparse stores and the synthesizer provide matter).

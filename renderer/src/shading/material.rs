@@ -96,6 +96,7 @@ mod tests {
                 color_a: Vec3::X,
                 color_b: Vec3::Y,
                 scale: 4.0,
+                store: None,
             }),
         };
         let g = GpuMaterial::from(&m);
