@@ -251,6 +251,16 @@ fn check_scene(scene: &Scene) -> Result<(), RenderError> {
     if scene.instances.is_empty() {
         return bad("the scene has no instance".into());
     }
+    if let Some(m) = scene
+        .materials
+        .iter()
+        .find(|m| m.texture.is_some_and(|t| t.store.is_some()))
+    {
+        return bad(format!(
+            "material {:?}: textures baked into sparse stores are not rendered yet",
+            m.name
+        ));
+    }
     for (i, inst) in scene.instances.iter().enumerate() {
         if inst.mesh >= scene.meshes.len() || inst.material >= scene.materials.len() {
             return bad(format!(
