@@ -54,3 +54,17 @@ pub fn asset_mesh(name: &str) -> std::path::PathBuf {
     );
     path
 }
+
+/// Path of a GIMP pattern installed by `scripts/fetch-assets.sh` into `assets/exemplars/`;
+/// panics with the fix when it is absent.
+pub fn asset_exemplar(name: &str) -> std::path::PathBuf {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/exemplars")
+        .join(name);
+    assert!(
+        path.exists(),
+        "{} is missing: run scripts/fetch-assets.sh (the README's test command does)",
+        path.display()
+    );
+    path
+}

@@ -35,6 +35,9 @@ enum Command {
     Diff(cli::diff::DiffArgs),
     /// Path-trace a scene file (TOML) into a PNG and an HDR EXR.
     Render(cli::render::RenderArgs),
+    /// Synthesize a window of the unbounded texture plane from an exemplar (PNG, JPEG or GIMP
+    /// .pat) into a PNG and its exemplar-coordinate map, with timings and quality metrics.
+    Synth(cli::synth::SynthArgs),
 }
 
 fn main() {
@@ -53,6 +56,7 @@ fn main() {
         Command::Bench(b) => bench::run(b, &global),
         Command::Diff(d) => cli::diff::run(&d),
         Command::Render(r) => cli::render::run(&r, &global),
+        Command::Synth(s) => cli::synth::run(&s, &global),
     };
     // Every device is dropped by now, so leak reports are in the logs.
     let validation_errors = global.report_validation();

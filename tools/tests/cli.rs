@@ -419,3 +419,52 @@ fn render_refuses_bad_scenes_and_arguments() {
         .arg(&png));
     assert!(!ok && err.contains("missing.toml"), "{err}");
 }
+
+#[test]
+fn synth_writes_texture_and_coordinate_map_with_metrics() {
+    let exemplar = repo("assets/exemplars/terra.pat");
+    assert!(
+        exemplar.exists(),
+        "{} is missing: run scripts/fetch-assets.sh",
+        exemplar.display()
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("terra.png");
+    let (ok, stdout, err) = run(lazysolid()
+        .arg("synth")
+        .arg(&exemplar)
+        .args(["--size", "48x32", "--offset", "-70,5", "--seed", "4"])
+        .args(["--energy-samples", "64", "-o"])
+        .arg(&out)
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    for needle in [
+        "synthesis (GPU)",
+        "neighbourhood energy",
+        "colour histogram distance",
+    ] {
+        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
+    }
+    let image = image::open(&out).unwrap();
+    assert_eq!((image.width(), image.height()), (48, 32));
+    let coords = image::open(dir.path().join("terra.coords.png")).unwrap();
+    assert_eq!((coords.width(), coords.height()), (48, 32));
+    // Only the two PNGs: no temporary file is left behind.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+}
+
+#[test]
+fn synth_names_a_bad_exemplar_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let tiny = dir.path().join("tiny.png");
+    image::RgbImage::new(8, 8).save(&tiny).unwrap();
+    let out = dir.path().join("out.png");
+    let (ok, _, err) = run(lazysolid().arg("synth").arg(&tiny).arg("-o").arg(&out));
+    assert!(!ok);
+    assert!(
+        err.contains("tiny.png") && err.contains("16..=256"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.exists());
+}

@@ -1,0 +1,115 @@
+//! Exemplar analysis, a CPU preprocessing step run once per exemplar (like the paper's
+//! precomputation): Gaussian stack, quantized appearance vectors and k-coherence sets for every
+//! level. Its output is integers only, so the synthesizers that consume it (GPU and CPU) agree
+//! exactly.
+
+use super::appearance::{appearance, APPEARANCE_DIMS};
+use super::coherence::coherence_sets;
+use super::error::{SynthError, SynthResult};
+use super::exemplar::Exemplar;
+use super::stack::gaussian_stack;
+
+/// Largest k of the similarity sets (9k candidates per pixel and correction).
+pub const MAX_COHERENCE_K: u32 = 8;
+
+/// Largest spread, in pixels, between the members of a similarity set.
+pub const MAX_COHERENCE_SPREAD: u32 = 32;
+
+/// Choices of the analysis.
+#[derive(Clone, Copy, Debug)]
+pub struct AnalysisParams {
+    /// Members of each similarity set, the pixel itself included (the paper uses 2).
+    pub k: u32,
+    /// Smallest toroidal distance between members of a set, in pixels.
+    pub spread: u32,
+    /// Whether the exemplar tiles (borders wrap) or is clamped at its edges.
+    pub toroidal: bool,
+}
+
+impl Default for AnalysisParams {
+    fn default() -> Self {
+        AnalysisParams {
+            k: 2,
+            spread: 4,
+            toroidal: true,
+        }
+    }
+}
+
+/// What synthesis needs of one stack level.
+#[derive(Clone, Debug)]
+pub struct LevelAnalysis {
+    /// Coordinate spacing `h_l = 2^(L−l)` of this level, in exemplar pixels.
+    pub spacing: u32,
+    /// Quantized appearance vector of every exemplar pixel, row-major.
+    pub appearance: Vec<[i16; APPEARANCE_DIMS]>,
+    /// `k` packed coordinates per exemplar pixel, the pixel itself first.
+    pub coherence: Vec<u32>,
+    /// Fraction of the appearance variance PCA dropped at this level.
+    pub residual_variance: f64,
+}
+
+/// The analysed exemplar.
+#[derive(Clone, Debug)]
+pub struct ExemplarAnalysis {
+    /// Exemplar width.
+    pub width: u32,
+    /// Exemplar height.
+    pub height: u32,
+    /// Similarity set size.
+    pub k: u32,
+    /// Levels `0..=L`, coarsest first.
+    pub levels: Vec<LevelAnalysis>,
+}
+
+impl ExemplarAnalysis {
+    /// Index `L` of the finest level.
+    pub fn finest_level(&self) -> u32 {
+        self.levels.len() as u32 - 1
+    }
+}
+
+/// Analyses `exemplar`.
+///
+/// # Errors
+/// [`SynthError::Parameter`] when `k` or `spread` is out of range.
+pub fn analyze(exemplar: &Exemplar, params: &AnalysisParams) -> SynthResult<ExemplarAnalysis> {
+    if !(1..=MAX_COHERENCE_K).contains(&params.k) {
+        return Err(SynthError::Parameter {
+            name: "k",
+            value: params.k.to_string(),
+            limit: format!("must lie in 1..={MAX_COHERENCE_K}"),
+        });
+    }
+    if params.spread > MAX_COHERENCE_SPREAD {
+        return Err(SynthError::Parameter {
+            name: "spread",
+            value: params.spread.to_string(),
+            limit: format!("must be at most {MAX_COHERENCE_SPREAD}"),
+        });
+    }
+    let (w, h) = (exemplar.width, exemplar.height);
+    let finest = exemplar.finest_level();
+    let stack = gaussian_stack(exemplar, params.toroidal);
+    let levels = stack
+        .iter()
+        .enumerate()
+        .map(|(l, colours)| {
+            let spacing = 1u32 << (finest - l as u32);
+            let a = appearance(colours, w, h, spacing, params.toroidal);
+            let coherence = coherence_sets(&a.vectors, w, h, params.k, params.spread);
+            LevelAnalysis {
+                spacing,
+                appearance: a.vectors,
+                coherence,
+                residual_variance: a.residual_variance,
+            }
+        })
+        .collect();
+    Ok(ExemplarAnalysis {
+        width: w,
+        height: h,
+        k: params.k,
+        levels,
+    })
+}

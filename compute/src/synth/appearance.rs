@@ -1,0 +1,116 @@
+//! Appearance vectors (Lefebvre & Hoppe 2006): each exemplar pixel of a stack level is
+//! described by the Gaussian-weighted 5×5 neighbourhood around it (sampled at the level's
+//! spacing), reduced by PCA to [`APPEARANCE_DIMS`] dimensions and quantized to integers.
+//!
+//! Quantization is what makes GPU and CPU agree exactly: every distance the synthesizer
+//! computes is an integer sum of squared integer differences, which no driver can reorder or
+//! fuse into a different result. The floats only live here, in a CPU preprocessing step whose
+//! output is uploaded as integers.
+
+use super::stack::border;
+use nalgebra::{DMatrix, SymmetricEigen};
+
+/// Dimensions of a reduced appearance vector.
+pub const APPEARANCE_DIMS: usize = 8;
+
+/// Largest magnitude of a quantized component. With 8 neighbours of 8 dimensions the largest
+/// squared distance is 64 · (2·1023)² ≈ 2.7e8, far inside `u32`.
+pub const APPEARANCE_QUANT_MAX: f64 = 1023.0;
+
+/// Radius of the analysed neighbourhood (5×5).
+const RADIUS: i64 = 2;
+
+/// Standard deviation, in neighbourhood samples, of the weighting that favours the centre.
+const WEIGHT_SIGMA: f64 = 1.5;
+
+/// The reduced appearance of one stack level.
+#[derive(Clone, Debug)]
+pub struct Appearance {
+    /// One quantized vector per exemplar pixel, row-major.
+    pub vectors: Vec<[i16; APPEARANCE_DIMS]>,
+    /// Fraction of the neighbourhood variance the kept dimensions lose (0 = none).
+    pub residual_variance: f64,
+}
+
+/// Computes the appearance of `level` (`w`×`h` RGB in 0..=255) sampled every `spacing` pixels.
+pub fn appearance(level: &[[f32; 3]], w: u32, h: u32, spacing: u32, toroidal: bool) -> Appearance {
+    let side = (2 * RADIUS + 1) as usize;
+    let dims = side * side * 3;
+    let n = level.len();
+    let mut data = vec![0.0f64; n * dims];
+    for y in 0..h as i64 {
+        for x in 0..w as i64 {
+            let row = &mut data[(y * w as i64 + x) as usize * dims..][..dims];
+            let mut j = 0;
+            for dy in -RADIUS..=RADIUS {
+                for dx in -RADIUS..=RADIUS {
+                    let weight =
+                        (-((dx * dx + dy * dy) as f64) / (2.0 * WEIGHT_SIGMA * WEIGHT_SIGMA)).exp();
+                    let sx = border(x + dx * spacing as i64, w, toroidal);
+                    let sy = border(y + dy * spacing as i64, h, toroidal);
+                    let s = level[sy * w as usize + sx];
+                    for c in s {
+                        row[j] = weight * c as f64;
+                        j += 1;
+                    }
+                }
+            }
+        }
+    }
+    let mut x = DMatrix::from_row_slice(n, dims, &data);
+    for c in 0..dims {
+        let mean = x.column(c).sum() / n as f64;
+        x.column_mut(c).add_scalar_mut(-mean);
+    }
+    let covariance = x.transpose() * &x / n as f64;
+    let eigen = SymmetricEigen::new(covariance);
+    let mut order: Vec<usize> = (0..dims).collect();
+    order.sort_by(|&a, &b| {
+        eigen.eigenvalues[b]
+            .total_cmp(&eigen.eigenvalues[a])
+            .then(a.cmp(&b))
+    });
+    let total: f64 = eigen.eigenvalues.iter().map(|v| v.max(0.0)).sum();
+    let kept: f64 = order[..APPEARANCE_DIMS]
+        .iter()
+        .map(|&i| eigen.eigenvalues[i].max(0.0))
+        .sum();
+    let residual_variance = if total > 0.0 { 1.0 - kept / total } else { 0.0 };
+    // Basis vectors with a fixed sign (largest component positive), so the analysis does not
+    // depend on the eigen solver's sign convention.
+    let mut basis = DMatrix::<f64>::zeros(dims, APPEARANCE_DIMS);
+    for (k, &i) in order[..APPEARANCE_DIMS].iter().enumerate() {
+        let v = eigen.eigenvectors.column(i);
+        let pivot = v
+            .iter()
+            .copied()
+            .fold(0.0f64, |m, c| if c.abs() > m.abs() { c } else { m });
+        let sign = if pivot < 0.0 { -1.0 } else { 1.0 };
+        basis.set_column(k, &(v * sign));
+    }
+    let projected = x * basis;
+    let max_abs = projected.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = if max_abs > 1e-9 {
+        APPEARANCE_QUANT_MAX / max_abs
+    } else {
+        1.0
+    };
+    let vectors = (0..n)
+        .map(|p| std::array::from_fn(|k| (projected[(p, k)] * scale).round() as i16))
+        .collect();
+    Appearance {
+        vectors,
+        residual_variance,
+    }
+}
+
+/// Squared distance between two quantized vectors (exact).
+pub fn appearance_distance(a: &[i16; APPEARANCE_DIMS], b: &[i16; APPEARANCE_DIMS]) -> u32 {
+    a.iter()
+        .zip(b)
+        .map(|(&x, &y)| {
+            let d = x as i32 - y as i32;
+            (d * d) as u32
+        })
+        .sum()
+}

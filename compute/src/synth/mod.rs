@@ -1,0 +1,45 @@
+//! Parallel, deterministic texture synthesis in appearance space (Lefebvre & Hoppe 2005 run on
+//! the appearance vectors of Lefebvre & Hoppe 2006): the 2D core that lazy solid synthesis
+//! extends to 3D.
+//!
+//! Pipeline: [`Exemplar`] → [`analyze`] (CPU preprocessing: Gaussian stack, 8D quantized
+//! appearance vectors, k-coherence sets) → per pyramid level upsampling, jitter and correction
+//! of exemplar coordinates, on the GPU ([`GpuSynthesizer`]) or on the CPU reference
+//! ([`synthesize_cpu`]), which agree exactly. Any window of the unbounded output plane can be
+//! synthesized on its own ([`plan_regions`] gives the padding); [`energy`] scores the result.
+//! See `docs/synthesis.md`.
+
+mod analysis;
+mod appearance;
+mod coherence;
+mod coords;
+mod cpu;
+mod energy;
+mod error;
+mod exemplar;
+mod gpu;
+mod jitter;
+mod params;
+mod pat;
+mod plan;
+mod stack;
+mod synthesis;
+
+pub use analysis::{
+    analyze, AnalysisParams, ExemplarAnalysis, LevelAnalysis, MAX_COHERENCE_K, MAX_COHERENCE_SPREAD,
+};
+pub use appearance::{appearance_distance, APPEARANCE_DIMS, APPEARANCE_QUANT_MAX};
+pub use coherence::MAX_POOL;
+pub use coords::{pack, unpack};
+pub use cpu::{correct_subpass, synthesize_cpu, upsample_jitter};
+pub use energy::{
+    energy_cpu, energy_positions, histogram_distance, EnergyKernel, EnergyReport, ENERGY_RADIUS,
+};
+pub use error::{SynthError, SynthResult};
+pub use exemplar::{Exemplar, MAX_EXEMPLAR_SIDE, MIN_EXEMPLAR_SIDE};
+pub use gpu::GpuSynthesizer;
+pub use jitter::{hash4, jitter};
+pub use params::{SynthParams, JITTER_ONE, MAX_PASSES};
+pub use pat::{decode_pattern, Pattern};
+pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};
+pub use synthesis::{check_window, LevelCoords, Synthesis, MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};

@@ -1,0 +1,71 @@
+//! The Gaussian stack of the exemplar: every level is full size (a stack, not a pyramid), level
+//! `l` blurred with σ = 2^(L−l)/2 so that its detail matches the coordinate spacing
+//! `h_l = 2^(L−l)` at which synthesis level `l` samples it. The finest level is the exemplar.
+//!
+//! Toroidal exemplars wrap at the borders; others are clamped to the edge pixel (their
+//! synthesized coordinates still wrap, so a non-tileable exemplar relies on correction to hide
+//! its seams).
+
+use super::exemplar::Exemplar;
+
+/// Index of `i` in `0..n` by wrapping (toroidal) or clamping.
+pub(crate) fn border(i: i64, n: u32, toroidal: bool) -> usize {
+    if toroidal {
+        i.rem_euclid(n as i64) as usize
+    } else {
+        i.clamp(0, n as i64 - 1) as usize
+    }
+}
+
+/// One separable pass of a normalized Gaussian of standard deviation `sigma` (pixels).
+fn blur_pass(
+    src: &[[f32; 3]],
+    w: u32,
+    h: u32,
+    sigma: f32,
+    horizontal: bool,
+    toroidal: bool,
+) -> Vec<[f32; 3]> {
+    let radius = (3.0 * sigma).ceil() as i64;
+    let weights: Vec<f32> = (-radius..=radius)
+        .map(|d| (-((d * d) as f32) / (2.0 * sigma * sigma)).exp())
+        .collect();
+    let total: f32 = weights.iter().sum();
+    let mut out = vec![[0.0f32; 3]; src.len()];
+    for y in 0..h as i64 {
+        for x in 0..w as i64 {
+            let mut acc = [0.0f32; 3];
+            for (j, wgt) in weights.iter().enumerate() {
+                let d = j as i64 - radius;
+                let (sx, sy) = if horizontal {
+                    (border(x + d, w, toroidal), y as usize)
+                } else {
+                    (x as usize, border(y + d, h, toroidal))
+                };
+                let s = src[sy * w as usize + sx];
+                for c in 0..3 {
+                    acc[c] += wgt * s[c];
+                }
+            }
+            out[y as usize * w as usize + x as usize] = acc.map(|a| a / total);
+        }
+    }
+    out
+}
+
+/// Levels `0..=L` (coarsest first) of the exemplar's Gaussian stack, colours in 0..=255.
+pub fn gaussian_stack(exemplar: &Exemplar, toroidal: bool) -> Vec<Vec<[f32; 3]>> {
+    let finest = exemplar.finest_level();
+    let (w, h) = (exemplar.width, exemplar.height);
+    let base: Vec<[f32; 3]> = exemplar.rgb.iter().map(|p| p.map(f32::from)).collect();
+    (0..=finest)
+        .map(|level| {
+            if level == finest {
+                return base.clone();
+            }
+            let sigma = (1u32 << (finest - level)) as f32 / 2.0;
+            let rows = blur_pass(&base, w, h, sigma, true, toroidal);
+            blur_pass(&rows, w, h, sigma, false, toroidal)
+        })
+        .collect()
+}

@@ -1,0 +1,61 @@
+// Integer helpers of the texture synthesizer, mirrored exactly by compute/src/synth/
+// (coords.rs, jitter.rs, appearance.rs): every value here is an integer, so the CPU reference
+// and any GPU agree bit for bit.
+#ifndef LAZYSOLID_SYNTH_GLSL
+#define LAZYSOLID_SYNTH_GLSL
+
+// Packed exemplar coordinate: x in the low, y in the high 16 bits.
+uvec2 synth_unpack(uint c) {
+    return uvec2(c & 0xffffu, c >> 16);
+}
+
+uint synth_pack(uvec2 c) {
+    return c.x | (c.y << 16);
+}
+
+// (c + d) mod n for c in 0..n and |d| <= n.
+uint synth_wrap(uint c, int d, uint n) {
+    return uint(int(c) + d + int(n)) % n;
+}
+
+uint synth_mix(uint h) {
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return h;
+}
+
+uint synth_hash4(uint a, uint b, uint c, uint d) {
+    uint h = synth_mix(a ^ 0x9e3779b9u);
+    h = synth_mix(h ^ b);
+    h = synth_mix(h ^ c);
+    return synth_mix(h ^ d);
+}
+
+// floor(spacing * H * r + 1/2) with H in [-1, 1) from the hash and r = strength / 256.
+ivec2 synth_jitter(ivec2 p, uint level, uint seed, uint spacing, uint strength) {
+    ivec2 j;
+    for (uint axis = 0; axis < 2; axis++) {
+        uint h = synth_hash4(uint(p.x), uint(p.y), level | (axis << 8), seed);
+        int64_t v = int64_t(h >> 16) - 32768;
+        j[axis] = int((int64_t(spacing) * v * int64_t(strength) + (int64_t(1) << 22)) >> 23);
+    }
+    return j;
+}
+
+// Squared distance of two quantized 8D appearance vectors stored as four words of two i16.
+uint synth_distance(uvec4 a, uvec4 b) {
+    uint d = 0;
+    for (int w = 0; w < 4; w++) {
+        for (int half_ = 0; half_ < 2; half_++) {
+            int x = bitfieldExtract(int(a[w]), 16 * half_, 16);
+            int y = bitfieldExtract(int(b[w]), 16 * half_, 16);
+            d += uint((x - y) * (x - y));
+        }
+    }
+    return d;
+}
+
+#endif

@@ -1,0 +1,186 @@
+//! `lazysolid synth EXEMPLAR --size WxH --offset X,Y --seed S -o out.png`: synthesize a window
+//! of the unbounded texture plane from an exemplar on the device, and score it.
+
+use super::GlobalArgs;
+use anyhow::{ensure, Context};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use lazysolid_compute::synth::{
+    analyze, histogram_distance, unpack, AnalysisParams, EnergyKernel, EnergyReport, Exemplar,
+    GpuSynthesizer, Region, SynthParams,
+};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// What to synthesize and where to write it.
+#[derive(Args)]
+pub struct SynthArgs {
+    /// The exemplar: PNG, JPEG or GIMP pattern (.pat), 16² to 256² pixels.
+    pub exemplar: PathBuf,
+    /// Output size, WIDTH or WIDTHxHEIGHT.
+    #[arg(long, default_value = "256", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Absolute position X,Y of the window's first pixel in the unbounded output plane.
+    #[arg(long, default_value = "0,0", value_parser = parse_offset, allow_hyphen_values = true)]
+    pub offset: (i32, i32),
+    /// Seed of the jitter.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u32,
+    /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first.
+    #[arg(long, default_value = "0.5", value_delimiter = ',')]
+    pub jitter: Vec<f32>,
+    /// Correction passes per level.
+    #[arg(long, default_value_t = 2)]
+    pub passes: u32,
+    /// Size of the k-coherence similarity sets.
+    #[arg(short, long, default_value_t = 2)]
+    pub k: u32,
+    /// Smallest distance in pixels between members of a similarity set.
+    #[arg(long, default_value_t = 4)]
+    pub spread: u32,
+    /// The exemplar does not tile: clamp at its borders instead of wrapping.
+    #[arg(long)]
+    pub clamp: bool,
+    /// Most output pixels the neighbourhood energy evaluates (a regular subgrid beyond that).
+    #[arg(long, default_value_t = 4096)]
+    pub energy_samples: usize,
+    /// The PNG to write; the coordinate map goes next to it as NAME.coords.png.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let parse = |v: &str| -> Result<u32, String> {
+        v.trim()
+            .parse()
+            .map_err(|_| format!("{v:?} in {s:?} is not a whole number"))
+    };
+    match s.split_once(['x', 'X']) {
+        Some((w, h)) => Ok((parse(w)?, parse(h)?)),
+        None => parse(s).map(|n| (n, n)),
+    }
+}
+
+fn parse_offset(s: &str) -> Result<(i32, i32), String> {
+    let (x, y) = s
+        .split_once(',')
+        .ok_or_else(|| format!("{s:?} is not X,Y (e.g. -512,1024)"))?;
+    let parse = |v: &str| -> Result<i32, String> {
+        v.trim()
+            .parse()
+            .map_err(|_| format!("{v:?} in {s:?} is not a whole number"))
+    };
+    Ok((parse(x)?, parse(y)?))
+}
+
+/// `out.png` → `out.coords.png`.
+fn coords_path(output: &Path) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}.coords.png"))
+}
+
+/// Writes an RGB PNG through a temporary name in the same folder, then renames it.
+fn write_png(path: &Path, width: u32, height: u32, rgb: &[[u8; 3]]) -> anyhow::Result<()> {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let tmp = path.with_file_name(format!(".{name}.partial"));
+    let bytes: Vec<u8> = rgb.iter().flatten().copied().collect();
+    image::save_buffer_with_format(
+        &tmp,
+        &bytes,
+        width,
+        height,
+        image::ExtendedColorType::Rgb8,
+        image::ImageFormat::Png,
+    )
+    .with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
+}
+
+/// Runs the command.
+pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    ensure!(
+        args.output
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("png")),
+        "-o {}: the output must be a .png file",
+        args.output.display()
+    );
+    let exemplar = Exemplar::load(&args.exemplar)?;
+    let start = Instant::now();
+    let analysis_params = AnalysisParams {
+        k: args.k,
+        spread: args.spread,
+        toroidal: !args.clamp,
+    };
+    let analysis = analyze(&exemplar, &analysis_params)?;
+    let analysis_s = start.elapsed().as_secs_f64();
+    let levels = analysis.levels.len() as u32;
+    let params = SynthParams::new(levels, args.seed, args.passes, &args.jitter)?;
+    let window = Region {
+        origin: [args.offset.0, args.offset.1],
+        size: [args.size.0, args.size.1],
+    };
+    let gpu = global.gpu()?;
+    let synth = GpuSynthesizer::new(&gpu, &analysis)?;
+    let bar = ProgressBar::new(levels as u64).with_style(
+        ProgressStyle::with_template("{msg} [{bar:30}] level {pos}/{len} {elapsed}")
+            .expect("valid template"),
+    );
+    bar.set_message("synthesizing");
+    let start = Instant::now();
+    let result = synth.synthesize(&analysis, &params, window, false, &mut |_| bar.inc(1))?;
+    let synth_s = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+
+    let (w, h) = args.size;
+    let colours = result.colours(&exemplar);
+    let coords: Vec<[u8; 3]> = result
+        .window_coords()
+        .into_iter()
+        .map(|c| {
+            let (x, y) = unpack(c);
+            [
+                (x * 256 / exemplar.width) as u8,
+                (y * 256 / exemplar.height) as u8,
+                0,
+            ]
+        })
+        .collect();
+    write_png(&args.output, w, h, &colours)?;
+    let coords_out = coords_path(&args.output);
+    write_png(&coords_out, w, h, &coords)?;
+
+    let start = Instant::now();
+    let energy = EnergyKernel::new(&gpu)?;
+    let minima = energy.minima(&exemplar, &colours, w, h, args.energy_samples)?;
+    let report = EnergyReport::from_minima(&minima);
+    let energy_s = start.elapsed().as_secs_f64();
+    let histogram = histogram_distance(&exemplar.rgb, &colours);
+
+    println!(
+        "exemplar {} ({}x{}, {} levels, k = {})",
+        args.exemplar.display(),
+        exemplar.width,
+        exemplar.height,
+        levels,
+        args.k
+    );
+    println!(
+        "window {}x{} at ({}, {}), seed {}, {} passes",
+        w, h, args.offset.0, args.offset.1, args.seed, args.passes
+    );
+    println!("analysis (CPU)   {:8.3} s", analysis_s);
+    println!("synthesis (GPU)  {:8.3} s", synth_s);
+    println!("energy (GPU)     {:8.3} s", energy_s);
+    println!(
+        "neighbourhood energy {:.1} per 7x7 neighbourhood ({:.2} per value, {} samples)",
+        report.mean, report.per_value, report.samples
+    );
+    println!("colour histogram distance {histogram:.4}");
+    println!(
+        "wrote {} and {}",
+        args.output.display(),
+        coords_out.display()
+    );
+    Ok(())
+}
