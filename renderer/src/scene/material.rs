@@ -273,7 +273,7 @@ fn store(doc: &Doc, raw: &RawTexture, label: &str) -> Result<Option<StoreSpec>, 
             if let Some(f) = &raw.filter {
                 return Err(doc.invalid(
                     f.span(),
-                    &join(label, "filter"),
+                    join(label, "filter"),
                     "applies only to a texture baked into a store (give `store` and `resolution`)",
                 ));
             }
@@ -292,12 +292,12 @@ fn store(doc: &Doc, raw: &RawTexture, label: &str) -> Result<Option<StoreSpec>, 
         })),
         (Some(kind), None) => Err(doc.invalid(
             kind.span(),
-            &join(label, "resolution"),
+            join(label, "resolution"),
             "is required with `store`",
         )),
         (None, Some(res)) => Err(doc.invalid(
             res.span(),
-            &join(label, "store"),
+            join(label, "store"),
             "is required with `resolution` (coherent_hash or octree)",
         )),
     }
