@@ -8,6 +8,7 @@ pub mod gpu;
 pub mod hash;
 pub mod prims;
 pub mod shader_constants;
+pub mod store;
 pub mod voxel;
 
 /// Kernels compiled from `glsl/` at build time, one module per folder.
