@@ -263,3 +263,57 @@ fn octree_configurations() {
     let e = bad.check(128).unwrap_err().to_string();
     assert!(e.contains("multiply to 64"), "{e}");
 }
+
+/// Sizes and build times for docs/stores.md (run with `--ignored --nocapture`).
+#[test]
+#[ignore]
+fn measure_store_sizes() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let res: Vec<u32> = std::env::var("STORE_MEASURE_R")
+            .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
+            .unwrap_or(vec![256]);
+        for name in ["bunny00.off", "armadillo.off"] {
+            let mut m = Mesh::load(asset_mesh(name)).unwrap();
+            m.normalize_to_unit_cube();
+            for &r in &res {
+                let t = std::time::Instant::now();
+                let surface = v.surface(&m.positions, &m.triangles, r).unwrap();
+                let ts = t.elapsed();
+                let t = std::time::Instant::now();
+                let interp = v.interpolation(&m.positions, &m.triangles, r).unwrap();
+                let ti = t.elapsed();
+                println!(
+                    "{name} R={r}: surface {} voxels ({ts:.2?}), interpolation {} voxels ({ti:.2?})",
+                    surface.len, interp.len
+                );
+                let source = ColourSource::Marble { seed: 1 };
+                for (set, keys) in [("nearest", &surface), ("trilinear", &interp)] {
+                    let t = std::time::Instant::now();
+                    let h = HashStore::build(&kernels, r, keys, &source, RobinHoodConfig::default())
+                        .unwrap();
+                    let th = t.elapsed();
+                    let t = std::time::Instant::now();
+                    let config = OctreeConfig {
+                        initial_pool_words: 1 << 20,
+                        ..OctreeConfig::for_resolution(r).unwrap()
+                    };
+                    let (o, _) = OctreeStore::build(&kernels, r, keys, &source, config).unwrap();
+                    let to = t.elapsed();
+                    println!(
+                        "  {set}: hash {} bytes (table {} cells, {th:.2?}); octree {:?} pool {} used words = {} bytes, capacity {} bytes, total {} bytes, nodes {:?} ({to:.2?})",
+                        h.bytes(),
+                        h.table().table_size(),
+                        o.config().levels,
+                        o.pool_words().unwrap().len(),
+                        4 * o.pool_words().unwrap().len(),
+                        4 * o.pool_capacity(),
+                        o.bytes(),
+                        o.node_counts()
+                    );
+                }
+            }
+        }
+    });
+}
