@@ -291,8 +291,9 @@ fn measure_store_sizes() {
                 let source = ColourSource::Marble { seed: 1 };
                 for (set, keys) in [("nearest", &surface), ("trilinear", &interp)] {
                     let t = std::time::Instant::now();
-                    let h = HashStore::build(&kernels, r, keys, &source, RobinHoodConfig::default())
-                        .unwrap();
+                    let h =
+                        HashStore::build(&kernels, r, keys, &source, RobinHoodConfig::default())
+                            .unwrap();
                     let th = t.elapsed();
                     let t = std::time::Instant::now();
                     let config = OctreeConfig {
