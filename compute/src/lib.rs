@@ -8,6 +8,7 @@ pub mod gpu;
 pub mod hash;
 pub mod prims;
 pub mod shader_constants;
+pub mod store;
 pub mod synth;
 pub mod voxel;
 

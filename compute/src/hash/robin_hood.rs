@@ -544,6 +544,7 @@ impl RobinHoodTable {
         let (mut all_keys, mut all_payloads) = self.entries()?;
         all_keys.extend(keys.read_range(0, n)?);
         all_payloads.extend(payloads.read_range(0, n)?);
+        let validate = self.config.validate;
         let config = RobinHoodConfig {
             validate: false,
             ..self.config
@@ -561,6 +562,8 @@ impl RobinHoodTable {
         )];
         rebuilds.extend(rebuilt.report.rebuilds.iter().cloned());
         *self = rebuilt;
+        // The entries were checked already; later inserts are checked as configured.
+        self.config.validate = validate;
         self.report.rebuilds = rebuilds;
         Ok(&self.report)
     }

@@ -1,0 +1,96 @@
+//! Sparse textures of RGBA8 colours over the voxels of a surface at resolution R: the storage
+//! of lazysolid's synthesized matter. Every store implements [`SparseStore`]: built from a
+//! voxel key set ([`VoxelKeys`], Morton keys as the voxelizer returns them) and a
+//! [`ColourSource`], extended by further voxels as cuts appear, measured in exact GPU bytes,
+//! and read from any kernel through a small Pod record of device addresses (the store's
+//! `Params`) and a GLSL include `glsl/include/store/<name>.glsl` with
+//! `vec4 store_<name>_nearest(Params, vec3 pos)` and `vec4 store_<name>_trilinear(...)`,
+//! `pos` in [0, 1]³ object space. A voxel that is not stored reads as (0, 0, 0, 0).
+//! Layouts, byte counts and timings: `docs/stores.md`.
+//!
+//! - [`HashStore`]: the coherent Robin Hood hash keyed by Morton keys, payload = colour index;
+//! - [`OctreeStore`]: an N³-tree texture (Lefebvre, Hornus and Neyret 2005) in a node pool,
+//!   N chosen per level, with per-node average colours for MIP filtering.
+
+mod colours;
+mod error;
+mod hash_store;
+mod kernels;
+mod lookup_cpu;
+mod marble;
+mod octree;
+mod octree_cpu;
+
+pub use colours::ColourSource;
+pub use error::StoreError;
+pub use hash_store::{HashStore, HashStoreParams};
+pub use kernels::StoreKernels;
+pub use lookup_cpu::{
+    nearest_cpu, nearest_voxel, trilinear_cpu, trilinear_footprint, unpack_rgba8,
+};
+pub use marble::marble_rgba8;
+pub use octree::{OctreeConfig, OctreeParams, OctreeStore, MAX_OCTREE_LEVELS};
+pub use octree_cpu::OctreeCpu;
+
+use crate::voxel::VoxelKeys;
+use bytemuck::Pod;
+use glam::{Vec3, Vec4};
+
+/// How a lookup filters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Filter {
+    /// The texel of the voxel containing the point.
+    Nearest,
+    /// The 8 texels around the point, weighted (the stored set must hold the interpolation
+    /// voxels of the surface, see [`crate::voxel::Voxelizer::interpolation`]).
+    Trilinear,
+}
+
+/// What a build or insert did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StoreReport {
+    /// Texels stored in all.
+    pub texels: u64,
+    /// Texels added by this call.
+    pub added: u64,
+    /// Every reallocation of a GPU buffer, with its reason and sizes.
+    pub reallocations: Vec<String>,
+}
+
+/// A sparse RGBA8 texture over the voxels of an R³ grid.
+pub trait SparseStore {
+    /// The record a kernel receives (device addresses and sizes), laid out as the GLSL struct
+    /// of the store's include file.
+    type Params: Pod;
+
+    /// Short name: the include is `store/<name>.glsl`, the GLSL functions `store_<name>_*`.
+    fn name(&self) -> &'static str;
+
+    /// R.
+    fn resolution(&self) -> u32;
+
+    /// Texels stored.
+    fn len(&self) -> u64;
+
+    /// True when no texel is stored.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Adds the voxels `keys` (none of which may be stored yet) with their colours: lazy
+    /// synthesis adds texels as cuts appear.
+    fn insert(
+        &mut self,
+        keys: &VoxelKeys,
+        colours: &ColourSource<'_>,
+    ) -> Result<StoreReport, StoreError>;
+
+    /// Exact GPU bytes the store keeps allocated.
+    fn bytes(&self) -> u64;
+
+    /// The kernel-side description; valid until the next insert (which may reallocate).
+    fn params(&self) -> Self::Params;
+
+    /// Runs the store's GLSL lookup at `points` on the GPU (tests and benchmarks).
+    fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError>;
+}

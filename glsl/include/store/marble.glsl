@@ -1,0 +1,64 @@
+// The procedural marble of compute/src/store/marble.rs, in the same integer arithmetic
+// (16.16 fixed point), so a store filled on the GPU holds exactly the CPU's bytes.
+// uint marble_rgba8(uvec3 voxel, uint resolution, uint seed): RGBA8, red in the low byte.
+#ifndef LAZYSOLID_STORE_MARBLE_GLSL
+#define LAZYSOLID_STORE_MARBLE_GLSL
+
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+const uint64_t MARBLE_BASE_FREQUENCY = 4ul;
+const uint MARBLE_OCTAVES = 3u;
+
+uint marble_hash3(uint x, uint y, uint z, uint seed) {
+    uint h = seed ^ (x * 0x8da6b343u) ^ (y * 0xd8163841u) ^ (z * 0xcb1ab31fu);
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    return h ^ (h >> 16);
+}
+
+int64_t marble_smooth(uint64_t f) {
+    return int64_t((f * f * (3ul * 65536ul - 2ul * f)) >> 32);
+}
+
+int64_t marble_lerp(int64_t a, int64_t b, int64_t s) {
+    return a + (((b - a) * s) >> 16);
+}
+
+int64_t marble_value_noise(u64vec3 p, uint seed) {
+    uvec3 i = uvec3(p >> 16);
+    int64_t s[3] = int64_t[3](marble_smooth(p.x & 0xfffful), marble_smooth(p.y & 0xfffful), marble_smooth(p.z & 0xfffful));
+    int64_t c[8];
+    for (uint o = 0u; o < 8u; ++o) {
+        c[o] = int64_t(marble_hash3(i.x + (o & 1u), i.y + ((o >> 1) & 1u), i.z + (o >> 2), seed) >> 16);
+    }
+    int64_t x00 = marble_lerp(c[0], c[1], s[0]);
+    int64_t x10 = marble_lerp(c[2], c[3], s[0]);
+    int64_t x01 = marble_lerp(c[4], c[5], s[0]);
+    int64_t x11 = marble_lerp(c[6], c[7], s[0]);
+    return marble_lerp(marble_lerp(x00, x10, s[1]), marble_lerp(x01, x11, s[1]), s[2]);
+}
+
+uint marble_rgba8(uvec3 voxel, uint resolution, uint seed) {
+    uint64_t r2 = 2ul * uint64_t(resolution);
+    u64vec3 centre2 = 2ul * u64vec3(voxel) + 1ul;
+    int64_t turbulence = 0l;
+    for (uint octave = 0u; octave < MARBLE_OCTAVES; ++octave) {
+        uint64_t f = MARBLE_BASE_FREQUENCY << octave;
+        u64vec3 p = (centre2 * f * 65536ul) / r2;
+        turbulence += marble_value_noise(p, seed + octave) >> (octave + 1u);
+    }
+    uint64_t stripe = (centre2.x * MARBLE_BASE_FREQUENCY * 65536ul) / r2;
+    int64_t phase = (int64_t(stripe) + 6l * turbulence) & 0x1ffffl;
+    int64_t band = phase < 65536l ? phase : 131071l - phase;
+    const int64_t dark[3] = int64_t[3](60l, 40l, 30l);
+    const int64_t light[3] = int64_t[3](235l, 225l, 210l);
+    uint rgba = 0xff000000u;
+    for (int c = 0; c < 3; ++c) {
+        rgba |= uint(marble_lerp(dark[c], light[c], band)) << (8 * c);
+    }
+    return rgba;
+}
+
+#endif

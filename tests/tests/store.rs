@@ -1,0 +1,320 @@
+//! The sparse stores on the device against their CPU references: every stored voxel and random
+//! points, nearest (exact colours), trilinear (stated tolerance) and MIP lookups, inserts of
+//! further voxels, the octree's pool word for word, its growth and in-place updates.
+
+use glam::{Vec3, Vec4};
+use lazysolid_compute::hash::{morton_decode, RobinHoodConfig};
+use lazysolid_compute::store::*;
+use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
+use lazysolid_renderer::mesh::Mesh;
+use lazysolid_tests::{asset_mesh, rng, with_gpu};
+use rand::Rng;
+use std::collections::HashMap;
+
+/// Trilinear results are sums of 8 weighted colours in f32: 1e-5 covers the different
+/// summation orders of GPU and CPU.
+const TRILINEAR_TOLERANCE: f32 = 1e-5;
+
+fn bunny() -> Mesh {
+    let mut m = Mesh::load(asset_mesh("bunny00.off")).unwrap();
+    m.normalize_to_unit_cube();
+    m
+}
+
+/// Interpolation voxels of the bunny, split into a build half and an insert half.
+fn voxel_sets(v: &mut Voxelizer, m: &Mesh, r: u32) -> (Vec<u64>, Vec<u64>, Vec<u64>) {
+    let all = v
+        .interpolation(&m.positions, &m.triangles, r)
+        .unwrap()
+        .read()
+        .unwrap();
+    let first = all.iter().copied().filter(|k| k % 3 != 0).collect();
+    let second = all.iter().copied().filter(|k| k % 3 == 0).collect();
+    (all, first, second)
+}
+
+fn points(m: &Mesh, r: u32, seed: u64) -> Vec<Vec3> {
+    let mut g = rng(seed);
+    let mut pts: Vec<Vec3> = m
+        .triangles
+        .iter()
+        .step_by(5)
+        .map(|t| {
+            let (a, b): (f32, f32) = (g.random(), g.random());
+            let (a, b) = if a + b > 1.0 {
+                (1.0 - a, 1.0 - b)
+            } else {
+                (a, b)
+            };
+            let [p0, p1, p2] = t.map(|i| m.positions[i as usize]);
+            p0 + (p1 - p0) * a + (p2 - p0) * b
+        })
+        .collect();
+    // Points anywhere (mostly not stored) and outside the cube.
+    pts.extend((0..500).map(|_| Vec3::new(g.random(), g.random(), g.random())));
+    pts.extend([
+        Vec3::splat(-0.3),
+        Vec3::splat(1.2),
+        Vec3::new(0.5, 2.0, 0.5),
+    ]);
+    let _ = r;
+    pts
+}
+
+fn centres(keys: &[u64], r: u32) -> Vec<Vec3> {
+    keys.iter()
+        .map(|&k| (glam::UVec3::from(morton_decode(k, 3)).as_vec3() + 0.5) / r as f32)
+        .collect()
+}
+
+fn check_lookups<S: SparseStore>(
+    store: &S,
+    texel: impl Fn([u32; 3]) -> Option<u32> + Copy,
+    stored: &[u64],
+    pts: &[Vec3],
+) {
+    let r = store.resolution();
+    let what = store.name();
+    // Every stored voxel, at its centre: exact colours.
+    let c = centres(stored, r);
+    let got = store.lookup(&c, Filter::Nearest).unwrap();
+    for (i, (&k, g)) in stored.iter().zip(&got).enumerate() {
+        let want = unpack_rgba8(texel(morton_decode(k, 3)).unwrap());
+        assert_eq!(*g, want, "{what}: voxel {i} {:?}", morton_decode(k, 3));
+    }
+    let near = store.lookup(pts, Filter::Nearest).unwrap();
+    let tri = store.lookup(pts, Filter::Trilinear).unwrap();
+    let mut undefined = 0;
+    for (i, &p) in pts.iter().enumerate() {
+        let want = unpack_rgba8(nearest_cpu(texel, p, r));
+        assert_eq!(near[i], want, "{what}: nearest at {p}");
+        undefined += (want.w == 0.0) as usize;
+        let want = trilinear_cpu(texel, p, r);
+        assert!(
+            (tri[i] - want).abs().max_element() <= TRILINEAR_TOLERANCE,
+            "{what}: trilinear at {p}: {} vs {want}",
+            tri[i]
+        );
+    }
+    assert!(undefined > 0, "{what}: some points must miss");
+    assert_eq!(near[pts.len() - 1], Vec4::ZERO);
+}
+
+#[test]
+fn marble_on_the_gpu_equals_the_cpu() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let m = bunny();
+        for r in [64, 100] {
+            let keys = v.surface(&m.positions, &m.triangles, r).unwrap();
+            let source = ColourSource::Marble { seed: 9 };
+            let store =
+                HashStore::build(&kernels, r, &keys, &source, RobinHoodConfig::default()).unwrap();
+            let host = keys.read().unwrap();
+            let got = store.lookup(&centres(&host, r), Filter::Nearest).unwrap();
+            for (k, g) in host.iter().zip(got) {
+                let v = morton_decode(*k, 3);
+                assert_eq!(g, unpack_rgba8(marble_rgba8(v, r, 9)), "{v:?} R={r}");
+            }
+        }
+    });
+}
+
+#[test]
+fn hash_store_matches_its_reference_and_grows_by_inserts() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let m = bunny();
+        let r = 128;
+        let (all, first, second) = voxel_sets(&mut v, &m, r);
+        let f = |p: [u32; 3]| 0xff00_0000 | p[0] | (p[1] << 8) | ((p[2] * 7) & 255) << 16;
+        let source = ColourSource::Fn(&f);
+        let k1 = VoxelKeys::from_sorted(gpu, "first", &first).unwrap();
+        let k2 = VoxelKeys::from_sorted(gpu, "second", &second).unwrap();
+        let config = RobinHoodConfig {
+            load_factor: 0.95,
+            ..Default::default()
+        };
+        let mut store = HashStore::build(&kernels, r, &k1, &source, config).unwrap();
+        assert_eq!(store.len(), first.len() as u64);
+        let report = store.insert(&k2, &source).unwrap();
+        assert_eq!(report.texels, all.len() as u64);
+        assert!(
+            !report.reallocations.is_empty(),
+            "colours and table must grow"
+        );
+        let map: HashMap<[u32; 3], u32> = all
+            .iter()
+            .map(|&k| (morton_decode(k, 3), f(morton_decode(k, 3))))
+            .collect();
+        check_lookups(&store, |p| map.get(&p).copied(), &all, &points(&m, r, 3));
+        assert!(store.bytes() >= all.len() as u64 * 12);
+        // Inserting a stored voxel again is refused and changes nothing.
+        let again = VoxelKeys::from_sorted(gpu, "again", &second[..3]).unwrap();
+        let e = store.insert(&again, &source);
+        assert!(
+            matches!(e, Err(StoreError::AlreadyStored { .. })),
+            "{:?}",
+            e.err()
+        );
+        assert_eq!(store.len(), all.len() as u64);
+    });
+}
+
+#[test]
+fn octree_matches_its_reference_word_for_word() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let m = bunny();
+        for (r, levels) in [(128, vec![8, 4, 4]), (100, vec![5, 5, 4]), (64, vec![2; 6])] {
+            let (all, first, second) = voxel_sets(&mut v, &m, r);
+            let source = ColourSource::Marble { seed: 4 };
+            let config = OctreeConfig {
+                levels: levels.clone(),
+                initial_pool_words: 1024,
+            };
+            let k1 = VoxelKeys::from_sorted(gpu, "first", &first).unwrap();
+            let k2 = VoxelKeys::from_sorted(gpu, "second", &second).unwrap();
+            let (mut store, report) =
+                OctreeStore::build(&kernels, r, &k1, &source, config.clone()).unwrap();
+            assert!(
+                !report.reallocations.is_empty(),
+                "a 1024-word pool must grow"
+            );
+            let mut cpu = OctreeCpu::new(&config);
+            let colours = |keys: &[u64]| -> Vec<u32> {
+                keys.iter()
+                    .map(|&k| marble_rgba8(morton_decode(k, 3), r, 4))
+                    .collect()
+            };
+            cpu.insert(&first, &colours(&first));
+            assert!(
+                store.pool_words().unwrap() == cpu.pool,
+                "R={r} {levels:?}: pool after build"
+            );
+            store.insert(&k2, &source).unwrap();
+            cpu.insert(&second, &colours(&second));
+            assert!(
+                store.pool_words().unwrap() == cpu.pool,
+                "R={r} {levels:?}: pool after insert"
+            );
+            assert_eq!(store.len(), all.len() as u64);
+            let pts = points(&m, r, 5);
+            check_lookups(&store, |p| cpu.texel(p), &all, &pts);
+            for depth in 0..=levels.len() as u32 {
+                let got = store.lookup_mip(&pts, depth).unwrap();
+                for (p, g) in pts.iter().zip(got) {
+                    let want = cpu.mip(nearest_voxel(*p, r), depth as usize);
+                    assert_eq!(g, unpack_rgba8(want), "R={r} mip {depth} at {p}");
+                }
+            }
+            // In-place update of stored leaves, then averages again.
+            let f = |p: [u32; 3]| 0x8000_0000 | (p[0] * 3 + p[1] + p[2]) & 0xff_ffff;
+            store.update(&k2, &ColourSource::Fn(&f)).unwrap();
+            let new: Vec<u32> = second.iter().map(|&k| f(morton_decode(k, 3))).collect();
+            cpu.update(&second, &new);
+            assert!(
+                store.pool_words().unwrap() == cpu.pool,
+                "R={r}: pool after update"
+            );
+            // Refusals: stored again, reserved alpha, an update of absent voxels.
+            assert!(matches!(
+                store.insert(&k2, &source),
+                Err(StoreError::AlreadyStored { .. })
+            ));
+            let clear = |_: [u32; 3]| 0x01ff_ffffu32;
+            let outside = VoxelKeys::from_sorted(gpu, "absent", &[u64::from(0u32)]).unwrap();
+            if !all.contains(&0) {
+                assert!(matches!(
+                    store.insert(&outside, &ColourSource::Fn(&clear)),
+                    Err(StoreError::ReservedAlpha { alpha: 1, .. })
+                ));
+                assert!(store.update(&outside, &source).is_err());
+            }
+            assert!(
+                store.pool_words().unwrap() == cpu.pool,
+                "R={r}: refusals change nothing"
+            );
+        }
+    });
+}
+
+#[test]
+fn octree_configurations() {
+    assert_eq!(
+        OctreeConfig::for_resolution(1024).unwrap().levels,
+        [8, 8, 4, 4]
+    );
+    assert_eq!(OctreeConfig::for_resolution(256).unwrap().levels, [8, 8, 4]);
+    assert_eq!(OctreeConfig::for_resolution(128).unwrap().levels, [8, 4, 4]);
+    assert_eq!(
+        OctreeConfig::for_resolution(2048).unwrap().levels,
+        [8, 8, 8, 4]
+    );
+    assert_eq!(OctreeConfig::for_resolution(100).unwrap().levels, [5, 5, 4]);
+    assert!(OctreeConfig::for_resolution(2 * 67).is_err());
+    let bad = OctreeConfig {
+        levels: vec![8, 8],
+        initial_pool_words: 0,
+    };
+    let e = bad.check(128).unwrap_err().to_string();
+    assert!(e.contains("multiply to 64"), "{e}");
+}
+
+/// Sizes and build times for docs/stores.md (run with `--ignored --nocapture`).
+#[test]
+#[ignore]
+fn measure_store_sizes() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let res: Vec<u32> = std::env::var("STORE_MEASURE_R")
+            .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
+            .unwrap_or(vec![256]);
+        for name in ["bunny00.off", "armadillo.off"] {
+            let mut m = Mesh::load(asset_mesh(name)).unwrap();
+            m.normalize_to_unit_cube();
+            for &r in &res {
+                let t = std::time::Instant::now();
+                let surface = v.surface(&m.positions, &m.triangles, r).unwrap();
+                let ts = t.elapsed();
+                let t = std::time::Instant::now();
+                let interp = v.interpolation(&m.positions, &m.triangles, r).unwrap();
+                let ti = t.elapsed();
+                println!(
+                    "{name} R={r}: surface {} voxels ({ts:.2?}), interpolation {} voxels ({ti:.2?})",
+                    surface.len, interp.len
+                );
+                let source = ColourSource::Marble { seed: 1 };
+                for (set, keys) in [("nearest", &surface), ("trilinear", &interp)] {
+                    let t = std::time::Instant::now();
+                    let h =
+                        HashStore::build(&kernels, r, keys, &source, RobinHoodConfig::default())
+                            .unwrap();
+                    let th = t.elapsed();
+                    let t = std::time::Instant::now();
+                    let config = OctreeConfig {
+                        initial_pool_words: 1 << 20,
+                        ..OctreeConfig::for_resolution(r).unwrap()
+                    };
+                    let (o, _) = OctreeStore::build(&kernels, r, keys, &source, config).unwrap();
+                    let to = t.elapsed();
+                    println!(
+                        "  {set}: hash {} bytes (table {} cells, {th:.2?}); octree {:?} pool {} used words = {} bytes, capacity {} bytes, total {} bytes, nodes {:?} ({to:.2?})",
+                        h.bytes(),
+                        h.table().table_size(),
+                        o.config().levels,
+                        o.pool_words().unwrap().len(),
+                        4 * o.pool_words().unwrap().len(),
+                        4 * o.pool_capacity(),
+                        o.bytes(),
+                        o.node_counts()
+                    );
+                }
+            }
+        }
+    });
+}

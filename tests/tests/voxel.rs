@@ -1,0 +1,183 @@
+//! The GPU voxelizer against the plain-Rust one: surface voxels and interpolation voxels, key
+//! for key, on real meshes at several resolutions (powers of two and not) and on edge cases.
+
+use glam::Vec3;
+use lazysolid_compute::hash::morton_decode;
+use lazysolid_compute::voxel::*;
+use lazysolid_renderer::mesh::Mesh;
+use lazysolid_tests::{asset_mesh, with_gpu};
+
+fn mesh(name: &str) -> Mesh {
+    let mut m = Mesh::load(asset_mesh(name)).unwrap();
+    m.normalize_to_unit_cube();
+    m
+}
+
+fn check(v: &mut Voxelizer, m: &Mesh, resolution: u32) {
+    let cpu = surface_voxels_cpu(&m.positions, &m.triangles, resolution);
+    let gpu = v
+        .surface(&m.positions, &m.triangles, resolution)
+        .unwrap()
+        .read()
+        .unwrap();
+    assert!(!cpu.is_empty());
+    assert_eq!(gpu.len(), cpu.len(), "{:?} R={resolution}", m.source);
+    assert!(gpu == cpu, "{:?} R={resolution}: keys differ", m.source);
+    let cpu_i = interpolation_voxels_cpu(&m.positions, &m.triangles, resolution);
+    let gpu_i = v
+        .interpolation(&m.positions, &m.triangles, resolution)
+        .unwrap()
+        .read()
+        .unwrap();
+    assert_eq!(gpu_i.len(), cpu_i.len(), "{:?} R={resolution}", m.source);
+    assert!(
+        gpu_i == cpu_i,
+        "{:?} R={resolution}: interpolation keys differ",
+        m.source
+    );
+    // Every surface voxel is an interpolation voxel, and the layer is thicker.
+    let set: std::collections::HashSet<u64> = cpu_i.iter().copied().collect();
+    assert!(cpu.iter().all(|k| set.contains(k)));
+    assert!(cpu_i.len() > cpu.len());
+}
+
+#[test]
+fn bunny_and_armadillo_match_the_cpu_voxelizer() {
+    with_gpu(|gpu| {
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let bunny = mesh("bunny00.off");
+        for r in [64, 100, 128, 256] {
+            check(&mut v, &bunny, r);
+        }
+        let armadillo = mesh("armadillo.off");
+        for r in [64, 97, 256] {
+            check(&mut v, &armadillo, r);
+        }
+    });
+}
+
+#[test]
+fn single_triangles_and_edge_cases() {
+    with_gpu(|gpu| {
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let cases: Vec<[Vec3; 3]> = vec![
+            // A large slanted triangle across the whole cube (column walk, not the box).
+            [
+                Vec3::new(0.0, 0.0, 0.1),
+                Vec3::new(1.0, 0.1, 0.9),
+                Vec3::new(0.2, 1.0, 0.5),
+            ],
+            // Axis-aligned, lying exactly on voxel faces.
+            [
+                Vec3::new(0.25, 0.25, 0.5),
+                Vec3::new(0.75, 0.25, 0.5),
+                Vec3::new(0.25, 0.75, 0.5),
+            ],
+            // Tiny, inside one voxel; and touching the cube's faces and corners.
+            [
+                Vec3::new(0.501, 0.502, 0.503),
+                Vec3::new(0.5011, 0.502, 0.503),
+                Vec3::new(0.501, 0.5021, 0.5031),
+            ],
+            [
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(0.0, 0.0, 1.0),
+            ],
+            [
+                Vec3::new(1.0, 1.0, 1.0),
+                Vec3::new(1.0, 0.0, 1.0),
+                Vec3::new(0.0, 1.0, 1.0),
+            ],
+            // Degenerate: a segment, and a point on a voxel corner.
+            [
+                Vec3::new(0.1, 0.2, 0.3),
+                Vec3::new(0.9, 0.7, 0.4),
+                Vec3::new(0.5, 0.45, 0.35),
+            ],
+            [Vec3::splat(0.5), Vec3::splat(0.5), Vec3::splat(0.5)],
+            // Partly outside the unit cube.
+            [
+                Vec3::new(-0.5, 0.3, 0.3),
+                Vec3::new(1.5, 0.35, 0.4),
+                Vec3::new(0.5, 0.6, 1.7),
+            ],
+        ];
+        for (i, t) in cases.iter().enumerate() {
+            for r in [1, 2, 7, 16, 33, 64] {
+                let tris = [[0, 1, 2]];
+                let cpu = surface_voxels_cpu(t, &tris, r);
+                let gpu = v.surface(t, &tris, r).unwrap().read().unwrap();
+                assert_eq!(gpu, cpu, "case {i} R={r}");
+                // (A face exactly on the cube's boundary may round off a grid whose size is
+                // not a power of two, in both voxelizers alike.)
+                assert!(
+                    !cpu.is_empty() || i == 7 || !r.is_power_of_two(),
+                    "case {i} R={r}"
+                );
+                let cpu = interpolation_voxels_cpu(t, &tris, r);
+                let gpu = v.interpolation(t, &tris, r).unwrap().read().unwrap();
+                assert_eq!(gpu, cpu, "case {i} R={r} (interpolation)");
+                assert!(cpu
+                    .iter()
+                    .all(|&k| morton_decode(k, 3).iter().all(|&c| c < r)));
+            }
+        }
+        // The centre point of voxel corner (R/2)³ touches the 8 voxels around it.
+        let p = [Vec3::splat(0.5); 3];
+        assert_eq!(surface_voxels_cpu(&p, &[[0, 1, 2]], 16).len(), 8);
+        // Empty meshes and bad input.
+        assert!(v.surface(&[], &[], 64).unwrap().is_empty());
+        assert!(matches!(
+            v.surface(&[Vec3::ZERO], &[[0, 0, 1]], 64),
+            Err(VoxelError::VertexIndex {
+                triangle: 0,
+                vertex: 1,
+                ..
+            })
+        ));
+        assert!(matches!(
+            v.surface(&p, &[[0, 1, 2]], 4096),
+            Err(VoxelError::Resolution {
+                resolution: 4096,
+                ..
+            })
+        ));
+        assert!(matches!(
+            v.surface(&p, &[[0, 1, 2]], 0),
+            Err(VoxelError::Resolution { .. })
+        ));
+    });
+}
+
+#[test]
+fn interpolation_voxels_cover_every_trilinear_footprint_on_the_surface() {
+    // Sample points on the bunny's triangles: the 8 voxels a clamp-to-edge trilinear lookup
+    // reads there are all interpolation voxels.
+    let m = mesh("bunny00.off");
+    let r = 64u32;
+    let keys: std::collections::HashSet<u64> =
+        interpolation_voxels_cpu(&m.positions, &m.triangles, r)
+            .into_iter()
+            .collect();
+    let mut rng = lazysolid_tests::rng(7);
+    use rand::Rng;
+    for t in m.triangles.iter().step_by(7) {
+        let (a, b): (f32, f32) = (rng.random(), rng.random());
+        let (a, b) = if a + b > 1.0 {
+            (1.0 - a, 1.0 - b)
+        } else {
+            (a, b)
+        };
+        let [p0, p1, p2] = t.map(|i| m.positions[i as usize]);
+        let p = p0 + (p1 - p0) * a + (p2 - p0) * b;
+        let q = p * r as f32 - 0.5;
+        let base = q.floor();
+        for o in 0..8 {
+            let c = base + Vec3::new((o & 1) as f32, ((o >> 1) & 1) as f32, (o >> 2) as f32);
+            let c = c.clamp(Vec3::ZERO, Vec3::splat(r as f32 - 1.0)).as_uvec3();
+            let k = lazysolid_compute::hash::morton_encode(c.to_array(), 3);
+            assert!(keys.contains(&k), "{p} needs {c}");
+        }
+    }
+}
