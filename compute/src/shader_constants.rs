@@ -147,3 +147,12 @@ pub const SHADING_TEST_LIGHT: u32 = 2;
 pub const SHADING_TEST_ENVIRONMENT: u32 = 3;
 /// See [`SHADING_TEST_BSDF`].
 pub const SHADING_TEST_RNG: u32 = 4;
+
+/// Sparse stores a renderer record may describe.
+pub const STORE_KIND_HASH: u32 = 0;
+/// See [`STORE_KIND_HASH`].
+pub const STORE_KIND_OCTREE: u32 = 1;
+/// Nearest-texel store reads.
+pub const STORE_FILTER_NEAREST: u32 = 0;
+/// Trilinear store reads (the store holds the interpolation voxels).
+pub const STORE_FILTER_TRILINEAR: u32 = 1;

@@ -14,6 +14,8 @@
 #include "render/solid_texture.glsl"
 #include "render/lights.glsl"
 #include "render/environment.glsl"
+#include "store/hash.glsl"
+#include "store/octree.glsl"
 
 struct Frame {
     vec3 eye;
@@ -40,6 +42,16 @@ layout(binding = 8, scalar) readonly buffer EnvironmentBlock { Environment env; 
 layout(binding = 9, scalar) buffer Film { vec4 film[]; };          // rgb sum, w samples
 layout(binding = 10, scalar) buffer Aovs { vec4 aovs[]; };         // albedo | normal, depth per pixel (2 vec4)
 layout(binding = 11, scalar) buffer RayCount { uint ray_count[]; };
+
+// Solid textures baked into sparse stores (renderer/src/render/stores.rs).
+struct StoreRecord {
+    uint kind;     // STORE_KIND_*
+    uint filtering;  // STORE_FILTER_*
+    HashStoreParams hash;
+    OctreeParams octree;
+};
+layout(binding = 12, scalar) readonly buffer StoreRecords { StoreRecord store_records[]; };
+layout(binding = 13, scalar) readonly buffer InstanceStores { uint instance_stores[]; };
 
 layout(push_constant, scalar) uniform Push {
     uint sample_index;
@@ -70,8 +82,34 @@ struct SurfaceHit {
     vec3 ng;       // world geometric normal (outward, as the mesh winds)
     vec3 ns;       // world shading normal, on the same side as ng
     vec3 p_object; // rest-pose object position (where solid textures live)
+    vec3 p_surface_object;  // the hit point itself in object space (where stores are read)
     uint material;
+    uint instance;
 };
+
+float srgb_to_linear(float c) {
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+// Albedo of a store-baked texture at an object-space surface point. A point whose voxels are not
+// stored (never expected on the surface) shows magenta, so a hole is seen, not hidden.
+vec3 store_albedo(uint slot, vec3 pos) {
+    uint kind = store_records[slot].kind;
+    uint filter_ = store_records[slot].filtering;
+    vec4 c;
+    if (kind == STORE_KIND_HASH) {
+        HashStoreParams p = store_records[slot].hash;
+        c = filter_ == STORE_FILTER_NEAREST ? store_hash_nearest(p, pos) : store_hash_trilinear(p, pos);
+    } else {
+        OctreeParams p = store_records[slot].octree;
+        c = filter_ == STORE_FILTER_NEAREST ? store_octree_nearest(p, pos) : store_octree_trilinear(p, pos);
+    }
+    if (c.a <= 0.0) {
+        return vec3(1.0, 0.0, 1.0);
+    }
+    vec3 srgb = c.rgb / c.a;  // a partial trilinear footprint is renormalized
+    return vec3(srgb_to_linear(srgb.r), srgb_to_linear(srgb.g), srgb_to_linear(srgb.b));
+}
 
 SurfaceHit surface_of(TraceHit h) {
     BvhInstance inst = bvh_instances[h.instance];
@@ -89,6 +127,8 @@ SurfaceHit surface_of(TraceHit h) {
     vec3 n_object = cross(v1 - v0, v2 - v0);
     float n_len = length(n_object);
     s.p_object = n_len > 0.0 ? p_surface - n_object * (1e-5 / n_len) : p_surface;
+    s.p_surface_object = p_surface;
+    s.instance = h.instance;
     // Rigid transforms with uniform scale: the linear part maps normals too.
     s.ng = normalize(cwbvh_transform_vector(inst.object_to_world, cross(v1 - v0, v2 - v0)));
     uvec4 packed = bvh_normals[h.triangle];
@@ -191,7 +231,9 @@ void main() {
 
                 SurfaceHit s = surface_of(h);
                 Material m = materials[s.material];
-                vec3 albedo = solid_texture_albedo(m, s.p_object);
+                uint store_slot = instance_stores[s.instance];
+                vec3 albedo = store_slot == 0xffffffffu ? solid_texture_albedo(m, s.p_object)
+                                                        : store_albedo(store_slot, s.p_surface_object);
                 if (depth == 0u) {
                     aov_albedo = m.kind == MATERIAL_EMISSIVE ? m.emission / max(max3(m.emission), 1e-6) : albedo;
                     aov_normal = s.ns;

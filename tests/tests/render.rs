@@ -8,7 +8,7 @@ use lazysolid_renderer::output::{write_exr, write_png, Film, Operator, ToneMap};
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::{
     Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
-    SceneMesh,
+    SceneMesh, StoreFilter, StoreKind, StoreSpec,
 };
 use lazysolid_tests::{asset_mesh, with_gpu};
 use std::path::{Path, PathBuf};
@@ -322,4 +322,82 @@ fn scenes_built_in_code_are_checked() {
     scene.instances[0].material = 3;
     let bad_ref = with_gpu(|gpu| PathTracer::new(gpu, &scene).err().unwrap().to_string());
     assert!(bad_ref.contains("material 3 of 1"), "{bad_ref}");
+}
+
+fn with_store(scene: &mut Scene, kind: StoreKind, resolution: u32, filter: StoreFilter) {
+    for m in &mut scene.materials {
+        if let Some(t) = &mut m.texture {
+            t.store = Some(StoreSpec {
+                kind,
+                resolution,
+                filter,
+            });
+        }
+    }
+}
+
+fn render_with_stores(scene: &Scene) -> (Film, usize) {
+    with_gpu(|gpu| {
+        let mut t = PathTracer::new(gpu, scene).unwrap();
+        let baked = t.stores().len();
+        (t.render(|_| {}).unwrap(), baked)
+    })
+}
+
+/// The textured test scene with its wood baked into each store: the coherent hash and the N³
+/// tree hold the same texels, so their nearest reads render bit-identical images; those look
+/// like the procedural texture they were baked from; trilinear reads find every texel.
+#[test]
+fn store_baked_textures_render_like_the_procedural_texture() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/test/textured.toml");
+    let procedural = Scene::load(&path).unwrap();
+    let reference = render(&procedural);
+    let mut hash = procedural.clone();
+    with_store(
+        &mut hash,
+        StoreKind::CoherentHash,
+        256,
+        StoreFilter::Nearest,
+    );
+    let mut octree = procedural.clone();
+    with_store(&mut octree, StoreKind::Octree, 256, StoreFilter::Nearest);
+    let (hash_film, baked) = render_with_stores(&hash);
+    assert_eq!(baked, 1, "one (mesh, material) pair has a texture");
+    let (octree_film, _) = render_with_stores(&octree);
+    assert_eq!(
+        hash_film.color(),
+        octree_film.color(),
+        "hash and octree stores must read the same texels"
+    );
+    let flip = flip_images(&to_rgb8(&reference), &to_rgb8(&hash_film)).unwrap();
+    println!("store vs procedural: FLIP mean {:.4}", flip.mean);
+    assert!(
+        flip.mean < 0.02,
+        "store render differs from the procedural one: {}",
+        flip.mean
+    );
+    for (kind, name) in [
+        (StoreKind::CoherentHash, "hash"),
+        (StoreKind::Octree, "octree"),
+    ] {
+        let mut tri = procedural.clone();
+        with_store(&mut tri, kind, 128, StoreFilter::Trilinear);
+        let (film, _) = render_with_stores(&tri);
+        let magenta = film
+            .albedo()
+            .unwrap()
+            .iter()
+            .filter(|a| a[0] == 1.0 && a[1] == 0.0 && a[2] == 1.0)
+            .count();
+        assert_eq!(
+            magenta, 0,
+            "{name}: {magenta} primary hits found no stored texel"
+        );
+        let flip = flip_images(&to_rgb8(&reference), &to_rgb8(&film)).unwrap();
+        println!(
+            "{name} trilinear R=128 vs procedural: FLIP mean {:.4}",
+            flip.mean
+        );
+        assert!(flip.mean < 0.02, "{name} trilinear: {}", flip.mean);
+    }
 }

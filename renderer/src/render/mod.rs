@@ -4,7 +4,9 @@
 mod error;
 mod frame;
 mod path_tracer;
+mod stores;
 
 pub use error::RenderError;
 pub use frame::GpuFrame;
 pub use path_tracer::{PassReport, PathTracer, RenderStats};
+pub use stores::{BakedStoreInfo, GpuStoreRecord, NO_STORE};

@@ -3,6 +3,7 @@
 
 use super::error::RenderError;
 use super::frame::GpuFrame;
+use super::stores::{BakedStoreInfo, SceneStores};
 use crate::accel::{DeviceBvh, SceneBvh};
 use crate::output::Film;
 use crate::scene::{Environment, RenderSettings, Scene};
@@ -57,6 +58,7 @@ pub struct PathTracer {
     // Owns the buffers that the device addresses in `environment_params` point into.
     _environment: GpuEnvironment,
     environment_params: GpuBuffer<u8>,
+    stores: SceneStores,
     film: GpuBuffer<[f32; 4]>,
     aovs: GpuBuffer<[f32; 4]>,
     ray_count: GpuBuffer<u32>,
@@ -76,6 +78,7 @@ impl PathTracer {
         let settings = scene.render;
         let scene_bvh = SceneBvh::from_scene(scene);
         let bvh = DeviceBvh::upload(gpu, &scene_bvh)?;
+        let stores = SceneStores::build(gpu, scene)?;
         let materials: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::from).collect();
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
         // A binding cannot be empty: a scene without lights still gets one (unused) record.
@@ -113,6 +116,7 @@ impl PathTracer {
             aovs: GpuBuffer::zeroed(gpu, "render aovs", 2 * pixels)?,
             ray_count: GpuBuffer::zeroed(gpu, "render ray count", 1)?,
             bvh,
+            stores,
             frame,
             settings,
             samples: 0,
@@ -140,7 +144,10 @@ impl PathTracer {
             pixel_count: invocations as u32,
         };
         let [b0, b1, b2, b3, b4] = self.bvh.bindings();
+        let [s0, s1] = self.stores.bindings();
         let bindings = [
+            s0,
+            s1,
             b0,
             b1,
             b2,
@@ -227,6 +234,11 @@ impl PathTracer {
         &self.settings
     }
 
+    /// The sparse stores baked for the scene's textures.
+    pub fn stores(&self) -> &[BakedStoreInfo] {
+        self.stores.info()
+    }
+
     /// Facts about the prepared scene.
     pub fn stats(&self) -> RenderStats {
         self.stats
@@ -251,16 +263,7 @@ fn check_scene(scene: &Scene) -> Result<(), RenderError> {
     if scene.instances.is_empty() {
         return bad("the scene has no instance".into());
     }
-    if let Some(m) = scene
-        .materials
-        .iter()
-        .find(|m| m.texture.is_some_and(|t| t.store.is_some()))
-    {
-        return bad(format!(
-            "material {:?}: textures baked into sparse stores are not rendered yet",
-            m.name
-        ));
-    }
+
     for (i, inst) in scene.instances.iter().enumerate() {
         if inst.mesh >= scene.meshes.len() || inst.material >= scene.materials.len() {
             return bad(format!(

@@ -113,6 +113,18 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         stats.bvh_bytes as f64 / 1e6,
         (stats.blas_time + stats.tlas_time).as_secs_f64() * 1e3
     );
+    for b in tracer.stores() {
+        eprintln!(
+            "baked {:?} on {:?} into {} at R = {}: {} texels, {:.1} MB, {:.2} s",
+            b.material,
+            b.mesh,
+            b.kind,
+            b.resolution,
+            b.texels,
+            b.bytes as f64 / 1e6,
+            b.build_time.as_secs_f64()
+        );
+    }
     let bar = ProgressBar::new(s.spp as u64);
     bar.set_style(
         ProgressStyle::with_template(

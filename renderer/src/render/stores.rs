@@ -1,0 +1,224 @@
+//! Solid textures baked into sparse stores: for every (mesh, material) pair whose texture asks
+//! for a store, the mesh's surface voxels (or interpolation voxels, for trilinear reads) are
+//! filled with the texture's colour at each voxel centre, and the path tracer reads the store
+//! at the hit point instead of evaluating the pattern. One kernel renders every store variant of
+//! a scene, which is how the structures are compared in pictures.
+
+use super::error::RenderError;
+use crate::scene::{Scene, StoreFilter, StoreKind};
+use crate::shading::reference::solid_texture_albedo;
+use crate::shading::GpuMaterial;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use lazysolid_compute::gpu::{BufferArg, Gpu, GpuBuffer};
+use lazysolid_compute::hash::RobinHoodConfig;
+use lazysolid_compute::shader_constants::{
+    STORE_FILTER_NEAREST, STORE_FILTER_TRILINEAR, STORE_KIND_HASH, STORE_KIND_OCTREE,
+};
+use lazysolid_compute::store::{
+    ColourSource, HashStore, HashStoreParams, OctreeConfig, OctreeParams, OctreeStore, SparseStore,
+    StoreKernels,
+};
+use lazysolid_compute::voxel::Voxelizer;
+use std::collections::HashMap;
+use std::time::{Duration, Instant};
+
+/// One store as the kernel sees it (`StoreRecord` in `glsl/render/path_trace.comp`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuStoreRecord {
+    /// `STORE_KIND_*`.
+    pub kind: u32,
+    /// `STORE_FILTER_*`.
+    pub filter: u32,
+    /// The hash store's params (zero for an octree).
+    pub hash: HashStoreParams,
+    /// The octree's params (zero for a hash).
+    pub octree: OctreeParams,
+}
+
+const _: () = assert!(std::mem::size_of::<GpuStoreRecord>() == 152);
+
+/// Marks an instance whose albedo is not read from a store.
+pub const NO_STORE: u32 = u32::MAX;
+
+enum Baked {
+    Hash(HashStore),
+    Octree(OctreeStore),
+}
+
+/// Facts about one baked store, for messages.
+#[derive(Clone, Debug)]
+pub struct BakedStoreInfo {
+    /// Mesh name.
+    pub mesh: String,
+    /// Material name.
+    pub material: String,
+    /// `coherent_hash` or `octree`.
+    pub kind: &'static str,
+    /// Voxels per unit.
+    pub resolution: u32,
+    /// Texels stored.
+    pub texels: u64,
+    /// Exact GPU bytes.
+    pub bytes: u64,
+    /// Voxelization and fill time.
+    pub build_time: Duration,
+}
+
+/// Every store of a scene and the per-instance store slots.
+pub struct SceneStores {
+    _stores: Vec<Baked>,
+    records: GpuBuffer<GpuStoreRecord>,
+    instance_slots: GpuBuffer<u32>,
+    info: Vec<BakedStoreInfo>,
+}
+
+/// sRGB-encoded RGBA8 (alpha 255) of a linear albedo: 8 bits per channel spent where the eye
+/// sees differences, decoded in the kernel.
+fn pack_srgb8(albedo: Vec3) -> u32 {
+    let enc = |v: f32| {
+        let v = v.clamp(0.0, 1.0);
+        let s = if v <= 0.003_130_8 {
+            12.92 * v
+        } else {
+            1.055 * v.powf(1.0 / 2.4) - 0.055
+        };
+        (s * 255.0).round() as u32
+    };
+    enc(albedo.x) | enc(albedo.y) << 8 | enc(albedo.z) << 16 | 255 << 24
+}
+
+impl SceneStores {
+    /// Bakes the stores `scene`'s materials ask for.
+    ///
+    /// # Errors
+    /// Voxelization or store failures (a mesh outside the unit cube, device limits).
+    pub fn build(gpu: &Gpu, scene: &Scene) -> Result<SceneStores, RenderError> {
+        let mut stores = Vec::new();
+        let mut records = Vec::new();
+        let mut info = Vec::new();
+        let mut slot_of: HashMap<(usize, usize), u32> = HashMap::new();
+        let mut slots = vec![NO_STORE; scene.instances.len()];
+        let mut kernels = None;
+        let mut voxelizer = None;
+        for (i, inst) in scene.instances.iter().enumerate() {
+            let material = &scene.materials[inst.material];
+            let Some(spec) = material.texture.and_then(|t| t.store) else {
+                continue;
+            };
+            if let Some(&slot) = slot_of.get(&(inst.mesh, inst.material)) {
+                slots[i] = slot;
+                continue;
+            }
+            let start = Instant::now();
+            let kernels = match &kernels {
+                Some(k) => k,
+                None => kernels.insert(StoreKernels::new(gpu)?),
+            };
+            let voxelizer = match &mut voxelizer {
+                Some(v) => v,
+                None => voxelizer.insert(Voxelizer::new(gpu).map_err(store_error)?),
+            };
+            let mesh = &scene.meshes[inst.mesh];
+            let r = spec.resolution;
+            let keys = match spec.filter {
+                StoreFilter::Nearest => {
+                    voxelizer.surface(&mesh.mesh.positions, &mesh.mesh.triangles, r)
+                }
+                StoreFilter::Trilinear => {
+                    voxelizer.interpolation(&mesh.mesh.positions, &mesh.mesh.triangles, r)
+                }
+            }
+            .map_err(|e| {
+                RenderError::Settings(format!(
+                    "{}: baking material {:?} on mesh {:?}: {e}",
+                    scene.source.display(),
+                    material.name,
+                    mesh.name
+                ))
+            })?;
+            let gm = GpuMaterial::from(material);
+            let colour = move |v: [u32; 3]| {
+                let centre = (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5) / r as f32;
+                pack_srgb8(solid_texture_albedo(&gm, centre))
+            };
+            let source = ColourSource::Fn(&colour);
+            let filter = match spec.filter {
+                StoreFilter::Nearest => STORE_FILTER_NEAREST,
+                StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
+            };
+            let (baked, record, kind) = match spec.kind {
+                StoreKind::CoherentHash => {
+                    let s =
+                        HashStore::build(kernels, r, &keys, &source, RobinHoodConfig::default())
+                            .map_err(store_error)?;
+                    let record = GpuStoreRecord {
+                        kind: STORE_KIND_HASH,
+                        filter,
+                        hash: s.params(),
+                        octree: OctreeParams::zeroed(),
+                    };
+                    (Baked::Hash(s), record, "coherent_hash")
+                }
+                StoreKind::Octree => {
+                    let config = OctreeConfig::for_resolution(r).map_err(store_error)?;
+                    let (s, _) = OctreeStore::build(kernels, r, &keys, &source, config)
+                        .map_err(store_error)?;
+                    let record = GpuStoreRecord {
+                        kind: STORE_KIND_OCTREE,
+                        filter,
+                        hash: HashStoreParams::zeroed(),
+                        octree: s.params(),
+                    };
+                    (Baked::Octree(s), record, "octree")
+                }
+            };
+            let (texels, bytes) = match &baked {
+                Baked::Hash(s) => (s.len(), s.bytes()),
+                Baked::Octree(s) => (s.len(), s.bytes()),
+            };
+            info.push(BakedStoreInfo {
+                mesh: mesh.name.clone(),
+                material: material.name.clone(),
+                kind,
+                resolution: r,
+                texels,
+                bytes,
+                build_time: start.elapsed(),
+            });
+            let slot = records.len() as u32;
+            records.push(record);
+            stores.push(baked);
+            slot_of.insert((inst.mesh, inst.material), slot);
+            slots[i] = slot;
+        }
+        if records.is_empty() {
+            // Bindings cannot be empty.
+            records.push(GpuStoreRecord::zeroed());
+        }
+        Ok(SceneStores {
+            _stores: stores,
+            records: GpuBuffer::from_slice(gpu, "render store records", &records)?,
+            instance_slots: GpuBuffer::from_slice(gpu, "render instance stores", &slots)?,
+            info,
+        })
+    }
+
+    /// The bindings of `path_trace.comp` that describe the stores.
+    pub fn bindings(&self) -> [(&'static str, BufferArg<'_>); 2] {
+        [
+            ("StoreRecords", self.records.arg()),
+            ("InstanceStores", self.instance_slots.arg()),
+        ]
+    }
+
+    /// What was baked.
+    pub fn info(&self) -> &[BakedStoreInfo] {
+        &self.info
+    }
+}
+
+fn store_error(e: impl std::fmt::Display) -> RenderError {
+    RenderError::Settings(format!("sparse store: {e}"))
+}
