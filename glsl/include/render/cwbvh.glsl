@@ -207,13 +207,14 @@ bool cwbvh_trace(vec3 world_o, vec3 world_d, float tmin, float tmax, bool any_hi
                 }
                 tlas_stack_size = stack_size;
                 instance = bvh_tlas_instances[slot];
-                BvhInstance inst = bvh_instances[instance];
-                o = cwbvh_transform_point(inst.world_to_object, world_o);
-                d = cwbvh_transform_vector(inst.world_to_object, world_d);
+                // Only the fields traversal needs: every load costs on a CPU device.
+                vec4 w2o[3] = bvh_instances[instance].world_to_object;
+                o = cwbvh_transform_point(w2o, world_o);
+                d = cwbvh_transform_vector(w2o, world_d);
                 inv_d = cwbvh_inverse(d);
                 oct_inv4 = cwbvh_octant_inv4(d);
-                node_offset = inst.node_offset;
-                triangle_offset = inst.triangle_offset;
+                node_offset = bvh_instances[instance].node_offset;
+                triangle_offset = bvh_instances[instance].triangle_offset;
                 current = uvec2(node_offset, 0x80000000u);
                 prims = uvec2(0u);
                 break;
