@@ -468,3 +468,106 @@ fn synth_names_a_bad_exemplar_and_writes_nothing() {
     assert!(!err.contains("panicked"), "{err}");
     assert!(!out.exists());
 }
+
+#[test]
+fn bench_synth_writes_its_tables_files_and_images() {
+    let exemplars = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/exemplars");
+    assert!(
+        exemplars.join("leather.pat").exists(),
+        "{} is missing: run scripts/fetch-assets.sh",
+        exemplars.display()
+    );
+    let out = tempfile::tempdir().unwrap();
+    let (ok, stdout, err) = run(lazysolid()
+        .args(["bench", "synth", "--exemplars", "leather", "--sizes", "64"])
+        .args(["--energy-samples", "256", "--runs", "1", "--warmup", "0"])
+        .arg("--exemplar-dir")
+        .arg(&exemplars)
+        .arg("--out")
+        .arg(out.path())
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    for needle in [
+        "leather 64x64 analysis",
+        "leather 64x64 -> 64x64",
+        "lazysolid gpu passes (timestamps)",
+        "lazysolid end-to-end (wall)",
+        "texture-synthesis 0.8.2 (2 threads)",
+        "energy lazysolid",
+        "gpu profile",
+        "target leather 64x64 -> 64x64: >= 20x faster",
+    ] {
+        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
+    }
+    let entries: Vec<_> = std::fs::read_dir(out.path())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let csv = entries
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "csv"))
+        .expect("a CSV file");
+    // Header comment, column names, the analysis row and four rows of the one case.
+    assert_eq!(
+        std::fs::read_to_string(csv).unwrap().lines().count(),
+        2 + 1 + 4
+    );
+    let json = entries
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .expect("a JSON file");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let derived = &json["derived"];
+    for key in [
+        "leather 64x64 -> 64x64: lazysolid energy",
+        "leather 64x64 -> 64x64: texture-synthesis energy",
+        "leather 64x64 -> 64x64: lazysolid histogram distance",
+        "leather 64x64 -> 64x64: texture-synthesis histogram distance",
+    ] {
+        let v = derived[key].as_f64().unwrap_or_else(|| panic!("no {key}"));
+        assert!(v.is_finite() && v >= 0.0, "{key} = {v}");
+    }
+    // 58² interior positions on the coarsest subgrid with at most 256: every 4th, 15².
+    assert_eq!(derived["leather 64x64 -> 64x64: energy samples"], 225.0);
+    let ratio = json["rows"][1]["ratio"].as_f64().expect("a ratio");
+    assert!(ratio > 0.0, "{ratio}");
+    let figures = entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let names: Vec<String> = std::fs::read_dir(figures)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    for f in [
+        "leather-64-lazysolid-vs-texture-synthesis.png",
+        "synth-times.png",
+    ] {
+        assert!(names.iter().any(|n| n == f), "missing {f} in {names:?}");
+    }
+    assert!(!names.iter().any(|n| n.contains("partial")), "{names:?}");
+    let side = image::open(figures.join("leather-64-lazysolid-vs-texture-synthesis.png")).unwrap();
+    assert_eq!((side.width(), side.height()), (2 * 64 + 8, 64));
+}
+
+#[test]
+fn bench_synth_refuses_missing_exemplars_and_bad_sizes() {
+    let (ok, _, err) = run(lazysolid().args(["bench", "synth", "--sizes", "4"]));
+    assert!(
+        !ok && err.contains("--sizes 4 is out of range (7..=2048)"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid().args([
+        "bench",
+        "synth",
+        "--exemplars",
+        "no-such-pattern",
+        "--exemplar-dir",
+        "/no/such/dir",
+    ]));
+    assert!(
+        !ok && err.contains("/no/such/dir/no-such-pattern.pat") && err.contains("fetch-assets"),
+        "{err}"
+    );
+}

@@ -44,6 +44,20 @@ struct CorrectPush {
     k: u32,
 }
 
+/// Device time of one level's kernels, from GPU timestamps: what a profile of the synthesis
+/// needs to tell the per-pixel upsampling from the correction passes that dominate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LevelTimes {
+    /// Pyramid level (0 is the coarsest).
+    pub level: u32,
+    /// Pixels of the region computed at this level (window plus padding).
+    pub pixels: u64,
+    /// The upsample-and-jitter dispatch, in milliseconds.
+    pub upsample_ms: f64,
+    /// All correction subpasses of the level, in milliseconds.
+    pub correct_ms: f64,
+}
+
 /// One level's analysis on the GPU.
 struct GpuLevel {
     spacing: u32,
@@ -137,11 +151,31 @@ impl GpuSynthesizer {
         keep_levels: bool,
         on_level: &mut dyn FnMut(u32),
     ) -> SynthResult<Synthesis> {
+        self.synthesize_timed(analysis, params, window, keep_levels, on_level)
+            .map(|(synthesis, _)| synthesis)
+    }
+
+    /// [`GpuSynthesizer::synthesize`] that also reports the device time of every level's
+    /// kernels (GPU timestamps around the dispatches; submission, waiting and read-back are
+    /// not included), so that benchmarks time the GPU work alone and can tell which kernel
+    /// dominates.
+    ///
+    /// # Errors
+    /// As [`GpuSynthesizer::synthesize`].
+    pub fn synthesize_timed(
+        &self,
+        analysis: &ExemplarAnalysis,
+        params: &SynthParams,
+        window: Region,
+        keep_levels: bool,
+        on_level: &mut dyn FnMut(u32),
+    ) -> SynthResult<(Synthesis, Vec<LevelTimes>)> {
         check_window(analysis, params, window)?;
         let finest = self.levels.len() as u32 - 1;
         let regions = plan_regions(window, finest, params.passes);
         let exemplar = [self.width, self.height];
         let mut levels = Vec::new();
+        let mut times = Vec::with_capacity(regions.len());
         let mut parent: Option<(Region, GpuBuffer<u32>)> = None;
         for (l, &region) in regions.iter().enumerate() {
             let lv = &self.levels[l];
@@ -167,9 +201,11 @@ impl GpuSynthesizer {
                 strength: params.jitter[l],
                 has_parent: parent.is_some() as u32,
             };
-            self.gpu.submit(|rec| {
+            let ((), stamps) = self.gpu.submit_timed(|rec| {
+                rec.timestamp()?;
                 let k = &self.upsample;
                 rec.dispatch(k, k.groups_for(region.pixels() as u64), &[], &push)?;
+                rec.timestamp()?;
                 for _ in 0..params.passes {
                     for class in CLASSES {
                         let (fx, cx) = class_span(region.origin[0], region.size[0], class[0]);
@@ -193,8 +229,14 @@ impl GpuSynthesizer {
                         rec.dispatch(k, k.groups_for(cx as u64 * cy as u64), &[], &push)?;
                     }
                 }
-                Ok(())
+                rec.timestamp()
             })?;
+            times.push(LevelTimes {
+                level: l as u32,
+                pixels: region.pixels() as u64,
+                upsample_ms: (stamps[1] - stamps[0]) * 1e-6,
+                correct_ms: (stamps[2] - stamps[1]) * 1e-6,
+            });
             if keep_levels || l as u32 == finest {
                 levels.push(LevelCoords {
                     region,
@@ -204,6 +246,6 @@ impl GpuSynthesizer {
             on_level(l as u32);
             parent = Some((region, coords));
         }
-        Ok(Synthesis { window, levels })
+        Ok((Synthesis { window, levels }, times))
     }
 }

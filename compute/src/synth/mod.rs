@@ -37,7 +37,7 @@ pub use energy::{
 };
 pub use error::{SynthError, SynthResult};
 pub use exemplar::{Exemplar, MAX_EXEMPLAR_SIDE, MIN_EXEMPLAR_SIDE};
-pub use gpu::GpuSynthesizer;
+pub use gpu::{GpuSynthesizer, LevelTimes};
 pub use jitter::{hash4, jitter};
 pub use params::{SynthParams, JITTER_ONE, MAX_PASSES};
 pub use pat::{decode_pattern, Pattern};

@@ -13,9 +13,14 @@ uint synth_pack(uvec2 c) {
     return c.x | (c.y << 16);
 }
 
-// (c + d) mod n for c in 0..n and |d| <= n.
+// (c + d) mod n for c in 0..n and |d| <= n (the spacing and the jitter never exceed the
+// exemplar side). A compare-and-add each way instead of an integer division, which CPU
+// drivers such as llvmpipe scalarize (x86 has no vector integer division).
 uint synth_wrap(uint c, int d, uint n) {
-    return uint(int(c) + d + int(n)) % n;
+    int v = int(c) + d;
+    v += v < 0 ? int(n) : 0;
+    v -= v >= int(n) ? int(n) : 0;
+    return uint(v);
 }
 
 uint synth_mix(uint h) {

@@ -5,6 +5,7 @@ pub mod harness;
 mod hash;
 mod plot;
 mod prims;
+mod synth;
 mod trace;
 
 use crate::cli::GlobalArgs;
@@ -20,6 +21,8 @@ pub enum BenchCommand {
     Hash(hash::HashArgs),
     /// GLSL CWBVH ray traversal against obvhs's CPU traversal of the same rays, BVH builds.
     Trace(trace::TraceArgs),
+    /// GPU appearance-space synthesis against the texture-synthesis crate: time and quality.
+    Synth(synth::SynthArgs),
 }
 
 /// Options every suite shares.
@@ -42,5 +45,6 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Prims(args) => prims::run(&args, global),
         BenchCommand::Hash(args) => hash::run(&args, global),
         BenchCommand::Trace(args) => trace::run(&args, global),
+        BenchCommand::Synth(args) => synth::run(&args, global),
     }
 }

@@ -1,0 +1,424 @@
+//! `lazysolid bench synth`: the GPU appearance-space synthesis against Embark's
+//! `texture-synthesis` crate on the same exemplars and output sizes, timed and scored alike.
+//!
+//! Rows of every case (one exemplar, one output size; a row's ratio is texture-synthesis min /
+//! its min):
+//! - `gpu passes (timestamps)`: the device time of the upsample-and-jitter and correction
+//!   dispatches of every level, from GPU timestamps (no submission, waiting or read-back);
+//! - `synthesize (wall)`: the same call timed on the host: per-level submissions, waits and the
+//!   read-back of the finest level, the analysis already on the GPU;
+//! - `end-to-end (wall)`: analysis on the CPU, kernel creation and upload, synthesis, and the
+//!   exemplar lookup to colours: from exemplar pixels to output pixels;
+//! - texture-synthesis: session build and run (the crate has no separate analysis step).
+//!
+//! The exemplar analysis is its own case per exemplar: the papers treat it as a precomputation.
+
+mod baseline;
+mod quality;
+
+use super::harness::{time_cpu, Bench, Throughput};
+use super::plot::bar_chart;
+use super::CommonArgs;
+use crate::cli::GlobalArgs;
+use anyhow::{ensure, Context};
+use clap::Args;
+use lazysolid_compute::synth::{
+    analyze, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis, GpuSynthesizer, LevelTimes,
+    Region, SynthParams,
+};
+use quality::Quality;
+use std::path::PathBuf;
+
+/// What to compare.
+#[derive(Args)]
+pub struct SynthArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Exemplars: names of GIMP patterns in --exemplar-dir (NAME.pat), or paths to PNG, JPEG
+    /// or .pat files.
+    #[arg(long, value_delimiter = ',', default_value = "leather,brick,walnut")]
+    pub exemplars: Vec<String>,
+    /// Where named exemplars live (scripts/fetch-assets.sh fills it).
+    #[arg(long, default_value = "assets/exemplars")]
+    pub exemplar_dir: PathBuf,
+    /// Square output sizes in pixels per side.
+    #[arg(long, value_delimiter = ',', default_value = "256,512")]
+    pub sizes: Vec<u32>,
+    /// Seed of both synthesizers.
+    #[arg(long, default_value_t = 3)]
+    pub seed: u32,
+    /// Jitter strength of lazysolid's synthesis at every level.
+    #[arg(long, default_value_t = 0.5)]
+    pub jitter: f32,
+    /// Most output pixels the neighbourhood energy evaluates, for both outputs.
+    #[arg(long, default_value_t = 4096)]
+    pub energy_samples: usize,
+    /// CPU threads of texture-synthesis and of the exemplar analysis.
+    #[arg(long, default_value_t = 2)]
+    pub cpu_threads: usize,
+    /// Only the first exemplar at the first size.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// Smallest and largest output side: the 7×7 energy needs 7 pixels, and the baseline's time
+/// grows too fast beyond 2048.
+const SIZE_RANGE: std::ops::RangeInclusive<u32> = 7..=2048;
+
+const GPU_PASSES: &str = "lazysolid gpu passes (timestamps)";
+const GPU_WALL: &str = "lazysolid synthesize (wall)";
+const END_TO_END: &str = "lazysolid end-to-end (wall)";
+
+/// Project targets (docs/synthesis.md).
+const TARGET_SPEEDUP: f64 = 20.0;
+const TARGET_512_FROM_64_MS: f64 = 500.0;
+
+/// One exemplar and output size, measured.
+struct CaseResult {
+    case: String,
+    exemplar_side: u32,
+    size: u32,
+    passes_ms: f64,
+    wall_ms: f64,
+    end_to_end_ms: f64,
+    baseline_ms: f64,
+    levels: Vec<LevelTimes>,
+    ours: Quality,
+    theirs: Quality,
+}
+
+fn exemplar_path(args: &SynthArgs, name: &str) -> PathBuf {
+    if name.contains('/') || name.contains('.') {
+        PathBuf::from(name)
+    } else {
+        args.exemplar_dir.join(format!("{name}.pat"))
+    }
+}
+
+fn display_name(path: &std::path::Path) -> String {
+    path.file_stem()
+        .unwrap_or_default()
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// Runs the suite.
+pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
+    ensure!(!args.sizes.is_empty(), "--sizes names no size");
+    if let Some(bad) = args.sizes.iter().find(|s| !SIZE_RANGE.contains(s)) {
+        anyhow::bail!(
+            "--sizes {bad} is out of range ({}..={})",
+            SIZE_RANGE.start(),
+            SIZE_RANGE.end()
+        );
+    }
+    ensure!(args.cpu_threads >= 1, "--cpu-threads must be at least 1");
+    let (names, sizes) = if args.quick {
+        (&args.exemplars[..1], &args.sizes[..1])
+    } else {
+        (&args.exemplars[..], &args.sizes[..])
+    };
+    let exemplars = names
+        .iter()
+        .map(|n| {
+            let path = exemplar_path(args, n);
+            Exemplar::load(&path)
+                .with_context(|| {
+                    format!(
+                        "loading exemplar {} (scripts/fetch-assets.sh fetches the GIMP patterns)",
+                        path.display()
+                    )
+                })
+                .map(|e| (display_name(&path), e))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let gpu = global.gpu()?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.cpu_threads)
+        .build()?;
+    let threads = args.cpu_threads;
+    let cases = exemplars.len() as u64 * (1 + 4 * sizes.len() as u64);
+    let mut bench = Bench::new("bench-synth", &gpu, &args.common, cases)?;
+    let analysis_params = AnalysisParams::default();
+    let energy = EnergyKernel::new(&gpu)?;
+    let baseline_name = format!("texture-synthesis 0.8.2 ({threads} threads)");
+    let mut results = Vec::new();
+    let mut figures = Vec::new();
+
+    for (name, exemplar) in &exemplars {
+        let tag = format!("{name} {}x{}", exemplar.width, exemplar.height);
+        let mut analysis: Option<ExemplarAnalysis> = None;
+        bench.case(
+            &format!("{tag} analysis"),
+            exemplar.rgb.len() as u64,
+            &format!("lazysolid cpu analysis ({threads} thr)"),
+            Throughput::Elements,
+            None,
+            || {
+                let (a, ms) = time_cpu(|| pool.install(|| analyze(exemplar, &analysis_params)));
+                analysis = Some(a?);
+                Ok(ms)
+            },
+        )?;
+        let analysis = analysis.expect("analysed at least once");
+        let levels = analysis.levels.len() as u32;
+        let params = SynthParams::new(levels, args.seed, 2, &[args.jitter])?;
+        let synth = GpuSynthesizer::new(&gpu, &analysis)?;
+
+        for &size in sizes {
+            let case = format!("{tag} -> {size}x{size}");
+            let pixels = size as u64 * size as u64;
+            let window = Region {
+                origin: [0, 0],
+                size: [size, size],
+            };
+            let mut level_times = Vec::new();
+            let passes_ms = bench.case(
+                &case,
+                pixels,
+                GPU_PASSES,
+                Throughput::Elements,
+                Some(&baseline_name),
+                || {
+                    let (_, times) =
+                        synth.synthesize_timed(&analysis, &params, window, false, &mut |_| {})?;
+                    let ms = times.iter().map(|t| t.upsample_ms + t.correct_ms).sum();
+                    level_times = times;
+                    Ok(ms)
+                },
+            )?;
+            let mut ours = Vec::new();
+            let wall_ms = bench.case(
+                &case,
+                pixels,
+                GPU_WALL,
+                Throughput::Elements,
+                Some(&baseline_name),
+                || {
+                    let (s, ms) = time_cpu(|| {
+                        synth.synthesize(&analysis, &params, window, false, &mut |_| {})
+                    });
+                    ours = s?.colours(exemplar);
+                    Ok(ms)
+                },
+            )?;
+            let end_to_end_ms = bench.case(
+                &case,
+                pixels,
+                END_TO_END,
+                Throughput::Elements,
+                Some(&baseline_name),
+                || {
+                    let (colours, ms) = time_cpu(|| -> anyhow::Result<Vec<[u8; 3]>> {
+                        let a = pool.install(|| analyze(exemplar, &analysis_params))?;
+                        let s = GpuSynthesizer::new(&gpu, &a)?;
+                        Ok(s.synthesize(&a, &params, window, false, &mut |_| {})?
+                            .colours(exemplar))
+                    });
+                    ensure!(colours? == ours, "{case}: end-to-end output differs");
+                    Ok(ms)
+                },
+            )?;
+            let mut theirs = Vec::new();
+            let baseline_ms = bench.case(
+                &case,
+                pixels,
+                &baseline_name,
+                Throughput::Elements,
+                None,
+                || {
+                    let (out, ms) = time_cpu(|| {
+                        baseline::synthesize(exemplar, size, args.seed as u64, threads)
+                    });
+                    theirs = out?;
+                    Ok(ms)
+                },
+            )?;
+            let ours_q = quality::measure(&energy, exemplar, &ours, size, args.energy_samples)?;
+            let theirs_q = quality::measure(&energy, exemplar, &theirs, size, args.energy_samples)?;
+            figures.push((
+                format!("{name}-{size}-lazysolid-vs-texture-synthesis.png"),
+                ours,
+                theirs,
+                size,
+            ));
+            results.push(CaseResult {
+                case,
+                exemplar_side: exemplar.width.max(exemplar.height),
+                size,
+                passes_ms,
+                wall_ms,
+                end_to_end_ms,
+                baseline_ms,
+                levels: level_times,
+                ours: ours_q,
+                theirs: theirs_q,
+            });
+        }
+    }
+
+    let dir = bench.artifact_dir()?;
+    for (file, ours, theirs, size) in &figures {
+        quality::side_by_side(&dir.join(file), ours, theirs, *size)?;
+    }
+    bar_chart(
+        &dir.join("synth-times.png"),
+        "synthesis time (min): lazysolid (lavapipe) vs texture-synthesis (CPU)",
+        "exemplar -> output",
+        "ms",
+        &results.iter().map(|r| r.case.clone()).collect::<Vec<_>>(),
+        &[
+            (
+                "lazysolid gpu passes".to_string(),
+                results.iter().map(|r| r.passes_ms).collect(),
+            ),
+            (
+                "lazysolid end-to-end".to_string(),
+                results.iter().map(|r| r.end_to_end_ms).collect(),
+            ),
+            (
+                baseline_name.clone(),
+                results.iter().map(|r| r.baseline_ms).collect(),
+            ),
+        ],
+        true,
+    )?;
+
+    let mut notes = vec![
+        (
+            "energy samples (max)".to_string(),
+            args.energy_samples as f64,
+        ),
+        ("seed".to_string(), args.seed as f64),
+        ("jitter".to_string(), args.jitter as f64),
+        ("baseline threads".to_string(), threads as f64),
+    ];
+    for r in &results {
+        let c = &r.case;
+        notes.extend([
+            (format!("{c}: lazysolid energy"), r.ours.energy),
+            (format!("{c}: texture-synthesis energy"), r.theirs.energy),
+            (
+                format!("{c}: lazysolid histogram distance"),
+                r.ours.histogram,
+            ),
+            (
+                format!("{c}: texture-synthesis histogram distance"),
+                r.theirs.histogram,
+            ),
+            (format!("{c}: energy samples"), r.ours.samples as f64),
+            (
+                format!("{c}: gpu upsample ms"),
+                r.levels.iter().map(|t| t.upsample_ms).sum(),
+            ),
+            (
+                format!("{c}: gpu correction ms"),
+                r.levels.iter().map(|t| t.correct_ms).sum(),
+            ),
+            (
+                format!("{c}: gpu finest level ms"),
+                r.levels
+                    .last()
+                    .map_or(0.0, |t| t.upsample_ms + t.correct_ms),
+            ),
+        ]);
+    }
+    let (csv, json) = bench.finish(&notes)?;
+    println!();
+    println!("baseline: {}", baseline::settings(threads));
+    print_quality(&results);
+    print_profile(&results);
+    print_targets(&results);
+    println!(
+        "wrote {}, {} and {}",
+        csv.display(),
+        json.display(),
+        dir.display()
+    );
+    Ok(())
+}
+
+fn print_quality(results: &[CaseResult]) {
+    println!();
+    println!(
+        "quality against the exemplar (7x7 neighbourhood energy: mean per neighbourhood / per value; colour-histogram distance)"
+    );
+    println!(
+        "{:<28} {:>8} {:>20} {:>20} {:>10} {:>10}",
+        "case", "samples", "energy lazysolid", "energy tex-synth", "hist ours", "hist theirs"
+    );
+    for r in results {
+        println!(
+            "{:<28} {:>8} {:>11.1} ({:>6.2}) {:>11.1} ({:>6.2}) {:>10.4} {:>10.4}",
+            r.case,
+            r.ours.samples,
+            r.ours.energy,
+            r.ours.energy_per_value,
+            r.theirs.energy,
+            r.theirs.energy_per_value,
+            r.ours.histogram,
+            r.theirs.histogram
+        );
+    }
+}
+
+fn print_profile(results: &[CaseResult]) {
+    println!();
+    println!("gpu profile of the last timed run (timestamps, ms)");
+    for r in results {
+        let up: f64 = r.levels.iter().map(|t| t.upsample_ms).sum();
+        let corr: f64 = r.levels.iter().map(|t| t.correct_ms).sum();
+        let per_level = r
+            .levels
+            .iter()
+            .map(|t| {
+                format!(
+                    "L{} {}px {:.1}",
+                    t.level,
+                    t.pixels,
+                    t.upsample_ms + t.correct_ms
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
+        println!(
+            "{}: upsample+jitter {up:.2}, correction {corr:.2} ({:.0}%); per level: {per_level}",
+            r.case,
+            100.0 * corr / (up + corr).max(f64::MIN_POSITIVE)
+        );
+    }
+}
+
+fn print_targets(results: &[CaseResult]) {
+    println!();
+    for r in results {
+        let speedup = r.baseline_ms / r.passes_ms;
+        let wall_speedup = r.baseline_ms / r.wall_ms;
+        let not_worse = r.ours.energy <= r.theirs.energy;
+        let met = speedup >= TARGET_SPEEDUP && not_worse;
+        println!(
+            "target {}: >= {TARGET_SPEEDUP}x faster at equal or lower energy: {} \
+             (gpu passes {speedup:.1}x, synthesize wall {wall_speedup:.1}x, end-to-end {:.1}x; \
+             energy {:.1} vs {:.1})",
+            r.case,
+            if met { "met" } else { "missed" },
+            r.baseline_ms / r.end_to_end_ms,
+            r.ours.energy,
+            r.theirs.energy
+        );
+    }
+    for r in results
+        .iter()
+        .filter(|r| r.exemplar_side == 64 && r.size == 512)
+    {
+        println!(
+            "target {}: under {TARGET_512_FROM_64_MS} ms: gpu passes {:.1} ms ({}), synthesize wall {:.1} ms ({})",
+            r.case,
+            r.passes_ms,
+            if r.passes_ms < TARGET_512_FROM_64_MS { "met" } else { "missed" },
+            r.wall_ms,
+            if r.wall_ms < TARGET_512_FROM_64_MS { "met" } else { "missed" },
+        );
+    }
+}
