@@ -876,6 +876,12 @@ fn textures_baked_into_stores() {
         15,
         "material \"white\".texture.filter: applies only to a texture baked into a store",
     );
+    expect(
+        &tex(", store = \"octree\", resolution = 2039"),
+        15,
+        "material \"white\".texture.resolution: 2039 cannot be an octree resolution",
+    );
+    assert!(parse(&tex(", store = \"coherent_hash\", resolution = 2039")).is_ok());
     let e = error(&tex(", store = \"kd_tree\", resolution = 64"));
     assert!(
         e.contains("scenes/t.toml:15") && e.contains("kd_tree"),

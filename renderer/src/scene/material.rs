@@ -284,7 +284,20 @@ fn store(doc: &Doc, raw: &RawTexture, label: &str) -> Result<Option<StoreSpec>, 
                 RawStoreKind::CoherentHash => StoreKind::CoherentHash,
                 RawStoreKind::Octree => StoreKind::Octree,
             },
-            resolution: doc.integer(res, &join(label, "resolution"), 2..=MAX_STORE_RESOLUTION)?,
+            resolution: {
+                let r = doc.integer(res, &join(label, "resolution"), 2..=MAX_STORE_RESOLUTION)?;
+                // The N³ tree needs R as a product of per-level sizes it supports.
+                if *kind.get_ref() == RawStoreKind::Octree {
+                    if let Err(e) = lazysolid_compute::store::OctreeConfig::for_resolution(r) {
+                        return Err(doc.invalid(
+                            res.span(),
+                            join(label, "resolution"),
+                            format!("{r} cannot be an octree resolution: {e}"),
+                        ));
+                    }
+                }
+                r
+            },
             filter: match raw.filter.as_ref().map(|f| *f.get_ref()) {
                 None | Some(RawStoreFilter::Nearest) => StoreFilter::Nearest,
                 Some(RawStoreFilter::Trilinear) => StoreFilter::Trilinear,
