@@ -112,7 +112,8 @@ vec3 store_albedo(uint slot, vec3 pos) {
 }
 
 SurfaceHit surface_of(TraceHit h) {
-    BvhInstance inst = bvh_instances[h.instance];
+    // Only the fields shading needs: every load costs on a CPU device.
+    vec4 o2w[3] = bvh_instances[h.instance].object_to_world;
     vec3 v0 = bvh_triangles[h.triangle * 3u + 0u].xyz;
     vec3 e1 = bvh_triangles[h.triangle * 3u + 1u].xyz;  // v0 - v1
     vec3 e2 = bvh_triangles[h.triangle * 3u + 2u].xyz;  // v2 - v0
@@ -121,7 +122,7 @@ SurfaceHit surface_of(TraceHit h) {
     float w = 1.0 - h.u - h.v;
     SurfaceHit s;
     vec3 p_surface = v0 * w + v1 * h.u + v2 * h.v;
-    s.p = cwbvh_transform_point(inst.object_to_world, p_surface);
+    s.p = cwbvh_transform_point(o2w, p_surface);
     // Solid textures are read a hair inside the matter, so a face lying exactly on a cell
     // boundary of the texture (a ground plane at y = 0) sees one side of it, not both.
     vec3 n_object = cross(v1 - v0, v2 - v0);
@@ -130,13 +131,13 @@ SurfaceHit surface_of(TraceHit h) {
     s.p_surface_object = p_surface;
     s.instance = h.instance;
     // Rigid transforms with uniform scale: the linear part maps normals too.
-    s.ng = normalize(cwbvh_transform_vector(inst.object_to_world, cross(v1 - v0, v2 - v0)));
+    s.ng = normalize(cwbvh_transform_vector(o2w, cross(v1 - v0, v2 - v0)));
     uvec4 packed = bvh_normals[h.triangle];
     vec3 n_obj = cwbvh_decode_octahedral(packed.x) * w + cwbvh_decode_octahedral(packed.y) * h.u +
                  cwbvh_decode_octahedral(packed.z) * h.v;
-    vec3 ns = normalize(cwbvh_transform_vector(inst.object_to_world, n_obj));
+    vec3 ns = normalize(cwbvh_transform_vector(o2w, n_obj));
     s.ns = dot(ns, s.ng) < 0.0 ? -ns : ns;
-    s.material = inst.material;
+    s.material = bvh_instances[h.instance].material;
     return s;
 }
 

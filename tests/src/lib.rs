@@ -42,10 +42,12 @@ pub const EDGE_SIZES: &[usize] = &[
     0, 1, 2, 3, 4, 5, 7, 255, 256, 257, 1000, 4095, 4096, 4097, 65_537, 1_000_003,
 ];
 
-/// Path of a mesh installed by `scripts/fetch-assets.sh`; panics with the fix when it is absent.
-pub fn asset_mesh(name: &str) -> std::path::PathBuf {
+/// Path of `assets/<folder>/<name>`, installed by `scripts/fetch-assets.sh`; panics with the
+/// fix when it is absent.
+fn asset(folder: &str, name: &str) -> std::path::PathBuf {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/meshes")
+        .join("../assets")
+        .join(folder)
         .join(name);
     assert!(
         path.exists(),
@@ -55,16 +57,19 @@ pub fn asset_mesh(name: &str) -> std::path::PathBuf {
     path
 }
 
+/// Path of a mesh installed by `scripts/fetch-assets.sh`; panics with the fix when it is absent.
+pub fn asset_mesh(name: &str) -> std::path::PathBuf {
+    asset("meshes", name)
+}
+
 /// Path of a GIMP pattern installed by `scripts/fetch-assets.sh` into `assets/exemplars/`;
 /// panics with the fix when it is absent.
 pub fn asset_exemplar(name: &str) -> std::path::PathBuf {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/exemplars")
-        .join(name);
-    assert!(
-        path.exists(),
-        "{} is missing: run scripts/fetch-assets.sh (the README's test command does)",
-        path.display()
-    );
-    path
+    asset("exemplars", name)
+}
+
+/// An asset mesh moved into the unit cube, the space of voxel grids, stores and test scenes.
+pub fn unit_mesh(name: &str) -> lazysolid_renderer::mesh::Mesh {
+    lazysolid_renderer::mesh::Mesh::load_unit_cube(asset_mesh(name))
+        .unwrap_or_else(|e| panic!("{e}"))
 }

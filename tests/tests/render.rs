@@ -10,7 +10,7 @@ use lazysolid_renderer::scene::{
     Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
     SceneMesh, StoreFilter, StoreKind, StoreSpec,
 };
-use lazysolid_tests::{asset_mesh, with_gpu};
+use lazysolid_tests::{unit_mesh, with_gpu};
 use std::path::{Path, PathBuf};
 
 fn material(kind: MaterialKind, color: Vec3) -> Material {
@@ -24,12 +24,6 @@ fn material(kind: MaterialKind, color: Vec3) -> Material {
         ior: 1.5,
         texture: None,
     }
-}
-
-fn unit_mesh(name: &str) -> Mesh {
-    let mut m = Mesh::load(asset_mesh(name)).unwrap();
-    m.normalize_to_unit_cube();
-    m
 }
 
 fn settings(width: u32, height: u32, spp: u32, max_depth: u32) -> RenderSettings {
@@ -206,8 +200,7 @@ fn to_rgb8(film: &Film) -> image::RgbImage {
 /// it, the same lens blurs it.
 #[test]
 fn thin_lens_blurs_only_out_of_focus() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/test/textured.toml");
-    let mut scene = Scene::load(&path).unwrap();
+    let mut scene = Scene::load(&test_scene("textured")).unwrap();
     scene.render.spp = 64;
     let pinhole = to_rgb8(&render(&scene));
     let subject = (scene.camera.look_at - scene.camera.position).length();
@@ -237,6 +230,13 @@ const FLIP_MEAN_LIMIT: f32 = 0.09;
 /// Samples per pixel of the references, relative to the scene's.
 const REFERENCE_SPP_FACTOR: u32 = 16;
 
+/// `scenes/test/NAME.toml`.
+fn test_scene(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes/test")
+        .join(format!("{name}.toml"))
+}
+
 fn reference_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("reference")
@@ -253,10 +253,7 @@ fn tone_map() -> ToneMap {
 /// Renders `scenes/test/NAME.toml` and compares it with `tests/reference/NAME.png`.
 /// `LAZYSOLID_BLESS=1` re-renders the reference at 16× the samples instead.
 fn check_reference(name: &str) {
-    let scene_path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes/test")
-        .join(format!("{name}.toml"));
-    let mut scene = Scene::load(&scene_path).unwrap();
+    let mut scene = Scene::load(&test_scene(name)).unwrap();
     let reference = reference_path(name);
     if std::env::var_os("LAZYSOLID_BLESS").is_some() {
         scene.render.spp *= REFERENCE_SPP_FACTOR;
@@ -267,15 +264,10 @@ fn check_reference(name: &str) {
         println!("wrote {}", reference.display());
         return;
     }
-    let film = render(&scene);
-    let dir = tempfile::tempdir().unwrap();
-    let test_png = dir.path().join(format!("{name}.png"));
-    write_png(&film, &test_png, &tone_map()).unwrap();
     let a = image::open(&reference)
         .unwrap_or_else(|e| panic!("{}: {e} (LAZYSOLID_BLESS=1 writes it)", reference.display()))
         .to_rgb8();
-    let b = image::open(&test_png).unwrap().to_rgb8();
-    let report = flip_images(&a, &b).unwrap();
+    let report = flip_images(&a, &to_rgb8(&render(&scene))).unwrap();
     println!(
         "{name}: FLIP mean {:.4}, p95 {:.4}, max {:.4}",
         report.mean, report.p95, report.max
@@ -349,8 +341,7 @@ fn render_with_stores(scene: &Scene) -> (Film, usize) {
 /// like the procedural texture they were baked from; trilinear reads find every texel.
 #[test]
 fn store_baked_textures_render_like_the_procedural_texture() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/test/textured.toml");
-    let procedural = Scene::load(&path).unwrap();
+    let procedural = Scene::load(&test_scene("textured")).unwrap();
     let reference = render(&procedural);
     let mut hash = procedural.clone();
     with_store(

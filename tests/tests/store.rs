@@ -7,19 +7,13 @@ use lazysolid_compute::hash::{morton_decode, RobinHoodConfig};
 use lazysolid_compute::store::*;
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_tests::{asset_mesh, rng, with_gpu};
+use lazysolid_tests::{rng, unit_mesh, with_gpu};
 use rand::Rng;
 use std::collections::HashMap;
 
 /// Trilinear results are sums of 8 weighted colours in f32: 1e-5 covers the different
 /// summation orders of GPU and CPU.
 const TRILINEAR_TOLERANCE: f32 = 1e-5;
-
-fn bunny() -> Mesh {
-    let mut m = Mesh::load(asset_mesh("bunny00.off")).unwrap();
-    m.normalize_to_unit_cube();
-    m
-}
 
 /// Interpolation voxels of the bunny, split into a build half and an insert half.
 fn voxel_sets(v: &mut Voxelizer, m: &Mesh, r: u32) -> (Vec<u64>, Vec<u64>, Vec<u64>) {
@@ -105,7 +99,7 @@ fn marble_on_the_gpu_equals_the_cpu() {
     with_gpu(|gpu| {
         let kernels = StoreKernels::new(gpu).unwrap();
         let mut v = Voxelizer::new(gpu).unwrap();
-        let m = bunny();
+        let m = unit_mesh("bunny00.off");
         for r in [64, 100] {
             let keys = v.surface(&m.positions, &m.triangles, r).unwrap();
             let source = ColourSource::Marble { seed: 9 };
@@ -126,7 +120,7 @@ fn hash_store_matches_its_reference_and_grows_by_inserts() {
     with_gpu(|gpu| {
         let kernels = StoreKernels::new(gpu).unwrap();
         let mut v = Voxelizer::new(gpu).unwrap();
-        let m = bunny();
+        let m = unit_mesh("bunny00.off");
         let r = 128;
         let (all, first, second) = voxel_sets(&mut v, &m, r);
         let f = |p: [u32; 3]| 0xff00_0000 | p[0] | (p[1] << 8) | ((p[2] * 7) & 255) << 16;
@@ -168,7 +162,7 @@ fn octree_matches_its_reference_word_for_word() {
     with_gpu(|gpu| {
         let kernels = StoreKernels::new(gpu).unwrap();
         let mut v = Voxelizer::new(gpu).unwrap();
-        let m = bunny();
+        let m = unit_mesh("bunny00.off");
         for (r, levels) in [(128, vec![8, 4, 4]), (100, vec![5, 5, 4]), (64, vec![2; 6])] {
             let (all, first, second) = voxel_sets(&mut v, &m, r);
             let source = ColourSource::Marble { seed: 4 };
@@ -275,8 +269,7 @@ fn measure_store_sizes() {
             .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
             .unwrap_or(vec![256]);
         for name in ["bunny00.off", "armadillo.off"] {
-            let mut m = Mesh::load(asset_mesh(name)).unwrap();
-            m.normalize_to_unit_cube();
+            let m = unit_mesh(name);
             for &r in &res {
                 let t = std::time::Instant::now();
                 let surface = v.surface(&m.positions, &m.triangles, r).unwrap();

@@ -5,15 +5,9 @@ use lazysolid_renderer::accel::{
     DeviceBvh, GpuRay, GpuRayHit, InstanceDesc, QueryKind, RayQueries, SceneBvh, NO_HIT,
 };
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_tests::{asset_mesh, rng, with_gpu};
+use lazysolid_tests::{rng, unit_mesh, with_gpu};
 use rand::Rng;
 use rayon::prelude::*;
-
-fn unit_mesh(name: &str) -> Mesh {
-    let mut m = Mesh::load(asset_mesh(name)).unwrap();
-    m.normalize_to_unit_cube();
-    m
-}
 
 /// Rays from a sphere around `center` towards random points of the box `center ± half`, and a
 /// tenth in uniformly random directions (mostly misses).

@@ -5,13 +5,7 @@ use glam::Vec3;
 use lazysolid_compute::hash::morton_decode;
 use lazysolid_compute::voxel::*;
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_tests::{asset_mesh, with_gpu};
-
-fn mesh(name: &str) -> Mesh {
-    let mut m = Mesh::load(asset_mesh(name)).unwrap();
-    m.normalize_to_unit_cube();
-    m
-}
+use lazysolid_tests::{unit_mesh, with_gpu};
 
 fn check(v: &mut Voxelizer, m: &Mesh, resolution: u32) {
     let cpu = surface_voxels_cpu(&m.positions, &m.triangles, resolution);
@@ -45,11 +39,11 @@ fn check(v: &mut Voxelizer, m: &Mesh, resolution: u32) {
 fn bunny_and_armadillo_match_the_cpu_voxelizer() {
     with_gpu(|gpu| {
         let mut v = Voxelizer::new(gpu).unwrap();
-        let bunny = mesh("bunny00.off");
+        let bunny = unit_mesh("bunny00.off");
         for r in [64, 100, 128, 256] {
             check(&mut v, &bunny, r);
         }
-        let armadillo = mesh("armadillo.off");
+        let armadillo = unit_mesh("armadillo.off");
         for r in [64, 97, 256] {
             check(&mut v, &armadillo, r);
         }
@@ -154,7 +148,7 @@ fn single_triangles_and_edge_cases() {
 fn interpolation_voxels_cover_every_trilinear_footprint_on_the_surface() {
     // Sample points on the bunny's triangles: the 8 voxels a clamp-to-edge trilinear lookup
     // reads there are all interpolation voxels.
-    let m = mesh("bunny00.off");
+    let m = unit_mesh("bunny00.off");
     let r = 64u32;
     let keys: std::collections::HashSet<u64> =
         interpolation_voxels_cpu(&m.positions, &m.triangles, r)

@@ -9,6 +9,13 @@ fn lazysolid() -> Command {
     c
 }
 
+/// A path in the repository (scenes, assets).
+fn repo(path: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(path)
+}
+
 fn run(c: &mut Command) -> (bool, String, String) {
     let out = c.output().expect("lazysolid runs");
     (
@@ -151,8 +158,7 @@ fn bad_arguments_are_refused() {
 
 #[test]
 fn bench_hash_writes_tables_files_and_figures() {
-    let mesh =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/meshes/armadillo.off");
+    let mesh = repo("assets/meshes/armadillo.off");
     assert!(
         mesh.exists(),
         "{} is missing: run scripts/fetch-assets.sh",
@@ -363,12 +369,6 @@ fn diff_bad_paths_are_named() {
     );
 }
 
-fn repo(path: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join(path)
-}
-
 #[test]
 fn render_writes_png_and_exr_and_says_where() {
     let out = tempfile::tempdir().unwrap();
@@ -471,7 +471,7 @@ fn synth_names_a_bad_exemplar_and_writes_nothing() {
 
 #[test]
 fn bench_synth_writes_its_tables_files_and_images() {
-    let exemplars = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/exemplars");
+    let exemplars = repo("assets/exemplars");
     assert!(
         exemplars.join("leather.pat").exists(),
         "{} is missing: run scripts/fetch-assets.sh",

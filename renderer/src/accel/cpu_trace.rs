@@ -26,7 +26,7 @@ impl SceneBvh {
         self.tlas.ray_traverse(world, &mut tlas_hit, |r, id| {
             let instance = self.tlas.primitive_indices[id] as usize;
             let desc = &self.instances[instance];
-            let inv = desc.transform.inverse();
+            let inv = &self.world_to_object[instance];
             let local = Ray::new(
                 inv.transform_point3a(r.origin),
                 inv.transform_vector3a(r.direction),

@@ -21,7 +21,7 @@ impl DeviceBvh {
     /// # Errors
     /// A buffer over a device limit (the error names the buffer and the limit).
     pub fn upload(gpu: &Gpu, bvh: &SceneBvh) -> GpuResult<DeviceBvh> {
-        let (nodes, _) = bvh.packed_nodes();
+        let nodes = bvh.packed_nodes();
         let triangles: Vec<GpuTriangle> = bvh
             .meshes
             .iter()

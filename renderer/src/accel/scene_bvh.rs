@@ -27,6 +27,9 @@ pub struct SceneBvh {
     pub meshes: Vec<MeshBvh>,
     /// The placed meshes.
     pub instances: Vec<InstanceDesc>,
+    /// Inverse of each instance's transform, computed once: rays enter object space with it
+    /// on the GPU and in the CPU reference.
+    pub world_to_object: Vec<Affine3A>,
     /// The top level over the world bounds of the instances; its primitive ids are instance
     /// indices through `tlas.primitive_indices`.
     pub tlas: CwBvh,
@@ -58,6 +61,7 @@ impl SceneBvh {
         SceneBvh {
             meshes: mesh_bvhs,
             instances: instances.to_vec(),
+            world_to_object: instances.iter().map(|i| i.transform.inverse()).collect(),
             tlas,
             blas_time,
             tlas_time,
@@ -79,16 +83,25 @@ impl SceneBvh {
         SceneBvh::build(&meshes, &instances)
     }
 
-    /// All nodes in one array: the top level first, then each mesh's BVH, with the offset of
-    /// each mesh's first node.
-    pub fn packed_nodes(&self) -> (Vec<CwBvhNode>, Vec<u32>) {
+    /// All nodes in one array: the top level first, then each mesh's BVH (at
+    /// [`SceneBvh::node_offsets`]).
+    pub fn packed_nodes(&self) -> Vec<CwBvhNode> {
         let mut nodes = self.tlas.nodes.clone();
-        let mut offsets = Vec::with_capacity(self.meshes.len());
         for m in &self.meshes {
-            offsets.push(nodes.len() as u32);
             nodes.extend_from_slice(&m.bvh.nodes);
         }
-        (nodes, offsets)
+        nodes
+    }
+
+    /// Offset of each mesh's first node in [`SceneBvh::packed_nodes`].
+    pub fn node_offsets(&self) -> Vec<u32> {
+        let mut offsets = Vec::with_capacity(self.meshes.len());
+        let mut n = self.tlas.nodes.len() as u32;
+        for m in &self.meshes {
+            offsets.push(n);
+            n += m.bvh.nodes.len() as u32;
+        }
+        offsets
     }
 
     /// Offset of each mesh's first triangle in the concatenated triangle records.
@@ -104,12 +117,13 @@ impl SceneBvh {
 
     /// The GPU records of the instances.
     pub fn gpu_instances(&self) -> Vec<GpuInstance> {
-        let (_, node_offsets) = self.packed_nodes();
+        let node_offsets = self.node_offsets();
         let tri_offsets = self.triangle_offsets();
         self.instances
             .iter()
-            .map(|i| GpuInstance {
-                world_to_object: affine_rows(&i.transform.inverse()),
+            .zip(&self.world_to_object)
+            .map(|(i, inv)| GpuInstance {
+                world_to_object: affine_rows(inv),
                 object_to_world: affine_rows(&i.transform),
                 node_offset: node_offsets[i.mesh],
                 triangle_offset: tri_offsets[i.mesh],

@@ -64,6 +64,17 @@ impl Mesh {
         Ok(mesh)
     }
 
+    /// Loads like [`Mesh::load`] and moves the mesh into the unit cube
+    /// ([`Mesh::normalize_to_unit_cube`]): how voxel grids, stores and benchmarks take meshes.
+    ///
+    /// # Errors
+    /// As [`Mesh::load`].
+    pub fn load_unit_cube(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
+        let mut mesh = Mesh::load(path)?;
+        mesh.normalize_to_unit_cube();
+        Ok(mesh)
+    }
+
     /// Checks what every consumer relies on: at least one triangle, finite coordinates, indices
     /// in range.
     pub fn validate(&self) -> Result<(), MeshError> {

@@ -18,4 +18,5 @@ pub use exr_io::{read_exr_rgb, write_exr};
 pub use film::Film;
 pub(crate) use png_io::write_rgb8;
 pub use png_io::{write_layer_png, write_png, LayerMapping};
+pub(crate) use tonemap::encode8;
 pub use tonemap::{srgb_oetf, Operator, ToneMap};

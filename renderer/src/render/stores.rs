@@ -5,6 +5,7 @@
 //! a scene, which is how the structures are compared in pictures.
 
 use super::error::RenderError;
+use crate::output::encode8;
 use crate::scene::{Scene, StoreFilter, StoreKind};
 use crate::shading::reference::solid_texture_albedo;
 use crate::shading::GpuMaterial;
@@ -77,16 +78,8 @@ pub struct SceneStores {
 /// sRGB-encoded RGBA8 (alpha 255) of a linear albedo: 8 bits per channel spent where the eye
 /// sees differences, decoded in the kernel.
 fn pack_srgb8(albedo: Vec3) -> u32 {
-    let enc = |v: f32| {
-        let v = v.clamp(0.0, 1.0);
-        let s = if v <= 0.003_130_8 {
-            12.92 * v
-        } else {
-            1.055 * v.powf(1.0 / 2.4) - 0.055
-        };
-        (s * 255.0).round() as u32
-    };
-    enc(albedo.x) | enc(albedo.y) << 8 | enc(albedo.z) << 16 | 255 << 24
+    let [r, g, b] = albedo.to_array().map(|v| encode8(v) as u32);
+    r | g << 8 | b << 16 | 255 << 24
 }
 
 impl SceneStores {

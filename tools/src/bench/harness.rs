@@ -175,9 +175,13 @@ impl Bench {
 
     /// `<out>/<suite>-<date>/`, created on first use: where a suite puts its figures.
     pub fn artifact_dir(&self) -> anyhow::Result<PathBuf> {
-        let dir = self.out.join(format!("{}-{}", self.info.suite, self.stamp));
+        let dir = self.artifact_path();
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
         Ok(dir)
+    }
+
+    fn artifact_path(&self) -> PathBuf {
+        self.out.join(format!("{}-{}", self.info.suite, self.stamp))
     }
 
     /// Rows so far; a row's ratio is set once its baseline row exists (in either order).
@@ -198,7 +202,8 @@ impl Bench {
         }
     }
 
-    /// Prints the table and writes `<out>/<suite>-<date>.csv` and `.json`; returns their paths.
+    /// Prints the table, writes `<out>/<suite>-<date>.csv` and `.json` and says where they and
+    /// the suite's figures (if it made any) are; returns the two paths.
     pub fn finish(self, notes: &[(String, f64)]) -> anyhow::Result<(PathBuf, PathBuf)> {
         self.progress.finish_and_clear();
         let i = &self.info;
@@ -267,6 +272,10 @@ impl Bench {
             )?)
         })?;
         println!("results: {} and {}", csv.display(), json.display());
+        let figures = self.artifact_path();
+        if figures.is_dir() {
+            println!("figures: {}", figures.display());
+        }
         Ok((csv, json))
     }
 }

@@ -47,8 +47,7 @@ pub fn run(args: &TraceArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.res
     );
     ensure!(args.cpu_threads >= 1, "--cpu-threads must be at least 1");
-    let mut mesh = Mesh::load(&args.mesh).with_context(|| "loading the benchmark mesh")?;
-    mesh.normalize_to_unit_cube();
+    let mesh = Mesh::load_unit_cube(&args.mesh).with_context(|| "loading the benchmark mesh")?;
     let gpu = global.gpu()?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.cpu_threads)
@@ -186,13 +185,7 @@ pub fn run(args: &TraceArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         ),
         ("bounce rays".to_string(), bounce.len() as f64),
     ];
-    let (csv, json) = bench.finish(&notes)?;
-    println!(
-        "wrote {}, {} and {}",
-        csv.display(),
-        json.display(),
-        dir.display()
-    );
+    bench.finish(&notes)?;
     Ok(())
 }
 

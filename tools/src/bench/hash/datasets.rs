@@ -65,10 +65,8 @@ fn absent_points(dims: [u32; 3], defined: &HashSet<u64>, count: usize, seed: u64
 
 /// The mesh at `path`, scaled into the unit cube.
 fn load_normalized(path: &Path) -> anyhow::Result<Mesh> {
-    let mut mesh = Mesh::load(path)
-        .with_context(|| format!("loading {} (run scripts/fetch-assets.sh)", path.display()))?;
-    mesh.normalize_to_unit_cube();
-    Ok(mesh)
+    Mesh::load_unit_cube(path)
+        .with_context(|| format!("loading {} (run scripts/fetch-assets.sh)", path.display()))
 }
 
 /// `count` distinct uniformly random points of a `size`² universe (the paper: 1M keys in 8K²).

@@ -489,6 +489,5 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         &table_pictures,
     )?;
     bench.finish(&notes)?;
-    println!("figures: {}", figures_dir.display());
     Ok(())
 }

@@ -324,18 +324,12 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             ),
         ]);
     }
-    let (csv, json) = bench.finish(&notes)?;
+    bench.finish(&notes)?;
     println!();
     println!("baseline: {}", baseline::settings(threads));
     print_quality(&results);
     print_profile(&results);
     print_targets(&results);
-    println!(
-        "wrote {}, {} and {}",
-        csv.display(),
-        json.display(),
-        dir.display()
-    );
     Ok(())
 }
 
