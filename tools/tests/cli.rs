@@ -571,3 +571,97 @@ fn bench_synth_refuses_missing_exemplars_and_bad_sizes() {
         "{err}"
     );
 }
+
+#[test]
+fn bench_textures_writes_the_table_pictures_and_files() {
+    let out = tempfile::tempdir().unwrap();
+    let (ok, stdout, err) = run(lazysolid()
+        .args(["bench", "textures", "--res", "64", "--view", "64"])
+        .args(["--runs", "1", "--warmup", "0", "--mesh"])
+        .arg(repo("assets/meshes/bunny00.off"))
+        .arg("--out")
+        .arg(out.path())
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    for needle in [
+        "Table 4.1 on",
+        "octree 8·8 (nearest)",
+        "octree 4·4·4 (8 descents)",
+        "coherent hash (8 lookups)",
+        "stands for the thesis' octree texture, 8 lookups (Table 4.1)",
+    ] {
+        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
+    }
+    let entries: Vec<_> = std::fs::read_dir(out.path())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let json = entries
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .expect("a JSON file");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let derived = json["derived"].as_object().unwrap();
+    let seen = derived["viewpoint surface points"].as_f64().unwrap();
+    assert!(seen > 500.0, "{seen}");
+    // The voxelization is conservative: every point the camera sees lies in stored texels.
+    let missing: Vec<_> = derived
+        .iter()
+        .filter(|(k, _)| k.ends_with("points not stored"))
+        .collect();
+    assert_eq!(missing.len(), 2 * 4, "{missing:?}");
+    assert!(
+        missing.iter().all(|(_, v)| v.as_f64() == Some(0.0)),
+        "{missing:?}"
+    );
+    let figures = entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let picture = |name: &str| image::open(figures.join(name)).unwrap().to_rgb8();
+    for f in ["textures-memory.png", "textures-speed.png"] {
+        assert!(figures.join(f).exists(), "missing {f}");
+    }
+    // The same texels through different structures: nearest pictures are identical, trilinear
+    // ones agree to float rounding.
+    assert_eq!(
+        picture("octree-8-8-nearest.png"),
+        picture("coherent-hash-nearest.png")
+    );
+    let (a, b) = (
+        picture("octree-8-8-8-descents.png"),
+        picture("coherent-hash-8-lookups.png"),
+    );
+    assert_eq!(a.dimensions(), (64, 64));
+    let worst = a
+        .as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| x.abs_diff(*y))
+        .max()
+        .unwrap();
+    assert!(worst <= 1, "{worst}");
+}
+
+#[test]
+fn bench_textures_refuses_bad_resolutions_views_and_meshes() {
+    let (ok, _, err) = run(lazysolid().args(["bench", "textures", "--view", "8"]));
+    assert!(
+        !ok && err.contains("--view 8 is out of range (16..=4096)"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid().args(["bench", "textures", "--mesh", "/no/such/mesh.off"]));
+    assert!(!ok && err.contains("/no/such/mesh.off"), "{err}");
+    let (ok, _, err) = run(lazysolid()
+        .args(["bench", "textures", "--res", "100000", "--mesh"])
+        .arg(repo("assets/meshes/cube.off")));
+    assert!(!ok && err.contains("100000"), "{err}");
+    let (ok, _, err) = run(lazysolid()
+        .args([
+            "bench", "textures", "--res", "64", "--octree", "8.4", "--mesh",
+        ])
+        .arg(repo("assets/meshes/cube.off")));
+    assert!(!ok && err.contains("--octree \"8.4\""), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}

@@ -6,7 +6,7 @@
 
 use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{run_lookup, StoreKernels};
+use super::kernels::{prepare_lookup, run_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::GpuBuffer;
 use crate::hash::{
@@ -225,6 +225,23 @@ impl SparseStore for HashStore {
                 points: p,
                 results: r,
                 n: points.len() as u32,
+                mode: (filter == Filter::Trilinear) as u32,
+            },
+        )?)
+    }
+
+    fn timed_lookup(&self, points: &[Vec3], filter: Filter) -> Result<TimedLookup<'_>, StoreError> {
+        let store = self.params();
+        let n = points.len() as u32;
+        Ok(prepare_lookup(
+            &self.kernels,
+            &self.kernels.hash_lookup,
+            points,
+            |p, r| LookupPush {
+                store,
+                points: p,
+                results: r,
+                n,
                 mode: (filter == Filter::Trilinear) as u32,
             },
         )?)

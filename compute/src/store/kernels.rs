@@ -1,7 +1,7 @@
 //! The kernels of every store, built once per device and shared (lavapipe compiles a pipeline
 //! at its first dispatch, so stores must not rebuild them).
 
-use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel};
+use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::hash::HashKernels;
 use crate::kernels::store;
 use crate::voxel::SortUnique;
@@ -58,4 +58,61 @@ pub(crate) fn run_lookup<P: Pod>(
     let p = push(pts.address(), out.address());
     gpu.submit(|rec| rec.dispatch(kernel, kernel.groups_for(points.len() as u64), &[], &p))?;
     Ok(out.read()?.into_iter().map(Vec4::from_array).collect())
+}
+
+/// Records one lookup dispatch.
+type RecordFn<'a> = Box<dyn Fn(&mut Recorder<'_>) -> GpuResult<()> + 'a>;
+
+/// A lookup whose points are already on the device, run as often as a benchmark needs: each
+/// [`TimedLookup::run`] is one dispatch between two GPU timestamps, so uploads and read-backs
+/// stay out of the measured time.
+pub struct TimedLookup<'a> {
+    gpu: Gpu,
+    results: GpuBuffer<[f32; 4]>,
+    // Keeps the points alive for as long as the recorded dispatches read them.
+    _points: GpuBuffer<f32>,
+    record: RecordFn<'a>,
+}
+
+impl TimedLookup<'_> {
+    /// One lookup of every point; returns its GPU time in milliseconds.
+    pub fn run(&self) -> GpuResult<f64> {
+        let ((), t) = self.gpu.submit_timed(|rec| {
+            rec.timestamp()?;
+            (self.record)(rec)?;
+            rec.timestamp()
+        })?;
+        Ok((t[1] - t[0]) * 1e-6)
+    }
+
+    /// The results of the last run, one per point.
+    pub fn results(&self) -> GpuResult<Vec<Vec4>> {
+        Ok(self
+            .results
+            .read()?
+            .into_iter()
+            .map(Vec4::from_array)
+            .collect())
+    }
+}
+
+/// Uploads `points` and prepares `kernel` with `make(points, results)` as push block.
+pub(crate) fn prepare_lookup<'a, P: Pod>(
+    kernels: &'a StoreKernels,
+    kernel: &'a Kernel,
+    points: &[Vec3],
+    push: impl FnOnce(u64, u64) -> P,
+) -> GpuResult<TimedLookup<'a>> {
+    let gpu = &kernels.gpu;
+    let flat: Vec<f32> = points.iter().flat_map(|p| p.to_array()).collect();
+    let pts = GpuBuffer::from_slice(gpu, "store lookup points", &flat)?;
+    let results = GpuBuffer::<[f32; 4]>::zeroed(gpu, "store lookup results", points.len())?;
+    let p = push(pts.address(), results.address());
+    let groups = kernel.groups_for(points.len() as u64);
+    Ok(TimedLookup {
+        gpu: gpu.clone(),
+        results,
+        _points: pts,
+        record: Box::new(move |rec| rec.dispatch(kernel, groups, &[], &p)),
+    })
 }

@@ -24,7 +24,7 @@ mod octree_cpu;
 pub use colours::ColourSource;
 pub use error::StoreError;
 pub use hash_store::{HashStore, HashStoreParams};
-pub use kernels::StoreKernels;
+pub use kernels::{StoreKernels, TimedLookup};
 pub use lookup_cpu::{
     nearest_cpu, nearest_voxel, trilinear_cpu, trilinear_footprint, unpack_rgba8,
 };
@@ -93,4 +93,8 @@ pub trait SparseStore {
 
     /// Runs the store's GLSL lookup at `points` on the GPU (tests and benchmarks).
     fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError>;
+
+    /// Uploads `points` once and returns a lookup that can be run and timed repeatedly: how
+    /// benchmarks compare the structures' lookup cost without the transfers.
+    fn timed_lookup(&self, points: &[Vec3], filter: Filter) -> Result<TimedLookup<'_>, StoreError>;
 }

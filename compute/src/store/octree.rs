@@ -8,7 +8,7 @@
 
 use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{run_lookup, StoreKernels};
+use super::kernels::{prepare_lookup, run_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::{GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
@@ -570,6 +570,23 @@ impl SparseStore for OctreeStore {
 
     fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError> {
         self.lookup_mode(points, (filter == Filter::Trilinear) as u32)
+    }
+
+    fn timed_lookup(&self, points: &[Vec3], filter: Filter) -> Result<TimedLookup<'_>, StoreError> {
+        let store = self.params();
+        let n = points.len() as u32;
+        Ok(prepare_lookup(
+            &self.kernels,
+            &self.kernels.octree_lookup,
+            points,
+            |p, r| LookupPush {
+                store,
+                points: p,
+                results: r,
+                n,
+                mode: (filter == Filter::Trilinear) as u32,
+            },
+        )?)
     }
 }
 

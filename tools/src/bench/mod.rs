@@ -6,6 +6,7 @@ mod hash;
 mod plot;
 mod prims;
 mod synth;
+mod textures;
 mod trace;
 
 use crate::cli::GlobalArgs;
@@ -23,6 +24,9 @@ pub enum BenchCommand {
     Trace(trace::TraceArgs),
     /// GPU appearance-space synthesis against the texture-synthesis crate: time and quality.
     Synth(synth::SynthArgs),
+    /// Thesis Table 4.1: memory and lookup speed of every sparse texture structure over a mesh
+    /// at one equivalent resolution, seen from a fixed 800×800 viewpoint, with pictures.
+    Textures(textures::TexturesArgs),
 }
 
 /// Options every suite shares.
@@ -46,5 +50,6 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Hash(args) => hash::run(&args, global),
         BenchCommand::Trace(args) => trace::run(&args, global),
         BenchCommand::Synth(args) => synth::run(&args, global),
+        BenchCommand::Textures(args) => textures::run(&args, global),
     }
 }

@@ -1,0 +1,407 @@
+//! `lazysolid bench textures`: thesis Table 4.1 on this machine. Every sparse texture
+//! structure is built over the surface of a mesh at one equivalent resolution (the armadillo
+//! at 1024³ by default) with the same procedural marble, then looked up at the surface points
+//! one fixed 800×800 viewpoint sees. Per structure and filtering mode: the exact GPU bytes next
+//! to the thesis' megabytes, the lookup time of the whole viewpoint (GPU timestamps around one
+//! dispatch, warm-up then min/median), its speed relative to the octree of the same filtering
+//! next to the thesis' ratio, and a picture of the viewpoint textured through the structure.
+
+mod thesis;
+mod viewpoint;
+
+use super::harness::{time_cpu, Bench, Throughput};
+use super::plot::{bar_chart, rgb_image};
+use super::CommonArgs;
+use crate::cli::GlobalArgs;
+use anyhow::{ensure, Context};
+use clap::Args;
+use lazysolid_compute::hash::RobinHoodConfig;
+use lazysolid_compute::store::{
+    ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, SparseStore, StoreKernels,
+    TimedLookup,
+};
+use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
+use lazysolid_renderer::mesh::Mesh;
+use std::path::PathBuf;
+use thesis::ThesisRow;
+use viewpoint::Viewpoint;
+
+/// What to measure.
+#[derive(Args)]
+pub struct TexturesArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// The mesh: a name in assets/meshes (armadillo, bunny00, ...) or a path to an OFF/OBJ file;
+    /// normalized into the unit cube.
+    #[arg(long, default_value = "armadillo")]
+    pub mesh: String,
+    /// Equivalent resolution R of every structure (R³ grid over the unit cube).
+    #[arg(long, default_value_t = 1024)]
+    pub res: u32,
+    /// Pixels per side of the viewpoint.
+    #[arg(long, default_value_t = 800)]
+    pub view: u32,
+    /// Seed of the marble colour source.
+    #[arg(long, default_value_t = 7)]
+    pub seed: u32,
+    /// Octree shapes to measure, each as level sizes joined by '.', root first (e.g.
+    /// 8.8.4.4); default: the store's choice for R, and all-4 and all-2 trees where they fit.
+    #[arg(long, value_delimiter = ',')]
+    pub octree: Vec<String>,
+}
+
+/// One measured structure.
+struct Measured {
+    label: String,
+    filter: Filter,
+    thesis: Option<ThesisRow>,
+    bytes: u64,
+    build_ms: f64,
+    lookup_ms: f64,
+    missing: usize,
+}
+
+/// Runs the suite.
+pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    ensure!(
+        (16..=4096).contains(&args.view),
+        "--view {} is out of range (16..=4096)",
+        args.view
+    );
+    let mesh_path = if args.mesh.contains('/') || args.mesh.contains('.') {
+        PathBuf::from(&args.mesh)
+    } else {
+        PathBuf::from(format!("assets/meshes/{}.off", args.mesh))
+    };
+    let mesh = Mesh::load_unit_cube(&mesh_path)
+        .with_context(|| format!("loading --mesh {}", mesh_path.display()))?;
+    let octrees = octree_configs(&args.octree, args.res)?;
+    let gpu = global.gpu()?;
+    let kernels = StoreKernels::new(&gpu)?;
+    let mut voxelizer = Voxelizer::new(&gpu)?;
+    let (surface, surface_ms) =
+        time_cpu(|| voxelizer.surface(&mesh.positions, &mesh.triangles, args.res));
+    let surface = surface.with_context(|| format!("voxelizing at --res {}", args.res))?;
+    let (corners, corners_ms) =
+        time_cpu(|| voxelizer.interpolation(&mesh.positions, &mesh.triangles, args.res));
+    let corners = corners?;
+    let view = viewpoint::view(&mesh, args.view);
+    ensure!(
+        !view.points.is_empty(),
+        "the viewpoint sees nothing of {}",
+        mesh_path.display()
+    );
+    let cases = 2 * (1 + octrees.len() as u64);
+    let mut bench = Bench::new("bench-textures", &gpu, &args.common, cases)?;
+    let dir = bench.artifact_dir()?;
+    let source = ColourSource::Marble { seed: args.seed };
+    let octree_name = |c: &OctreeConfig| {
+        c.levels
+            .iter()
+            .map(u32::to_string)
+            .collect::<Vec<_>>()
+            .join("·")
+    };
+    let baseline = |f: Filter| format!("octree {}", octree_name(&octrees[0])) + descents(f);
+    let mut measured = Vec::new();
+
+    for filter in [Filter::Nearest, Filter::Trilinear] {
+        let keys = match filter {
+            Filter::Nearest => &surface,
+            Filter::Trilinear => &corners,
+        };
+        for (i, config) in octrees.iter().enumerate() {
+            let label = format!("octree {}", octree_name(config)) + descents(filter);
+            let (store, build_ms) = build_octree(&kernels, args.res, keys, &source, config)?;
+            let thesis = (i == 0).then_some(match filter {
+                Filter::Nearest => ThesisRow::OctreeNearest,
+                Filter::Trilinear => ThesisRow::OctreeTrilinear,
+            });
+            let base = (i > 0).then(|| baseline(filter));
+            measured.push(measure(
+                &mut bench, &dir, &view, &store, filter, label, thesis, base, build_ms,
+            )?);
+        }
+        let label = "coherent hash".to_string() + lookups(filter);
+        let (store, build_ms) = time_cpu(|| {
+            HashStore::build(
+                &kernels,
+                args.res,
+                keys,
+                &source,
+                RobinHoodConfig::default(),
+            )
+        });
+        let store = store.with_context(|| format!("building the {label}"))?;
+        measured.push(measure(
+            &mut bench,
+            &dir,
+            &view,
+            &store,
+            filter,
+            label,
+            None,
+            Some(baseline(filter)),
+            build_ms,
+        )?);
+    }
+
+    summary(&measured, &bench, &dir, args)?;
+    let mut notes = vec![
+        ("triangles".to_string(), mesh.triangles.len() as f64),
+        ("resolution".to_string(), args.res as f64),
+        ("surface voxels".to_string(), surface.len as f64),
+        ("interpolation voxels".to_string(), corners.len as f64),
+        ("surface voxelization ms".to_string(), surface_ms),
+        ("interpolation voxelization ms".to_string(), corners_ms),
+        (
+            "viewpoint pixels".to_string(),
+            (args.view * args.view) as f64,
+        ),
+        (
+            "viewpoint surface points".to_string(),
+            view.points.len() as f64,
+        ),
+    ];
+    for m in &measured {
+        notes.push((format!("{} bytes", m.label), m.bytes as f64));
+        notes.push((format!("{} build ms", m.label), m.build_ms));
+        notes.push((format!("{} points not stored", m.label), m.missing as f64));
+    }
+    bench.finish(&notes)?;
+    Ok(())
+}
+
+fn descents(f: Filter) -> &'static str {
+    match f {
+        Filter::Nearest => " (nearest)",
+        Filter::Trilinear => " (8 descents)",
+    }
+}
+
+fn lookups(f: Filter) -> &'static str {
+    match f {
+        Filter::Nearest => " (nearest)",
+        Filter::Trilinear => " (8 lookups)",
+    }
+}
+
+/// Octree shapes from `--octree`, or the defaults for `res`.
+fn octree_configs(given: &[String], res: u32) -> anyhow::Result<Vec<OctreeConfig>> {
+    let mut configs = Vec::new();
+    if given.is_empty() {
+        configs.push(OctreeConfig::for_resolution(res)?);
+        for n in [4u32, 2] {
+            let levels = (res as f64).log(n as f64).round() as u32;
+            if n.checked_pow(levels) == Some(res) {
+                let c = OctreeConfig {
+                    levels: vec![n; levels as usize],
+                    initial_pool_words: 1 << 16,
+                };
+                if c.check(res).is_ok() && !configs.contains(&c) {
+                    configs.push(c);
+                }
+            }
+        }
+    } else {
+        for text in given {
+            let levels = text
+                .split('.')
+                .map(|n| {
+                    n.parse::<u32>().with_context(|| {
+                        format!("--octree {text:?}: level size {n:?} is not an integer")
+                    })
+                })
+                .collect::<anyhow::Result<Vec<_>>>()?;
+            let c = OctreeConfig {
+                levels,
+                initial_pool_words: 1 << 16,
+            };
+            c.check(res).with_context(|| format!("--octree {text:?}"))?;
+            configs.push(c);
+        }
+    }
+    Ok(configs)
+}
+
+/// Builds twice: the first build finds the pool size, the second allocates exactly that, as a
+/// user who knows the surface would (the pool otherwise grows by doubling).
+fn build_octree(
+    kernels: &std::sync::Arc<StoreKernels>,
+    res: u32,
+    keys: &VoxelKeys,
+    source: &ColourSource<'_>,
+    config: &OctreeConfig,
+) -> anyhow::Result<(OctreeStore, f64)> {
+    let (first, _) = OctreeStore::build(kernels, res, keys, source, config.clone())?;
+    let words = first.pool_words()?.len();
+    drop(first);
+    let sized = OctreeConfig {
+        initial_pool_words: words,
+        ..config.clone()
+    };
+    let (store, ms) = time_cpu(|| OctreeStore::build(kernels, res, keys, source, sized));
+    Ok((store?.0, ms))
+}
+
+/// Times the viewpoint's lookups through `store`, saves its picture, counts points that read
+/// an unstored texel.
+#[allow(clippy::too_many_arguments)]
+fn measure<S: SparseStore>(
+    bench: &mut Bench,
+    dir: &std::path::Path,
+    view: &Viewpoint,
+    store: &S,
+    filter: Filter,
+    label: String,
+    thesis: Option<ThesisRow>,
+    baseline: Option<String>,
+    build_ms: f64,
+) -> anyhow::Result<Measured> {
+    let lookup: TimedLookup<'_> = store.timed_lookup(&view.points, filter)?;
+    let case = match filter {
+        Filter::Nearest => "viewpoint lookups, nearest",
+        Filter::Trilinear => "viewpoint lookups, trilinear",
+    };
+    let lookup_ms = bench.case(
+        case,
+        view.points.len() as u64,
+        &label,
+        Throughput::Elements,
+        baseline.as_deref(),
+        || Ok(lookup.run()?),
+    )?;
+    let colours = lookup.results()?;
+    let missing = colours.iter().filter(|c| c.w == 0.0).count();
+    let file = dir.join(format!("{}.png", slug(&label)));
+    rgb_image(
+        &file,
+        view.size,
+        view.size,
+        viewpoint::picture(view, &colours),
+    )?;
+    Ok(Measured {
+        label,
+        filter,
+        thesis,
+        bytes: store.bytes(),
+        build_ms,
+        lookup_ms,
+        missing,
+    })
+}
+
+fn slug(label: &str) -> String {
+    label
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '-'
+            }
+        })
+        .collect::<String>()
+        .split('-')
+        .filter(|s| !s.is_empty())
+        .collect::<Vec<_>>()
+        .join("-")
+}
+
+/// Prints the Table 4.1 comparison and draws it.
+fn summary(
+    measured: &[Measured],
+    bench: &Bench,
+    dir: &std::path::Path,
+    args: &TexturesArgs,
+) -> anyhow::Result<()> {
+    // The thesis measured the armadillo at 1024³; elsewhere its megabytes mean nothing here.
+    let comparable = args.mesh == "armadillo" && args.res == 1024;
+    let thesis_mb = |m: &Measured| m.thesis.filter(|_| comparable).map(|t| t.megabytes());
+    let base_ms = |f: Filter| {
+        measured
+            .iter()
+            .find(|m| m.filter == f && m.thesis.is_some_and(|t| t.baseline() == t))
+            .map(|m| m.lookup_ms)
+    };
+    println!(
+        "Table 4.1 on {} ({}), {} at {}³, {}×{} viewpoint:",
+        bench.info.device, bench.info.driver, args.mesh, args.res, args.view, args.view
+    );
+    println!(
+        "{:<34} {:>10} {:>10} {:>8} {:>12} {:>10} {:>10}",
+        "structure", "MB", "thesis MB", "vs", "lookup ms", "speed", "thesis"
+    );
+    for m in measured {
+        let speed = base_ms(m.filter).map(|b| b / m.lookup_ms);
+        println!(
+            "{:<34} {:>10.2} {:>10} {:>8} {:>12.3} {:>10} {:>10}",
+            m.label,
+            m.bytes as f64 / 1e6,
+            thesis_mb(m).map(|t| format!("{t:.1}")).unwrap_or_default(),
+            thesis_mb(m)
+                .map(|t| format!("{:+.0}%", (m.bytes as f64 / 1e6 / t - 1.0) * 100.0))
+                .unwrap_or_default(),
+            m.lookup_ms,
+            speed.map(|s| format!("{s:.2}x")).unwrap_or_default(),
+            m.thesis
+                .map(|t| format!("{:.2}x", t.speedup()))
+                .unwrap_or_default(),
+        );
+    }
+    for m in measured {
+        if let Some(t) = m.thesis {
+            println!("  {} stands for the thesis' {}", m.label, t.label());
+        }
+    }
+    let labels: Vec<String> = measured.iter().map(|m| m.label.clone()).collect();
+    bar_chart(
+        &dir.join("textures-memory.png"),
+        &format!("{} at {}³: GPU memory", args.mesh, args.res),
+        "structure",
+        "MB",
+        &labels,
+        &[
+            (
+                "lazysolid".to_string(),
+                measured.iter().map(|m| m.bytes as f64 / 1e6).collect(),
+            ),
+            (
+                "thesis".to_string(),
+                measured
+                    .iter()
+                    .map(|m| thesis_mb(m).unwrap_or(0.0))
+                    .collect(),
+            ),
+        ],
+        false,
+    )?;
+    bar_chart(
+        &dir.join("textures-speed.png"),
+        &format!(
+            "{} at {}³, {}² viewpoint: lookup speed relative to the octree of the same filtering",
+            args.mesh, args.res, args.view
+        ),
+        "structure",
+        "× octree",
+        &labels,
+        &[
+            (
+                format!("lazysolid on {}", bench.info.device),
+                measured
+                    .iter()
+                    .map(|m| base_ms(m.filter).map_or(0.0, |b| b / m.lookup_ms))
+                    .collect(),
+            ),
+            (
+                "thesis".to_string(),
+                measured
+                    .iter()
+                    .map(|m| m.thesis.map_or(0.0, |t| t.speedup()))
+                    .collect(),
+            ),
+        ],
+        false,
+    )?;
+    Ok(())
+}
