@@ -19,6 +19,10 @@ pub struct StoreKernels {
     pub(crate) octree_link: Kernel,
     pub(crate) octree_average: Kernel,
     pub(crate) octree_lookup: Kernel,
+    pub(crate) tiletree_texels: Kernel,
+    pub(crate) tiletree_dilate: Kernel,
+    pub(crate) tiletree_scatter: Kernel,
+    pub(crate) tiletree_lookup: Kernel,
     pub(crate) unique: Mutex<SortUnique>,
 }
 
@@ -34,6 +38,10 @@ impl StoreKernels {
             octree_link: Kernel::new(gpu, &store::OCTREE_LINK)?,
             octree_average: Kernel::new(gpu, &store::OCTREE_AVERAGE)?,
             octree_lookup: Kernel::new(gpu, &store::OCTREE_LOOKUP)?,
+            tiletree_texels: Kernel::new(gpu, &store::TILETREE_TEXELS)?,
+            tiletree_dilate: Kernel::new(gpu, &store::TILETREE_DILATE)?,
+            tiletree_scatter: Kernel::new(gpu, &store::TILETREE_SCATTER)?,
+            tiletree_lookup: Kernel::new(gpu, &store::TILETREE_LOOKUP)?,
             unique: Mutex::new(SortUnique::new(gpu)?),
         }))
     }
