@@ -62,6 +62,14 @@ pub enum StoreError {
         /// The limit.
         limit: u64,
     },
+    /// The store does not offer this operation.
+    #[error("{store} store: {what} is not supported")]
+    Unsupported {
+        /// The store.
+        store: &'static str,
+        /// The operation, and what to do instead.
+        what: &'static str,
+    },
     /// The hash table failed.
     #[error(transparent)]
     Hash(#[from] HashError),

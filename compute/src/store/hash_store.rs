@@ -230,7 +230,12 @@ impl SparseStore for HashStore {
         )?)
     }
 
-    fn timed_lookup(&self, points: &[Vec3], filter: Filter) -> Result<TimedLookup<'_>, StoreError> {
+    fn timed_lookup(
+        &self,
+        points: &[Vec3],
+        _normals: &[Vec3],
+        filter: Filter,
+    ) -> Result<TimedLookup<'_>, StoreError> {
         let store = self.params();
         let n = points.len() as u32;
         Ok(prepare_lookup(

@@ -19,6 +19,10 @@ pub struct StoreKernels {
     pub(crate) octree_link: Kernel,
     pub(crate) octree_average: Kernel,
     pub(crate) octree_lookup: Kernel,
+    pub(crate) tiletree_texels: Kernel,
+    pub(crate) tiletree_dilate: Kernel,
+    pub(crate) tiletree_scatter: Kernel,
+    pub(crate) tiletree_lookup: Kernel,
     pub(crate) unique: Mutex<SortUnique>,
 }
 
@@ -34,6 +38,10 @@ impl StoreKernels {
             octree_link: Kernel::new(gpu, &store::OCTREE_LINK)?,
             octree_average: Kernel::new(gpu, &store::OCTREE_AVERAGE)?,
             octree_lookup: Kernel::new(gpu, &store::OCTREE_LOOKUP)?,
+            tiletree_texels: Kernel::new(gpu, &store::TILETREE_TEXELS)?,
+            tiletree_dilate: Kernel::new(gpu, &store::TILETREE_DILATE)?,
+            tiletree_scatter: Kernel::new(gpu, &store::TILETREE_SCATTER)?,
+            tiletree_lookup: Kernel::new(gpu, &store::TILETREE_LOOKUP)?,
             unique: Mutex::new(SortUnique::new(gpu)?),
         }))
     }
@@ -69,8 +77,8 @@ type RecordFn<'a> = Box<dyn Fn(&mut Recorder<'_>) -> GpuResult<()> + 'a>;
 pub struct TimedLookup<'a> {
     gpu: Gpu,
     results: GpuBuffer<[f32; 4]>,
-    // Keeps the points alive for as long as the recorded dispatches read them.
-    _points: GpuBuffer<f32>,
+    // Keeps the points (and normals) alive for as long as the recorded dispatches read them.
+    _inputs: Vec<GpuBuffer<f32>>,
     record: RecordFn<'a>,
 }
 
@@ -112,7 +120,31 @@ pub(crate) fn prepare_lookup<'a, P: Pod>(
     Ok(TimedLookup {
         gpu: gpu.clone(),
         results,
-        _points: pts,
+        _inputs: vec![pts],
+        record: Box::new(move |rec| rec.dispatch(kernel, groups, &[], &p)),
+    })
+}
+
+/// [`prepare_lookup`] for kernels that also read a normal per point:
+/// `make(points, normals, results)`.
+pub(crate) fn prepare_lookup_with_normals<'a, P: Pod>(
+    kernels: &'a StoreKernels,
+    kernel: &'a Kernel,
+    points: &[Vec3],
+    normals: &[Vec3],
+    push: impl FnOnce(u64, u64, u64) -> P,
+) -> GpuResult<TimedLookup<'a>> {
+    let gpu = &kernels.gpu;
+    let flat = |v: &[Vec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f32>>();
+    let pts = GpuBuffer::from_slice(gpu, "store lookup points", &flat(points))?;
+    let nrm = GpuBuffer::from_slice(gpu, "store lookup normals", &flat(normals))?;
+    let results = GpuBuffer::<[f32; 4]>::zeroed(gpu, "store lookup results", points.len())?;
+    let p = push(pts.address(), nrm.address(), results.address());
+    let groups = kernel.groups_for(points.len() as u64);
+    Ok(TimedLookup {
+        gpu: gpu.clone(),
+        results,
+        _inputs: vec![pts, nrm],
         record: Box::new(move |rec| rec.dispatch(kernel, groups, &[], &p)),
     })
 }

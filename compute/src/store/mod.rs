@@ -10,7 +10,10 @@
 //!
 //! - [`HashStore`]: the coherent Robin Hood hash keyed by Morton keys, payload = colour index;
 //! - [`OctreeStore`]: an N³-tree texture (Lefebvre, Hornus and Neyret 2005) in a node pool,
-//!   N chosen per level, with per-node average colours for MIP filtering.
+//!   N chosen per level, with per-node average colours for MIP filtering;
+//! - [`TileTree`]: 2D tiles on the faces of the leaves of an octree around the surface
+//!   (Lefebvre and Dachsbacher 2007), built from the mesh itself; its lookup needs the surface
+//!   normal ([`SparseStore::lookup_with_normals`]).
 
 mod colours;
 mod error;
@@ -20,6 +23,7 @@ mod lookup_cpu;
 mod marble;
 mod octree;
 mod octree_cpu;
+pub mod tiletree;
 
 pub use colours::ColourSource;
 pub use error::StoreError;
@@ -31,6 +35,7 @@ pub use lookup_cpu::{
 pub use marble::marble_rgba8;
 pub use octree::{OctreeConfig, OctreeParams, OctreeStore, MAX_OCTREE_LEVELS};
 pub use octree_cpu::OctreeCpu;
+pub use tiletree::{TileTree, TileTreeConfig, TileTreeParams, TileTreeStats};
 
 use crate::voxel::VoxelKeys;
 use bytemuck::Pod;
@@ -94,7 +99,26 @@ pub trait SparseStore {
     /// Runs the store's GLSL lookup at `points` on the GPU (tests and benchmarks).
     fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError>;
 
-    /// Uploads `points` once and returns a lookup that can be run and timed repeatedly: how
-    /// benchmarks compare the structures' lookup cost without the transfers.
-    fn timed_lookup(&self, points: &[Vec3], filter: Filter) -> Result<TimedLookup<'_>, StoreError>;
+    /// Runs the store's GLSL lookup at surface points with their normals: what a renderer has
+    /// at a hit, and what a surface store (the TileTree picks a tile face from the normal)
+    /// needs. Volume stores ignore the normals.
+    fn lookup_with_normals(
+        &self,
+        points: &[Vec3],
+        normals: &[Vec3],
+        filter: Filter,
+    ) -> Result<Vec<Vec4>, StoreError> {
+        let _ = normals;
+        self.lookup(points, filter)
+    }
+
+    /// Uploads `points` (and `normals`, which volume stores ignore) once and returns a lookup
+    /// that can be run and timed repeatedly: how benchmarks compare the structures' lookup cost
+    /// without the transfers.
+    fn timed_lookup(
+        &self,
+        points: &[Vec3],
+        normals: &[Vec3],
+        filter: Filter,
+    ) -> Result<TimedLookup<'_>, StoreError>;
 }

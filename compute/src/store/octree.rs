@@ -572,7 +572,12 @@ impl SparseStore for OctreeStore {
         self.lookup_mode(points, (filter == Filter::Trilinear) as u32)
     }
 
-    fn timed_lookup(&self, points: &[Vec3], filter: Filter) -> Result<TimedLookup<'_>, StoreError> {
+    fn timed_lookup(
+        &self,
+        points: &[Vec3],
+        _normals: &[Vec3],
+        filter: Filter,
+    ) -> Result<TimedLookup<'_>, StoreError> {
         let store = self.params();
         let n = points.len() as u32;
         Ok(prepare_lookup(

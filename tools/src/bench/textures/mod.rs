@@ -258,7 +258,7 @@ fn measure<S: SparseStore>(
     baseline: Option<String>,
     build_ms: f64,
 ) -> anyhow::Result<Measured> {
-    let lookup: TimedLookup<'_> = store.timed_lookup(&view.points, filter)?;
+    let lookup: TimedLookup<'_> = store.timed_lookup(&view.points, &view.normals, filter)?;
     let case = match filter {
         Filter::Nearest => "viewpoint lookups, nearest",
         Filter::Trilinear => "viewpoint lookups, trilinear",

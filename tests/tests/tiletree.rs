@@ -1,0 +1,423 @@
+//! The TileTree store: the GPU fill equals its CPU reference texel for texel, GPU lookups equal
+//! the CPU lookup, lookups match a dense-grid reference of the same colour source (including
+//! bilinear footprints that straddle tile borders and points where the face switches), memory
+//! accounting, the tile-map image and the errors.
+
+use glam::{Vec3, Vec4};
+use lazysolid_compute::store::tiletree::{self, pick_face, Plan, TileTreeHost, LEAF_WORDS};
+use lazysolid_compute::store::*;
+use lazysolid_renderer::mesh::Mesh;
+use lazysolid_tests::{rng, unit_mesh, with_gpu};
+use rand::Rng;
+
+/// GPU and CPU bilinear lookups sum four weighted colours in f32 in the same order; 1e-6
+/// allows for a different rounding of the weights.
+const ROUNDING: f32 = 1e-6;
+
+/// The icosphere shrunk to radius 0.4 around the cube's centre (away from the grid's edge).
+fn sphere(subdivisions: u32) -> Mesh {
+    let mut m = Mesh::icosphere(subdivisions);
+    for p in &mut m.positions {
+        *p = Vec3::splat(0.5) + (*p - 0.5) * 0.8;
+    }
+    m
+}
+
+/// Random points on the triangles with their geometric normals (every `step`-th triangle).
+fn surface_points(m: &Mesh, step: usize, per: usize, seed: u64) -> (Vec<Vec3>, Vec<Vec3>) {
+    let mut g = rng(seed);
+    let mut pts = Vec::new();
+    let mut nrm = Vec::new();
+    for t in m.triangles.iter().step_by(step) {
+        let [p0, p1, p2] = t.map(|i| m.positions[i as usize]);
+        let n = (p1 - p0).cross(p2 - p0);
+        if n.length_squared() == 0.0 {
+            continue;
+        }
+        for _ in 0..per {
+            let (a, b): (f32, f32) = (g.random(), g.random());
+            let (a, b) = if a + b > 1.0 {
+                (1.0 - a, 1.0 - b)
+            } else {
+                (a, b)
+            };
+            pts.push(p0 + (p1 - p0) * a + (p2 - p0) * b);
+            nrm.push(n.normalize());
+        }
+    }
+    (pts, nrm)
+}
+
+fn host<'a>(plan: &'a Plan, map: &'a [u32]) -> TileTreeHost<'a> {
+    TileTreeHost {
+        resolution: plan.resolution,
+        nodes: &plan.nodes,
+        root: plan.root,
+        leaves: &plan.leaf_records,
+        map,
+        map_width: plan.stats.map_width,
+    }
+}
+
+/// Whether the bilinear footprint at `p` reads a border texel of its tile, and the face read.
+fn footprint_class(h: &TileTreeHost<'_>, p: Vec3, n: Vec3) -> Option<(bool, u32, u32)> {
+    let r = h.resolution as f32;
+    let g = p * r;
+    let voxel = g.floor().clamp(Vec3::ZERO, Vec3::splat(r - 1.0)).as_uvec3();
+    let leaf = tiletree::descend(h, voxel.to_array())?;
+    let rec = &h.leaves[LEAF_WORDS * leaf as usize..];
+    let origin = [rec[0] & 0xffff, rec[0] >> 16, rec[1] & 0xffff];
+    let side = h.resolution >> ((rec[1] >> 16) & 0xff);
+    let face = pick_face(rec[1] >> 24, n);
+    let a = face as usize / 2;
+    let border = [(a + 1) % 3, (a + 2) % 3].iter().any(|&b| {
+        let t = g[b] - origin[b] as f32 + 0.5;
+        t < 1.0 || t >= side as f32
+    });
+    Some((border, face, leaf))
+}
+
+fn linear_colour(k: u32) -> impl Fn([u32; 3]) -> u32 + Sync {
+    move |v: [u32; 3]| 0xff00_0000 | (40 + k * v[0]) | (40 + k * v[1]) << 8 | (40 + k * v[2]) << 16
+}
+
+#[test]
+fn gpu_fill_and_lookups_equal_the_cpu_references() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let source = ColourSource::Marble { seed: 5 };
+        for (name, m, r) in [
+            ("bunny", unit_mesh("bunny00.off"), 64),
+            ("sphere", sphere(3), 128),
+        ] {
+            let (tree, report) = TileTree::build(
+                &kernels,
+                &m.positions,
+                &m.triangles,
+                r,
+                &source,
+                TileTreeConfig::default(),
+            )
+            .unwrap();
+            let plan = tree.plan();
+            assert_eq!(report.texels, plan.stats.tile_texels);
+            let map = tree.map_words().unwrap();
+            let want = tiletree::fill_cpu(plan, &source);
+            let diff = map.iter().zip(&want).filter(|(a, b)| a != b).count();
+            assert_eq!(diff, 0, "{name} R={r}: {diff} tile-map words differ");
+            assert!(map.iter().all(|&w| w == 0 || w >> 24 == 255));
+            // Lookups: surface points, points off the surface, and points outside the cube.
+            let (mut pts, mut nrm) = surface_points(&m, 3, 2, 11);
+            let mut g = rng(12);
+            for _ in 0..300 {
+                pts.push(Vec3::new(g.random(), g.random(), g.random()));
+                nrm.push(Vec3::new(g.random(), g.random(), g.random()) - 0.5);
+            }
+            pts.extend([Vec3::splat(-0.5), Vec3::splat(1.5)]);
+            nrm.extend([Vec3::X, -Vec3::Z]);
+            for filter in [Filter::Nearest, Filter::Trilinear] {
+                let got = tree.lookup_with_normals(&pts, &nrm, filter).unwrap();
+                let cpu = tree.lookup_cpu(&pts, &nrm, filter).unwrap();
+                let mut empty = 0;
+                for i in 0..pts.len() {
+                    let e = (got[i] - cpu[i]).abs().max_element();
+                    assert!(
+                        e <= ROUNDING,
+                        "{name} {filter:?} at {} n {}: {} vs {}",
+                        pts[i],
+                        nrm[i],
+                        got[i],
+                        cpu[i]
+                    );
+                    empty += (cpu[i] == Vec4::ZERO) as usize;
+                }
+                assert!(empty > 0, "{name}: some random points lie in empty space");
+                assert!(got[0].w > 0.99, "{name}: a surface point is stored");
+            }
+            // The colour of a texel is the marble of a voxel: nearest lookups are exact colours.
+            let near = tree
+                .lookup_with_normals(&pts[..50], &nrm[..50], Filter::Nearest)
+                .unwrap();
+            for c in near {
+                assert_eq!(c.w, 1.0);
+            }
+        }
+    });
+}
+
+/// Dense reference: the trilinear filter of the colour source over the full R³ grid at the
+/// same point. A linear colour source (k levels per voxel) is reproduced by the dense filter
+/// exactly; the TileTree's bilinear tiles reproduce it exactly in the tile's plane, and along
+/// the face axis they take the voxel floor(h) of the surface height h where the dense filter
+/// has h − ½: at most ½ voxel, plus the surface's curvature over one texel. Tolerance:
+/// k·(½ + ¼) levels. Any seam — a border texel from the wrong surface, a tile of the wrong
+/// face, an unfilled texel — would show as errors of many voxels.
+#[test]
+fn lookups_match_a_dense_reference_across_tile_borders_and_face_switches() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        for (r, sub) in [(64u32, 3u32), (128, 4)] {
+            let k = 128 / r;
+            let f = linear_colour(k);
+            let source = ColourSource::Fn(&f);
+            let m = sphere(sub);
+            let (tree, _) = TileTree::build(
+                &kernels,
+                &m.positions,
+                &m.triangles,
+                r,
+                &source,
+                TileTreeConfig::default(),
+            )
+            .unwrap();
+            let map = tree.map_words().unwrap();
+            let h = host(tree.plan(), &map);
+            // Geometric normals, and the sphere's smooth normals (as a renderer interpolates).
+            let (pts, geo) = surface_points(&m, 1, 3, 21);
+            let smooth: Vec<Vec3> = pts.iter().map(|&p| (p - 0.5).normalize()).collect();
+            let tolerance = k as f32 * 0.75 / 255.0 + 1e-6;
+            for normals in [&geo, &smooth] {
+                let got = tree
+                    .lookup_with_normals(&pts, normals, Filter::Trilinear)
+                    .unwrap();
+                let (mut border, mut switch, mut worst) = (0, 0, 0f32);
+                for (i, &p) in pts.iter().enumerate() {
+                    let dense = trilinear_cpu(|v| Some(f(v)), p, r);
+                    let e = (got[i] - dense).abs().max_element();
+                    worst = worst.max(e);
+                    assert!(
+                        e <= tolerance,
+                        "R={r} at {p} n {}: tiletree {} vs dense {dense} ({} levels)",
+                        normals[i],
+                        got[i],
+                        e * 255.0
+                    );
+                    let (b, face, _) = footprint_class(&h, p, normals[i]).unwrap();
+                    border += b as usize;
+                    // A face switch nearby: a small tilt of the normal picks another face.
+                    let n = normals[i];
+                    let tilted = [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::X, -Vec3::Y, -Vec3::Z]
+                        .iter()
+                        .any(|&d| pick_face(0x3f, n + d * 0.1) != face);
+                    switch += tilted as usize;
+                }
+                println!(
+                    "R={r}: {} points, {border} straddle a tile border, {switch} near a face switch, worst {:.2} levels (tolerance {:.2})",
+                    pts.len(),
+                    worst * 255.0,
+                    tolerance * 255.0
+                );
+                assert!(border * 40 > pts.len(), "border cases: {border}");
+                assert!(switch * 20 > pts.len(), "face-switch cases: {switch}");
+            }
+            // No seams: pairs of close points on one triangle whose lookups read different
+            // leaves or faces differ no more than the colour function itself plus twice the
+            // tolerance.
+            let mut g = rng(33);
+            let mut across = 0;
+            let (a, b): (Vec<Vec3>, Vec<Vec3>) = pts
+                .iter()
+                .zip(&geo)
+                .map(|(&p, &n)| {
+                    let d = n.any_orthonormal_vector() * (g.random::<f32>() * 0.6 / r as f32);
+                    (p, (p + d - 0.5).normalize() * 0.4 + 0.5)
+                })
+                .unzip();
+            let na: Vec<Vec3> = a.iter().map(|&p| (p - 0.5).normalize()).collect();
+            let nb: Vec<Vec3> = b.iter().map(|&p| (p - 0.5).normalize()).collect();
+            let ca = tree
+                .lookup_with_normals(&a, &na, Filter::Trilinear)
+                .unwrap();
+            let cb = tree
+                .lookup_with_normals(&b, &nb, Filter::Trilinear)
+                .unwrap();
+            for i in 0..a.len() {
+                let (_, fa, la) = footprint_class(&h, a[i], na[i]).unwrap();
+                let Some((_, fb, lb)) = footprint_class(&h, b[i], nb[i]) else {
+                    continue;
+                };
+                if fa == fb && la == lb {
+                    continue;
+                }
+                across += 1;
+                let change = (b[i] - a[i]).abs() * r as f32 * k as f32 / 255.0;
+                let e = (ca[i] - cb[i]).truncate().abs() - change;
+                assert!(
+                    e.max_element() <= 2.0 * tolerance,
+                    "seam between {} and {}: {} vs {}",
+                    a[i],
+                    b[i],
+                    ca[i],
+                    cb[i]
+                );
+            }
+            println!("R={r}: {across} close pairs across leaves or faces");
+            assert!(across > 50, "pairs across leaves or faces: {across}");
+        }
+    });
+}
+
+/// Marble against its dense trilinear filter: both are convex combinations of voxel colours
+/// near the point, so they differ by at most the colour range of the 5³ voxels around it (the
+/// tolerance set by the texel size and the colour function's gradient). Every sample point of
+/// the bunny, creases included, stays within it.
+#[test]
+fn marble_lookups_stay_within_the_local_colour_range() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let r = 64;
+        let m = unit_mesh("bunny00.off");
+        let source = ColourSource::Marble { seed: 3 };
+        let (tree, _) = TileTree::build(
+            &kernels,
+            &m.positions,
+            &m.triangles,
+            r,
+            &source,
+            TileTreeConfig::default(),
+        )
+        .unwrap();
+        let (pts, nrm) = surface_points(&m, 2, 1, 41);
+        let got = tree
+            .lookup_with_normals(&pts, &nrm, Filter::Trilinear)
+            .unwrap();
+        let mut over = 0;
+        for (i, &p) in pts.iter().enumerate() {
+            let dense = trilinear_cpu(|v| Some(marble_rgba8(v, r, 3)), p, r);
+            let c = (p * r as f32).floor().as_ivec3();
+            let (mut lo, mut hi) = (Vec4::ONE, Vec4::ZERO);
+            for z in -2..=2 {
+                for y in -2..=2 {
+                    for x in -2..=2 {
+                        let v = (c + glam::IVec3::new(x, y, z))
+                            .clamp(glam::IVec3::ZERO, glam::IVec3::splat(r as i32 - 1));
+                        let col = unpack_rgba8(marble_rgba8(v.as_uvec3().to_array(), r, 3));
+                        lo = lo.min(col);
+                        hi = hi.max(col);
+                    }
+                }
+            }
+            let e = (got[i] - dense).abs();
+            over += (e.cmpgt(hi - lo + 1e-5)).any() as usize;
+        }
+        println!(
+            "marble: {over} of {} points outside the local range",
+            pts.len()
+        );
+        assert_eq!(over, 0, "points outside the local colour range");
+    });
+}
+
+#[test]
+fn memory_is_the_sum_of_the_buffers_and_the_tile_map_is_written_as_png() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let m = unit_mesh("bunny00.off");
+        let (tree, _) = TileTree::build(
+            &kernels,
+            &m.positions,
+            &m.triangles,
+            64,
+            &ColourSource::Marble { seed: 1 },
+            TileTreeConfig::default(),
+        )
+        .unwrap();
+        let plan = tree.plan();
+        let s = tree.stats();
+        let want = 4 * (plan.nodes.len() + plan.leaf_records.len()) as u64
+            + 4 * s.map_width as u64 * s.map_height as u64;
+        assert_eq!(tree.bytes(), want);
+        assert_eq!(plan.leaf_records.len(), LEAF_WORDS * s.leaves);
+        assert!(
+            s.occupancy() > 0.8 && s.occupancy() <= 1.0,
+            "{}",
+            s.occupancy()
+        );
+        assert_eq!(s.tiles, plan.tiles.len());
+        println!(
+            "bunny R=64: {s:?}, occupancy {:.3}, {} bytes",
+            s.occupancy(),
+            tree.bytes()
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("tiles.png");
+        tree.write_tile_map_png(&path).unwrap();
+        let image = image::open(&path).unwrap().to_rgba8();
+        assert_eq!(image.dimensions(), (s.map_width, s.map_height));
+        let words = tree.map_words().unwrap();
+        assert_eq!(
+            image.as_raw().as_slice(),
+            bytemuck::cast_slice::<u32, u8>(&words)
+        );
+        let missing = dir.path().join("no-such-dir").join("tiles.png");
+        let err = tree.write_tile_map_png(&missing).unwrap_err().to_string();
+        assert!(err.contains("no-such-dir"), "{err}");
+    });
+}
+
+#[test]
+fn bad_input_gets_clear_errors() {
+    let m = sphere(1);
+    let config = TileTreeConfig::default();
+    let err = |r: u32, p: &[Vec3], t: &[[u32; 3]], c: TileTreeConfig| {
+        Plan::new(p, t, r, c).err().expect("must fail").to_string()
+    };
+    let e = err(100, &m.positions, &m.triangles, config);
+    assert!(e.contains("power of two") && e.contains("100"), "{e}");
+    let e = err(4096, &m.positions, &m.triangles, config);
+    assert!(e.contains("4096") && e.contains("2048"), "{e}");
+    let e = err(64, &m.positions, &[], config);
+    assert!(e.contains("no triangle"), "{e}");
+    let e = err(64, &m.positions, &[[0, 1, 999]], config);
+    assert!(e.contains("999"), "{e}");
+    let e = err(
+        64,
+        &[Vec3::ZERO, Vec3::X, Vec3::new(2.0, 0.0, 0.0)],
+        &[[0, 1, 2]],
+        config,
+    );
+    assert!(e.contains("vertex 2") && e.contains("unit cube"), "{e}");
+    let e = err(64, &[Vec3::ZERO, Vec3::X, Vec3::X], &[[0, 1, 2]], config);
+    assert!(e.contains("degenerate"), "{e}");
+    let bad = TileTreeConfig {
+        min_tile: 16,
+        max_tile: 8,
+        ..config
+    };
+    let e = err(64, &m.positions, &m.triangles, bad);
+    assert!(e.contains("min_tile = 16"), "{e}");
+    // A map taller than the records' 16-bit coordinates: one 6-texel tile per shelf.
+    let narrow = TileTreeConfig {
+        max_tile: 4,
+        min_tile: 4,
+        max_map_width: 6,
+    };
+    let e = err(512, &sphere(3).positions, &sphere(3).triangles, narrow);
+    assert!(e.contains("tile map"), "{e}");
+
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let (mut tree, _) = TileTree::build(
+            &kernels,
+            &m.positions,
+            &m.triangles,
+            32,
+            &ColourSource::Marble { seed: 1 },
+            config,
+        )
+        .unwrap();
+        let e = tree
+            .lookup(&[Vec3::splat(0.5)], Filter::Nearest)
+            .unwrap_err();
+        assert!(e.to_string().contains("lookup_with_normals"), "{e}");
+        let e = tree
+            .lookup_with_normals(&[Vec3::splat(0.5)], &[], Filter::Nearest)
+            .unwrap_err();
+        assert!(e.to_string().contains("1 points but 0 normals"), "{e}");
+        let keys = lazysolid_compute::voxel::VoxelKeys::from_sorted(gpu, "k", &[1]).unwrap();
+        let e = tree
+            .insert(&keys, &ColourSource::Marble { seed: 1 })
+            .unwrap_err();
+        assert!(e.to_string().contains("not supported"), "{e}");
+    });
+}
