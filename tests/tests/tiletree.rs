@@ -421,3 +421,109 @@ fn bad_input_gets_clear_errors() {
         assert!(e.to_string().contains("not supported"), "{e}");
     });
 }
+
+/// The armadillo at an equivalent 1024³ (thesis Table 4.1: 11.4 MB): sizes and build time for
+/// a few tile-size limits. A measurement, not a check: `cargo test -p lazysolid-tests --test
+/// tiletree -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn armadillo_1024_size() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let m = unit_mesh("armadillo.off");
+        for (max_tile, min_tile) in [(16, 4), (32, 4), (64, 8), (8, 4)] {
+            let config = TileTreeConfig {
+                max_tile,
+                min_tile,
+                ..TileTreeConfig::default()
+            };
+            let start = std::time::Instant::now();
+            let plan = Plan::new(&m.positions, &m.triangles, 1024, config).unwrap();
+            let cpu = start.elapsed();
+            drop(plan);
+            let start = std::time::Instant::now();
+            let (tree, _) = TileTree::build(
+                &kernels,
+                &m.positions,
+                &m.triangles,
+                1024,
+                &ColourSource::Marble { seed: 1 },
+                config,
+            )
+            .unwrap();
+            let total = start.elapsed();
+            let s = tree.stats();
+            let [nodes, leaves, map] = tree.bytes_by_part();
+            println!(
+                "max_tile {max_tile} min_tile {min_tile}: {:.2} MB (nodes {:.3}, leaves {:.3}, map {:.2} MB), plan {:.2} s, build {:.2} s; {} nodes, {} leaves ({} folded), per depth {:?}, tiles per leaf {:?}, {} tiles, {} texels, map {}x{}, occupancy {:.3}",
+                tree.bytes() as f64 / 1e6,
+                nodes as f64 / 1e6,
+                leaves as f64 / 1e6,
+                map as f64 / 1e6,
+                cpu.as_secs_f64(),
+                total.as_secs_f64(),
+                s.nodes,
+                s.leaves,
+                s.folded_leaves,
+                s.leaves_per_depth,
+                s.tiles_per_leaf,
+                s.tiles,
+                s.tile_texels,
+                s.map_width,
+                s.map_height,
+                s.occupancy()
+            );
+            if max_tile == 16 {
+                let dir = std::env::temp_dir().join("lazysolid-armadillo-tiles.png");
+                tree.write_tile_map_png(&dir).unwrap();
+                // What the texels hold: surface hits, against the surface voxels of a volume.
+                let plan = tree.plan();
+                let mut hits = 0u64;
+                let mut interior = 0u64;
+                for tile in &plan.tiles {
+                    let side = tile.stored_side();
+                    interior += tile.side as u64 * tile.side as u64;
+                    for y in 0..side {
+                        for x in 0..side {
+                            hits += tiletree::texel_voxel(plan, tile, x, y).1 as u64;
+                        }
+                    }
+                }
+                let mut v = lazysolid_compute::voxel::Voxelizer::new(gpu).unwrap();
+                let voxels = v.surface(&m.positions, &m.triangles, 1024).unwrap().len;
+                println!(
+                    "  texels: {} in all, {interior} without borders, {hits} with a surface hit; surface voxels at 1024: {voxels}",
+                    s.tile_texels
+                );
+            }
+        }
+    });
+}
+
+/// Two stacked sheets facing +Z, 3.2 voxels apart, fold over one column: the tree splits until
+/// they lie in different leaves (T = 4), where a single sheet stays in T = 16 leaves.
+#[test]
+fn folds_split_leaves_until_each_face_projects_injectively() {
+    let quad = |z: f32, base: u32| {
+        let p = [(0.1, 0.1), (0.9, 0.1), (0.9, 0.9), (0.1, 0.9)].map(|(x, y)| Vec3::new(x, y, z));
+        (p, [[base, base + 1, base + 2], [base, base + 2, base + 3]])
+    };
+    let (a, ta) = quad(0.3, 0);
+    let (b, tb) = quad(0.35, 4);
+    let config = TileTreeConfig::default();
+    let one = Plan::new(&a, &ta, 64, config).unwrap();
+    assert_eq!(one.stats.leaves_per_depth, vec![0, 0, 16]);
+    let positions: Vec<Vec3> = a.iter().chain(&b).copied().collect();
+    let triangles: Vec<[u32; 3]> = ta.iter().chain(&tb).copied().collect();
+    let two = Plan::new(&positions, &triangles, 64, config).unwrap();
+    assert_eq!(two.stats.folded_leaves, 0);
+    assert_eq!(*two.stats.leaves_per_depth.last().unwrap(), 2 * 14 * 14);
+    assert_eq!(two.stats.leaves_per_depth.len(), 5, "{:?}", two.stats);
+    // At T = 4 nothing may split any more: the fold stays, counted.
+    let coarse = TileTreeConfig {
+        min_tile: 8,
+        ..config
+    };
+    let kept = Plan::new(&positions, &triangles, 64, coarse).unwrap();
+    assert!(kept.stats.folded_leaves > 0);
+}

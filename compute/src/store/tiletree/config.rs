@@ -25,7 +25,7 @@ pub struct TileTreeConfig {
 impl Default for TileTreeConfig {
     fn default() -> Self {
         TileTreeConfig {
-            max_tile: 32,
+            max_tile: 16,
             min_tile: 4,
             max_map_width: 16384,
         }
