@@ -610,7 +610,7 @@ fn bench_textures_writes_the_table_pictures_and_files() {
         .iter()
         .filter(|(k, _)| k.ends_with("points not stored"))
         .collect();
-    assert_eq!(missing.len(), 2 * 4, "{missing:?}");
+    assert_eq!(missing.len(), 2 * 5, "{missing:?}");
     assert!(
         missing.iter().all(|(_, v)| v.as_f64() == Some(0.0)),
         "{missing:?}"
@@ -620,7 +620,11 @@ fn bench_textures_writes_the_table_pictures_and_files() {
         .find(|p| p.is_dir())
         .expect("a figures folder");
     let picture = |name: &str| image::open(figures.join(name)).unwrap().to_rgb8();
-    for f in ["textures-memory.png", "textures-speed.png"] {
+    for f in [
+        "textures-memory.png",
+        "textures-speed.png",
+        "tiletree-tile-map.png",
+    ] {
         assert!(figures.join(f).exists(), "missing {f}");
     }
     // The same texels through different structures: nearest pictures are identical, trilinear
@@ -642,6 +646,26 @@ fn bench_textures_writes_the_table_pictures_and_files() {
         .max()
         .unwrap();
     assert!(worst <= 1, "{worst}");
+    // The TileTree samples the surface where the volume stores sample voxel centres: close to
+    // the trilinear picture (FLIP), closer than the nearest one is.
+    let flip = |a: &str, b: &str| {
+        let (ok, out, err) = run(lazysolid()
+            .arg("diff")
+            .arg(figures.join(a))
+            .arg(figures.join(b)));
+        assert!(ok, "{err}");
+        let mean = out
+            .lines()
+            .find_map(|l| l.strip_prefix("FLIP mean"))
+            .unwrap_or_else(|| panic!("no FLIP mean in {out}"));
+        mean.trim().parse::<f64>().unwrap()
+    };
+    let tile = flip("octree-8-8-8-descents.png", "tiletree-bilinear-1-fetch.png");
+    let nearest = flip("octree-8-8-8-descents.png", "octree-8-8-nearest.png");
+    assert!(
+        tile < 0.05 && tile < nearest,
+        "tiletree {tile}, nearest {nearest}"
+    );
 }
 
 #[test]

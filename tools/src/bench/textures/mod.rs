@@ -18,7 +18,7 @@ use clap::Args;
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{
     ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, SparseStore, StoreKernels,
-    TimedLookup,
+    TileTree, TileTreeConfig, TimedLookup,
 };
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
@@ -91,7 +91,7 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "the viewpoint sees nothing of {}",
         mesh_path.display()
     );
-    let cases = 2 * (1 + octrees.len() as u64);
+    let cases = 2 * (2 + octrees.len() as u64);
     let mut bench = Bench::new("bench-textures", &gpu, &args.common, cases)?;
     let dir = bench.artifact_dir()?;
     let source = ColourSource::Marble { seed: args.seed };
@@ -144,6 +144,33 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             Some(baseline(filter)),
             build_ms,
         )?);
+        let label = "tiletree".to_string() + tile_filter(filter);
+        let (tree, build_ms) = time_cpu(|| {
+            TileTree::build(
+                &kernels,
+                &mesh.positions,
+                &mesh.triangles,
+                args.res,
+                &source,
+                TileTreeConfig::default(),
+            )
+        });
+        let (tree, _) = tree.with_context(|| format!("building the {label}"))?;
+        if filter == Filter::Trilinear {
+            tree.write_tile_map_png(&dir.join("tiletree-tile-map.png"))?;
+        }
+        let thesis = (filter == Filter::Trilinear).then_some(ThesisRow::TileTree);
+        measured.push(measure(
+            &mut bench,
+            &dir,
+            &view,
+            &tree,
+            filter,
+            label,
+            thesis,
+            Some(baseline(filter)),
+            build_ms,
+        )?);
     }
 
     summary(&measured, &bench, &dir, args)?;
@@ -176,6 +203,13 @@ fn descents(f: Filter) -> &'static str {
     match f {
         Filter::Nearest => " (nearest)",
         Filter::Trilinear => " (8 descents)",
+    }
+}
+
+fn tile_filter(f: Filter) -> &'static str {
+    match f {
+        Filter::Nearest => " (nearest)",
+        Filter::Trilinear => " (bilinear, 1 fetch)",
     }
 }
 
