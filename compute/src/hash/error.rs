@@ -81,6 +81,16 @@ pub enum HashError {
         /// Keys unplaced in the last attempt.
         failed: u32,
     },
+    /// Perfect-hash construction found no offset for some bucket at every |Φ| tried.
+    #[error("perfect hash construction failed after {attempts} attempt(s); the last, {sizes}, failed because {reason}")]
+    PerfectHashFailed {
+        /// Attempts made.
+        attempts: u32,
+        /// Sizes of the last attempt.
+        sizes: String,
+        /// Why the last attempt failed.
+        reason: String,
+    },
     /// A parameter out of range.
     #[error("{0}")]
     InvalidArgument(String),

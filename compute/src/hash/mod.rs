@@ -5,7 +5,8 @@
 //!   (2011) or a randomizing one ([`Probe`]);
 //! - [`CuckooTable`]: single-pass cuckoo hashing with four hash functions (Alcantara et al.),
 //!   the constant-probe baseline;
-//! - [`DenseTable`]: a plain array over the whole universe, the practical limit of any lookup.
+//! - [`DenseTable`]: a plain array over the whole universe, the practical limit of any lookup;
+//! - [`perfect`]: perfect spatial hashing (Lefebvre and Hoppe 2006), two reads per lookup.
 //!
 //! Keys are points of a 2D or 3D [`Universe`] laid out as integers ([`KeyLayout`]); payloads
 //! are `u32` below [`crate::shader_constants::HASH_NOT_FOUND`]. The cell layouts, the offset
@@ -19,6 +20,7 @@ mod error;
 mod kernels;
 mod keys;
 mod open_addressing;
+pub mod perfect;
 mod probe;
 mod robin_hood;
 mod robin_hood_cpu;
