@@ -3,8 +3,10 @@
 //! further voxels, the octree's pool word for word, its growth and in-place updates.
 
 use glam::{Vec3, Vec4};
+use lazysolid_compute::hash::perfect::{table_bytes, PerfectAccess};
 use lazysolid_compute::hash::{morton_decode, RobinHoodConfig};
 use lazysolid_compute::store::*;
+use lazysolid_compute::voxel::VoxelGrid;
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_tests::{rng, unit_mesh, with_gpu};
@@ -154,6 +156,113 @@ fn hash_store_matches_its_reference_and_grows_by_inserts() {
             e.err()
         );
         assert_eq!(store.len(), all.len() as u64);
+    });
+}
+
+#[test]
+fn perfect_store_matches_its_reference_in_both_layouts_and_grows_by_rebuilds() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let m = unit_mesh("bunny00.off");
+        let r = 96;
+        let (all, first, second) = voxel_sets(&mut v, &m, r);
+        let f = |p: [u32; 3]| 0xff00_0000 | p[0] | (p[1] << 8) | ((p[2] * 7) & 255) << 16;
+        let source = ColourSource::Fn(&f);
+        let map: HashMap<[u32; 3], u32> = all
+            .iter()
+            .map(|&k| (morton_decode(k, 3), f(morton_decode(k, 3))))
+            .collect();
+        let texel = |p| map.get(&p).copied();
+        let pts = points(&m, r, 5);
+        let surface = m.triangles.len().div_ceil(5);
+
+        // Unconstrained texel layout: unstored voxels read 0, so the full reference check
+        // applies; built on half the voxels, the other half inserted by a rebuild.
+        let k1 = VoxelKeys::from_sorted(gpu, "first", &first).unwrap();
+        let k2 = VoxelKeys::from_sorted(gpu, "second", &second).unwrap();
+        let mut store =
+            PerfectStore::build(&kernels, r, &k1, &source, PerfectAccess::Unconstrained).unwrap();
+        assert_eq!(store.len(), first.len() as u64);
+        let report = store.insert(&k2, &source).unwrap();
+        assert_eq!(report.texels, all.len() as u64);
+        assert!(
+            report.reallocations[0]
+                .contains(&format!("perfect hash rebuilt for {} keys", all.len())),
+            "{:?}",
+            report.reallocations
+        );
+        check_lookups(&store, texel, &all, &pts);
+        let sizes = *store.table().sizes();
+        assert_eq!(
+            store.bytes(),
+            table_bytes(&sizes, PerfectAccess::Unconstrained, 1)
+        );
+        let again = VoxelKeys::from_sorted(gpu, "again", &second[..3]).unwrap();
+        let e = store.insert(&again, &source);
+        assert!(
+            matches!(e, Err(StoreError::AlreadyStored { .. })),
+            "{:?}",
+            e.err()
+        );
+        assert_eq!(store.len(), all.len() as u64);
+
+        // Constrained texel layout (no keys stored): exact at every stored voxel, trilinear
+        // within the tolerance at surface points (all 8 corners stored), 4 B per slot + Φ.
+        let keys = VoxelKeys::from_sorted(gpu, "all", &all).unwrap();
+        let store =
+            PerfectStore::build(&kernels, r, &keys, &source, PerfectAccess::Constrained).unwrap();
+        let got = store.lookup(&centres(&all, r), Filter::Nearest).unwrap();
+        for (&k, g) in all.iter().zip(&got) {
+            assert_eq!(*g, unpack_rgba8(f(morton_decode(k, 3))));
+        }
+        let tri = store.lookup(&pts[..surface], Filter::Trilinear).unwrap();
+        for (p, t) in pts[..surface].iter().zip(&tri) {
+            let want = trilinear_cpu(texel, *p, r);
+            assert!(
+                (*t - want).abs().max_element() <= TRILINEAR_TOLERANCE,
+                "{p}"
+            );
+        }
+        let sizes = *store.table().sizes();
+        assert_eq!(
+            store.bytes(),
+            table_bytes(&sizes, PerfectAccess::Constrained, 1)
+        );
+        let bits = (store.bytes() - 4 * sizes.slots() as u64) as f64 * 8.0 / all.len() as f64;
+        let want = sizes.bits_per_key(all.len());
+        assert!(
+            bits >= want && bits <= want + 128.0 / all.len() as f64,
+            "offset table {bits} bits per key, sizes say {want}: {:?}",
+            store.table().report
+        );
+
+        // Blocked layout from the interpolation cells: one block per trilinear lookup, the same
+        // filtered colours as the reference, and nearest from the block.
+        let cells = v
+            .cells(&m.positions, &m.triangles, VoxelGrid::cells(r).unwrap())
+            .unwrap();
+        let blocked = PerfectStore::build_blocked(&kernels, r, &cells, &source, None).unwrap();
+        let b = blocked.block().expect("a block size");
+        assert!((1..=4).contains(&b), "{b}");
+        let tri = blocked.lookup(&pts[..surface], Filter::Trilinear).unwrap();
+        let near = blocked.lookup(&pts[..surface], Filter::Nearest).unwrap();
+        for (i, p) in pts[..surface].iter().enumerate() {
+            let want = trilinear_cpu(texel, *p, r);
+            assert!(
+                (tri[i] - want).abs().max_element() <= TRILINEAR_TOLERANCE,
+                "blocked b={b} at {p}: {} vs {want}",
+                tri[i]
+            );
+            assert_eq!(near[i], unpack_rgba8(nearest_cpu(texel, *p, r)), "{p}");
+        }
+        let e = PerfectStore::build_blocked(&kernels, r, &cells, &source, Some(5));
+        assert!(e.is_err());
+        let mut blocked = blocked;
+        assert!(matches!(
+            blocked.insert(&k2, &source),
+            Err(StoreError::Unsupported { .. })
+        ));
     });
 }
 

@@ -588,6 +588,9 @@ fn bench_textures_writes_the_table_pictures_and_files() {
         "octree 8·8 (nearest)",
         "octree 4·4·4 (8 descents)",
         "coherent hash (8 lookups)",
+        "perfect hash (nearest)",
+        "perfect hash blocked, b = ",
+        "tiletree (bilinear, 1 fetch)",
         "stands for the thesis' octree texture, 8 lookups (Table 4.1)",
     ] {
         assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
@@ -610,7 +613,7 @@ fn bench_textures_writes_the_table_pictures_and_files() {
         .iter()
         .filter(|(k, _)| k.ends_with("points not stored"))
         .collect();
-    assert_eq!(missing.len(), 2 * 5, "{missing:?}");
+    assert_eq!(missing.len(), 2 * 6 + 1, "{missing:?}");
     assert!(
         missing.iter().all(|(_, v)| v.as_f64() == Some(0.0)),
         "{missing:?}"
@@ -629,23 +632,21 @@ fn bench_textures_writes_the_table_pictures_and_files() {
     }
     // The same texels through different structures: nearest pictures are identical, trilinear
     // ones agree to float rounding.
-    assert_eq!(
-        picture("octree-8-8-nearest.png"),
-        picture("coherent-hash-nearest.png")
-    );
-    let (a, b) = (
-        picture("octree-8-8-8-descents.png"),
-        picture("coherent-hash-8-lookups.png"),
-    );
+    for other in ["coherent-hash-nearest.png", "perfect-hash-nearest.png"] {
+        assert_eq!(picture("octree-8-8-nearest.png"), picture(other), "{other}");
+    }
+    let a = picture("octree-8-8-8-descents.png");
     assert_eq!(a.dimensions(), (64, 64));
-    let worst = a
-        .as_raw()
-        .iter()
-        .zip(b.as_raw())
-        .map(|(x, y)| x.abs_diff(*y))
-        .max()
-        .unwrap();
-    assert!(worst <= 1, "{worst}");
+    for other in ["coherent-hash-8-lookups.png", "perfect-hash-8-lookups.png"] {
+        let worst = a
+            .as_raw()
+            .iter()
+            .zip(picture(other).as_raw())
+            .map(|(x, y)| x.abs_diff(*y))
+            .max()
+            .unwrap();
+        assert!(worst <= 1, "{other}: {worst}");
+    }
     // The TileTree samples the surface where the volume stores sample voxel centres: close to
     // the trilinear picture (FLIP), closer than the nearest one is.
     let flip = |a: &str, b: &str| {

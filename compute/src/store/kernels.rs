@@ -2,6 +2,7 @@
 //! at its first dispatch, so stores must not rebuild them).
 
 use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use crate::hash::perfect::PerfectKernels;
 use crate::hash::HashKernels;
 use crate::kernels::store;
 use crate::voxel::SortUnique;
@@ -13,6 +14,8 @@ use std::sync::{Arc, Mutex};
 pub struct StoreKernels {
     pub(crate) gpu: Gpu,
     pub(crate) hash: Arc<HashKernels>,
+    pub(crate) perfect: Arc<PerfectKernels>,
+    pub(crate) perfect_lookup: Kernel,
     pub(crate) fill_marble: Kernel,
     pub(crate) hash_lookup: Kernel,
     pub(crate) octree_nodes: Kernel,
@@ -32,6 +35,8 @@ impl StoreKernels {
         Ok(Arc::new(StoreKernels {
             gpu: gpu.clone(),
             hash: HashKernels::new(gpu)?,
+            perfect: PerfectKernels::new(gpu)?,
+            perfect_lookup: Kernel::new(gpu, &store::PERFECT_LOOKUP)?,
             fill_marble: Kernel::new(gpu, &store::FILL_MARBLE)?,
             hash_lookup: Kernel::new(gpu, &store::HASH_LOOKUP)?,
             octree_nodes: Kernel::new(gpu, &store::OCTREE_NODES)?,

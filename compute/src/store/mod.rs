@@ -23,6 +23,7 @@ mod lookup_cpu;
 mod marble;
 mod octree;
 mod octree_cpu;
+mod perfect_store;
 pub mod tiletree;
 
 pub use colours::ColourSource;
@@ -35,6 +36,7 @@ pub use lookup_cpu::{
 pub use marble::marble_rgba8;
 pub use octree::{OctreeConfig, OctreeParams, OctreeStore, MAX_OCTREE_LEVELS};
 pub use octree_cpu::OctreeCpu;
+pub use perfect_store::{PerfectStore, PerfectStoreParams};
 pub use tiletree::{TileTree, TileTreeConfig, TileTreeParams, TileTreeStats};
 
 use crate::voxel::VoxelKeys;

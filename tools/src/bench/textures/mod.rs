@@ -15,12 +15,13 @@ use super::CommonArgs;
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
+use lazysolid_compute::hash::perfect::PerfectAccess;
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{
-    ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, SparseStore, StoreKernels,
-    TileTree, TileTreeConfig, TimedLookup,
+    ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore,
+    StoreKernels, TileTree, TileTreeConfig, TimedLookup,
 };
-use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
+use lazysolid_compute::voxel::{VoxelGrid, VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
 use std::path::PathBuf;
 use thesis::ThesisRow;
@@ -85,13 +86,18 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let (corners, corners_ms) =
         time_cpu(|| voxelizer.interpolation(&mesh.positions, &mesh.triangles, args.res));
     let corners = corners?;
+    let cells = voxelizer.cells(
+        &mesh.positions,
+        &mesh.triangles,
+        VoxelGrid::cells(args.res)?,
+    )?;
     let view = viewpoint::view(&mesh, args.view);
     ensure!(
         !view.points.is_empty(),
         "the viewpoint sees nothing of {}",
         mesh_path.display()
     );
-    let cases = 2 * (2 + octrees.len() as u64);
+    let cases = 2 * (3 + octrees.len() as u64) + 1;
     let mut bench = Bench::new("bench-textures", &gpu, &args.common, cases)?;
     let dir = bench.artifact_dir()?;
     let source = ColourSource::Marble { seed: args.seed };
@@ -144,6 +150,53 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             Some(baseline(filter)),
             build_ms,
         )?);
+        let label = "perfect hash".to_string() + lookups(filter);
+        let (store, build_ms) = time_cpu(|| {
+            PerfectStore::build(
+                &kernels,
+                args.res,
+                keys,
+                &source,
+                PerfectAccess::Constrained,
+            )
+        });
+        let store = store.with_context(|| format!("building the {label}"))?;
+        let thesis = match filter {
+            Filter::Nearest => ThesisRow::HashNearest,
+            Filter::Trilinear => ThesisRow::HashTrilinear,
+        };
+        measured.push(measure(
+            &mut bench,
+            &dir,
+            &view,
+            &store,
+            filter,
+            label,
+            Some(thesis),
+            Some(baseline(filter)),
+            build_ms,
+        )?);
+        drop(store);
+        if filter == Filter::Trilinear {
+            let (store, build_ms) =
+                time_cpu(|| PerfectStore::build_blocked(&kernels, args.res, &cells, &source, None));
+            let store = store.context("building the blocked perfect hash")?;
+            let label = format!(
+                "perfect hash blocked, b = {} (1 block)",
+                store.block().unwrap_or(0)
+            );
+            measured.push(measure(
+                &mut bench,
+                &dir,
+                &view,
+                &store,
+                filter,
+                label,
+                Some(ThesisRow::HashBlocked),
+                Some(baseline(filter)),
+                build_ms,
+            )?);
+        }
         let label = "tiletree".to_string() + tile_filter(filter);
         let (tree, build_ms) = time_cpu(|| {
             TileTree::build(

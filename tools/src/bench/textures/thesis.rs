@@ -4,8 +4,6 @@
 //! the §4.2.2 measurement (GeForce 7800 GTX, 800² window) for the nearest rows.
 
 /// A structure as the thesis names it.
-// The perfect-hash and TileTree rows are measured once those structures are stores.
-#[allow(dead_code)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ThesisRow {
     /// Octree texture, nearest: 18.0 MB, 180 fps (§4.2.2).

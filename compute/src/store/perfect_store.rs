@@ -1,0 +1,342 @@
+//! The perfect-hash store (Lefebvre and Hoppe 2006, thesis §4.2.2): a perfect spatial hash of
+//! the voxels' grid points, built on the GPU, whose payload is the texel's RGBA8 colour itself
+//! — two reads per texel and about 4 bits of offset table per texel beside the colours. Two
+//! layouts, as in thesis Table 4.1:
+//!
+//! - texel layout ([`PerfectStore::build`]): one texel per key; nearest = one lookup, trilinear = 8 lookups
+//!   over the interpolation voxels;
+//! - blocked layout ([`PerfectStore::build_blocked`]): keys are blocks of b×b×b interpolation cells holding (b+1)³
+//!   texels with duplicated borders, so one offset read and one block serve a trilinear lookup
+//!   (built from the interpolation *cells*).
+//!
+//! The hash is static: inserting further voxels rebuilds it over all of them (reported).
+
+use super::colours::{check_keys, fill_colours, ColourSource};
+use super::error::StoreError;
+use super::kernels::{prepare_lookup, run_lookup, StoreKernels, TimedLookup};
+use super::{Filter, SparseStore, StoreReport};
+use crate::gpu::GpuBuffer;
+use crate::hash::perfect::{
+    BlockedPerfectHash, PerfectAccess, PerfectBuilder, PerfectConfig, PerfectHashGpu, PerfectParams,
+};
+use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
+use crate::voxel::VoxelKeys;
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec3, Vec4};
+use std::sync::Arc;
+
+/// What `store/perfect.glsl` receives: the `PerfectStoreParams` struct, field for field.
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+#[repr(C, packed(4))]
+pub struct PerfectStoreParams {
+    /// The hash table.
+    pub table: PerfectParams,
+    /// R.
+    pub resolution: u32,
+    /// b of the blocked layout, 0 for the texel layout.
+    pub block: u32,
+    /// 1 when absent voxels are detected (tags stored).
+    pub unconstrained: u32,
+    /// Padding.
+    pub pad: u32,
+}
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct LookupPush {
+    store: PerfectStoreParams,
+    points: u64,
+    results: u64,
+    n: u32,
+    mode: u32,
+}
+
+/// The perfect-hash store.
+pub struct PerfectStore {
+    kernels: Arc<StoreKernels>,
+    table: PerfectHashGpu,
+    access: PerfectAccess,
+    block: u32,
+    resolution: u32,
+    /// Host copies of the keys and colours (texel layout), for rebuilds on insert.
+    keys: Vec<u64>,
+    colours: Vec<u32>,
+    len: u64,
+}
+
+const NAME: &str = "perfect";
+
+fn universe(resolution: u32) -> Result<Universe, StoreError> {
+    if resolution == 0 || resolution > crate::voxel::MAX_RESOLUTION {
+        return Err(StoreError::Config {
+            store: NAME,
+            problem: format!(
+                "resolution {resolution} is outside 1..={}",
+                crate::voxel::MAX_RESOLUTION
+            ),
+        });
+    }
+    Ok(Universe::new_3d([resolution; 3], KeyLayout::Morton)?)
+}
+
+fn duplicate(e: HashError) -> StoreError {
+    match e {
+        HashError::DuplicateKey { key, count } => StoreError::AlreadyStored {
+            store: NAME,
+            voxel: morton_decode(key, 3),
+            count,
+        },
+        e => e.into(),
+    }
+}
+
+impl PerfectStore {
+    /// Builds the texel layout over the voxels `keys` of the `resolution`³ grid on the GPU.
+    /// Unconstrained access stores a tag per slot so that unstored voxels read (0, 0, 0, 0);
+    /// constrained access (the texturing case of the thesis) stores none, and reading an
+    /// unstored voxel returns some stored texel.
+    ///
+    /// # Errors
+    /// Keys outside the grid, repeated keys, with unconstrained access a colour equal to
+    /// `HASH_NOT_FOUND` (opaque white, which marks absent keys), the hash's size limits and
+    /// device failures.
+    pub fn build(
+        kernels: &Arc<StoreKernels>,
+        resolution: u32,
+        keys: &VoxelKeys,
+        colours: &ColourSource<'_>,
+        access: PerfectAccess,
+    ) -> Result<PerfectStore, StoreError> {
+        let host_keys = keys.read()?;
+        check_keys(NAME, &host_keys, resolution)?;
+        let gpu = kernels.gpu.clone();
+        let buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        fill_colours(
+            &gpu,
+            &kernels.fill_marble,
+            keys,
+            colours,
+            resolution,
+            &buffer,
+            0,
+        )?;
+        let host_colours = buffer.read_range(0, keys.len)?;
+        let mut store = PerfectStore {
+            kernels: kernels.clone(),
+            table: Self::hash(kernels, resolution, keys, &buffer, access)?,
+            access,
+            block: 0,
+            resolution,
+            keys: host_keys,
+            colours: host_colours,
+            len: keys.len as u64,
+        };
+        store.len = store.keys.len() as u64;
+        Ok(store)
+    }
+
+    fn hash(
+        kernels: &Arc<StoreKernels>,
+        resolution: u32,
+        keys: &VoxelKeys,
+        colours: &GpuBuffer<u32>,
+        access: PerfectAccess,
+    ) -> Result<PerfectHashGpu, StoreError> {
+        let config = PerfectConfig {
+            access,
+            ..PerfectConfig::default()
+        };
+        PerfectBuilder::new(&kernels.perfect)
+            .build(universe(resolution)?, &keys.keys, colours, keys.len, config)
+            .map_err(duplicate)
+    }
+
+    /// Builds the blocked layout from the interpolation cells `cells` (Morton keys of the
+    /// shifted grid, as `Voxelizer::cells(.., VoxelGrid::cells(resolution))` returns them):
+    /// each key is a block of b×b×b cells holding the (b+1)³ texels they read. `block: None`
+    /// tries b = 1..=4 and keeps the b of least memory. Constrained access only (only points
+    /// whose footprint cell was given may be read).
+    ///
+    /// # Errors
+    /// A block size outside 1..=4, cells outside the shifted grid, the hash's errors.
+    pub fn build_blocked(
+        kernels: &Arc<StoreKernels>,
+        resolution: u32,
+        cells: &VoxelKeys,
+        colours: &ColourSource<'_>,
+        block: Option<u32>,
+    ) -> Result<PerfectStore, StoreError> {
+        universe(resolution)?;
+        let host_cells = cells.read()?;
+        check_keys(NAME, &host_cells, resolution + 1)?;
+        let blocked = BlockedPerfectHash::build(
+            &host_cells,
+            resolution,
+            |v| colours.colour(v, resolution),
+            block,
+        )?;
+        let table = blocked.upload(&kernels.perfect)?;
+        Ok(PerfectStore {
+            kernels: kernels.clone(),
+            table,
+            access: PerfectAccess::Constrained,
+            block: blocked.layout.block,
+            resolution,
+            keys: Vec::new(),
+            colours: Vec::new(),
+            len: blocked.table.sizes.slots() as u64 * blocked.layout.block_words() as u64,
+        })
+    }
+
+    /// The hash table (sizes, construction report).
+    pub fn table(&self) -> &PerfectHashGpu {
+        &self.table
+    }
+
+    /// b of the blocked layout, `None` for the texel layout.
+    pub fn block(&self) -> Option<u32> {
+        (self.block != 0).then_some(self.block)
+    }
+
+    fn push(&self, points: u64, results: u64, n: usize, filter: Filter) -> LookupPush {
+        LookupPush {
+            store: self.params(),
+            points,
+            results,
+            n: n as u32,
+            mode: (filter == Filter::Trilinear) as u32,
+        }
+    }
+}
+
+impl SparseStore for PerfectStore {
+    type Params = PerfectStoreParams;
+
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn resolution(&self) -> u32 {
+        self.resolution
+    }
+
+    /// Texels stored: keys (texel layout) or slots × block texels (blocked layout, borders
+    /// and empty slots included).
+    fn len(&self) -> u64 {
+        self.len
+    }
+
+    /// Rebuilds the hash over the stored and the new voxels (a perfect hash is static); the
+    /// rebuild is reported. The blocked layout refuses: rebuild it from all cells.
+    fn insert(
+        &mut self,
+        keys: &VoxelKeys,
+        colours: &ColourSource<'_>,
+    ) -> Result<StoreReport, StoreError> {
+        if self.block != 0 {
+            return Err(StoreError::Unsupported {
+                store: NAME,
+                what: "insert into the blocked layout (rebuild it from all interpolation cells)",
+            });
+        }
+        let new_keys = keys.read()?;
+        check_keys(NAME, &new_keys, self.resolution)?;
+        let gpu = self.kernels.gpu.clone();
+        let fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        fill_colours(
+            &gpu,
+            &self.kernels.fill_marble,
+            keys,
+            colours,
+            self.resolution,
+            &fresh,
+            0,
+        )?;
+        let new_colours = fresh.read_range(0, keys.len)?;
+        // Merge by key so the union stays sorted, as the voxelizer's sets are.
+        let mut pairs: Vec<(u64, u32)> = self
+            .keys
+            .iter()
+            .copied()
+            .zip(self.colours.iter().copied())
+            .chain(new_keys.iter().copied().zip(new_colours))
+            .collect();
+        pairs.sort_unstable_by_key(|p| p.0);
+        if let Some(w) = pairs.windows(2).find(|w| w[0].0 == w[1].0) {
+            return Err(StoreError::AlreadyStored {
+                store: NAME,
+                voxel: morton_decode(w[0].0, 3),
+                count: 1,
+            });
+        }
+        let (all_keys, all_colours): (Vec<u64>, Vec<u32>) = pairs.into_iter().unzip();
+        let key_buffer = VoxelKeys::from_sorted(&gpu, "perfect store keys", &all_keys)?;
+        let colour_buffer = GpuBuffer::from_slice(&gpu, "perfect store colours", &all_colours)?;
+        let before = *self.table.sizes();
+        let table = Self::hash(
+            &self.kernels,
+            self.resolution,
+            &key_buffer,
+            &colour_buffer,
+            self.access,
+        )?;
+        let after = *table.sizes();
+        let reallocations = vec![format!(
+            "perfect hash rebuilt for {} keys: |H| {} -> {}, |Φ| {} -> {} ({} bytes)",
+            all_keys.len(),
+            before.h,
+            after.h,
+            before.phi,
+            after.phi,
+            table.bytes()
+        )];
+        self.table = table;
+        self.keys = all_keys;
+        self.colours = all_colours;
+        self.len = self.keys.len() as u64;
+        Ok(StoreReport {
+            texels: self.len,
+            added: keys.len as u64,
+            reallocations,
+        })
+    }
+
+    /// The offset table, the payload (colour) table and the tags if any.
+    fn bytes(&self) -> u64 {
+        self.table.bytes()
+    }
+
+    fn params(&self) -> PerfectStoreParams {
+        PerfectStoreParams {
+            table: self.table.params(),
+            resolution: self.resolution,
+            block: self.block,
+            unconstrained: (self.access == PerfectAccess::Unconstrained) as u32,
+            pad: 0,
+        }
+    }
+
+    fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError> {
+        let k = &self.kernels;
+        Ok(run_lookup(k, &k.perfect_lookup, points, |p, r| {
+            self.push(p, r, points.len(), filter)
+        })?)
+    }
+
+    fn timed_lookup(
+        &self,
+        points: &[Vec3],
+        _normals: &[Vec3],
+        filter: Filter,
+    ) -> Result<TimedLookup<'_>, StoreError> {
+        let k = &self.kernels;
+        let push = self.push(0, 0, points.len(), filter);
+        Ok(prepare_lookup(k, &k.perfect_lookup, points, |p, r| {
+            LookupPush {
+                points: p,
+                results: r,
+                ..push
+            }
+        })?)
+    }
+}

@@ -1,0 +1,25 @@
+#version 460
+// Test and benchmark harness of store/perfect.glsl: out[i] = the nearest (mode 0) or trilinear
+// (mode 1) lookup at points[i].
+#include "common.glsl"
+#include "store/perfect.glsl"
+
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Vec3Ptr { vec3 v[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 16) buffer Vec4Ptr { vec4 v[]; };
+
+layout(push_constant, scalar) uniform Push {
+    PerfectStoreParams store;
+    uint64_t points;
+    uint64_t results;
+    uint n;
+    uint mode;
+} pc;
+
+void main() {
+    uint i = uint(global_index());
+    if (i >= pc.n) {
+        return;
+    }
+    vec3 pos = Vec3Ptr(pc.points).v[i];
+    Vec4Ptr(pc.results).v[i] = pc.mode == 0u ? store_perfect_nearest(pc.store, pos) : store_perfect_trilinear(pc.store, pos);
+}
