@@ -25,7 +25,7 @@ void main() {
     }
     uint q = U32Ptr(pc.buckets).v[i];
     uvec3 o = perfect_coords(U32Ptr(pc.offsets).v[q], pc.h);
-    uint t = perfect_linear((perfect_unpack_h0(U32Ptr(pc.h0s).v[i], pc.dimensions) + o) % pc.h, pc.h);
+    uint t = perfect_linear(perfect_add_mod(perfect_unpack_h0(U32Ptr(pc.h0s).v[i], pc.dimensions), o, pc.h), pc.h);
     uint payload = U32Ptr(pc.payloads).v[i];
     U32Ptr(pc.data).v[t] = payload;
     if (pc.tags != 0ul) {

@@ -53,6 +53,7 @@ void main() {
     U32Ptr occupied = U32Ptr(pc.occupied);
     U32Ptr h0 = U32Ptr(pc.member_h0);
     uvec3 anchor = perfect_unpack_h0(U32Ptr(pc.h0s).v[U32Ptr(pc.anchors).v[q]], pc.dimensions);
+    uvec3 minus_anchor = (pc.h - anchor) % pc.h;
     uint s0 = perfect_search_start(q, pc.slots);
     uint tested = 0u;
     bool found = false;
@@ -70,10 +71,10 @@ void main() {
             k += min(run, pc.slots - s);
             continue;
         }
-        o = (perfect_coords(s, pc.h) + pc.h - anchor) % pc.h;
+        o = perfect_add_mod(perfect_coords(s, pc.h), minus_anchor, pc.h);
         bool fits = true;
         for (uint j = 0u; j < m; ++j) {
-            uint t = perfect_linear((perfect_unpack_h0(h0.v[b + j], pc.dimensions) + o) % pc.h, pc.h);
+            uint t = perfect_linear(perfect_add_mod(perfect_unpack_h0(h0.v[b + j], pc.dimensions), o, pc.h), pc.h);
             if (((occupied.v[t >> 5] >> (t & 31u)) & 1u) != 0u) {
                 fits = false;
                 break;
@@ -100,7 +101,7 @@ void main() {
     proposal.v[2u * q + 1u] = pc.iteration;
     uint64_t stamp = perfect_stamp(pc.iteration, m, q);
     for (uint j = 0u; j < m; ++j) {
-        uint t = perfect_linear((perfect_unpack_h0(h0.v[b + j], pc.dimensions) + o) % pc.h, pc.h);
+        uint t = perfect_linear(perfect_add_mod(perfect_unpack_h0(h0.v[b + j], pc.dimensions), o, pc.h), pc.h);
         atomicMax(U64Ptr(pc.claims).v[t], stamp);
     }
 }

@@ -48,7 +48,7 @@ void main() {
     uvec3 o = perfect_coords(proposal.v[2u * q], pc.h);
     uint64_t stamp = perfect_stamp(pc.iteration, m, q);
     for (uint j = 0u; j < m; ++j) {
-        uint t = perfect_linear((perfect_unpack_h0(h0.v[b + j], pc.dimensions) + o) % pc.h, pc.h);
+        uint t = perfect_linear(perfect_add_mod(perfect_unpack_h0(h0.v[b + j], pc.dimensions), o, pc.h), pc.h);
         if (U64Ptr(pc.claims).v[t] != stamp) {
             atomicAdd(U32Ptr(pc.pending).v[0], 1u);
             atomicMax(U32Ptr(pc.largest_pending).v[0], min(m, 63u));
@@ -56,7 +56,7 @@ void main() {
         }
     }
     for (uint j = 0u; j < m; ++j) {
-        uint t = perfect_linear((perfect_unpack_h0(h0.v[b + j], pc.dimensions) + o) % pc.h, pc.h);
+        uint t = perfect_linear(perfect_add_mod(perfect_unpack_h0(h0.v[b + j], pc.dimensions), o, pc.h), pc.h);
         atomicOr(U32Ptr(pc.occupied).v[t >> 5], 1u << (t & 31u));
     }
     U32Ptr(pc.offsets).v[q] = proposal.v[2u * q];

@@ -25,7 +25,16 @@ uvec3 perfect_unpack_h0(uint w, uint dimensions) {
 }
 
 uvec3 perfect_coords(uint s, uint h) {
-    return uvec3(s % h, (s / h) % h, s / (h * h));
+    uint row = s / h;
+    uint z = row / h;
+    return uvec3(s - row * h, row - z * h, z);
+}
+
+// (a + b) mod h per axis for a, b < h, without a division (a select per axis: integer division
+// by a variable is emulated lane by lane on llvmpipe).
+uvec3 perfect_add_mod(uvec3 a, uvec3 b, uint h) {
+    uvec3 s = a + b;
+    return mix(s, s - h, greaterThanEqual(s, uvec3(h)));
 }
 
 uint perfect_linear(uvec3 c, uint h) {

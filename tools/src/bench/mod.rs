@@ -5,6 +5,7 @@ pub mod harness;
 mod hash;
 mod plot;
 mod prims;
+mod psh;
 mod synth;
 mod textures;
 mod trace;
@@ -20,6 +21,9 @@ pub enum BenchCommand {
     Prims(prims::PrimsArgs),
     /// Coherent, random-probe and cuckoo hashing against a dense array and CPU hashbrown.
     Hash(hash::HashArgs),
+    /// Perfect spatial hashing: offset-table bits per key, bytes, CPU versus GPU construction,
+    /// queries next to the coherent hash and a dense array.
+    Psh(psh::PshArgs),
     /// GLSL CWBVH ray traversal against obvhs's CPU traversal of the same rays, BVH builds.
     Trace(trace::TraceArgs),
     /// GPU appearance-space synthesis against the texture-synthesis crate: time and quality.
@@ -48,6 +52,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
     match command {
         BenchCommand::Prims(args) => prims::run(&args, global),
         BenchCommand::Hash(args) => hash::run(&args, global),
+        BenchCommand::Psh(args) => psh::run(&args, global),
         BenchCommand::Trace(args) => trace::run(&args, global),
         BenchCommand::Synth(args) => synth::run(&args, global),
         BenchCommand::Textures(args) => textures::run(&args, global),

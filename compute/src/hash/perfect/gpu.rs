@@ -31,7 +31,7 @@ const ITERATIONS_PER_CLASS: u32 = 3;
 /// Sweeps over every listed bucket between two checks of the pending count.
 const SWEEPS_PER_CHECK: u32 = 4;
 /// Candidate slots one bucket examines per dispatch (llvmpipe caps loops at 65,535 steps).
-const BUDGET: u32 = 2048;
+const BUDGET: u32 = 8192;
 
 /// The table parameters a kernel passes to `glsl/include/hash/perfect.glsl` (the GLSL
 /// `PerfectHashParams`, 56 bytes, same field order).

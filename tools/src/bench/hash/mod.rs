@@ -4,7 +4,7 @@
 //! load factor, queries with 100 / 50 / 0 % present keys, sorted versus shuffled access, and the
 //! key layouts; plus the figures of the coherent hashing paper (thesis Figs. 4.15–4.17).
 
-mod datasets;
+pub(super) mod datasets;
 mod figures;
 
 use super::harness::{time_cpu, Bench, Throughput};
