@@ -5,9 +5,7 @@ use super::analysis::{ExemplarAnalysis, LevelAnalysis};
 use super::coords::{pack, unpack};
 use super::error::SynthResult;
 use super::jitter::jitter;
-use super::neighbourhood::{
-    neighbourhood_distance, shifted, synthesized_neighbourhood,
-};
+use super::neighbourhood::{neighbourhood_distance, shifted, synthesized_neighbourhood};
 use super::params::SynthParams;
 use super::plan::{plan_regions, Region, SUBPASSES};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
@@ -101,7 +99,10 @@ pub fn correct_subpass(
                 let base = (y * w + x) as usize;
                 for &candidate in &lv.coherence[base * k..][..k] {
                     let (cx, cy) = unpack(candidate);
-                    let d = neighbourhood_distance(&synthesized, &lv.neighbourhoods[(cy * w + cx) as usize]);
+                    let d = neighbourhood_distance(
+                        &synthesized,
+                        &lv.neighbourhoods[(cy * w + cx) as usize],
+                    );
                     let rank = if candidate == current {
                         0
                     } else {
@@ -130,12 +131,12 @@ pub fn synthesize_cpu(
     window: Region,
 ) -> SynthResult<Synthesis> {
     check_window(analysis, params, window)?;
-    let regions = plan_regions(window, analysis.finest_level(), params.passes);
+    let regions = plan_regions(window, &params.passes);
     let mut levels: Vec<LevelCoords> = Vec::with_capacity(regions.len());
     for (l, &region) in regions.iter().enumerate() {
         let l = l as u32;
         let mut coords = upsample_jitter(analysis, params, l, region, levels.last());
-        for _ in 0..params.passes {
+        for _ in 0..params.passes[l as usize] {
             for class in CLASSES {
                 correct_subpass(analysis, l, region, &mut coords, class);
             }

@@ -173,7 +173,7 @@ impl GpuSynthesizer {
     ) -> SynthResult<(Synthesis, Vec<LevelTimes>)> {
         check_window(analysis, params, window)?;
         let finest = self.levels.len() as u32 - 1;
-        let regions = plan_regions(window, finest, params.passes);
+        let regions = plan_regions(window, &params.passes);
         let exemplar = [self.width, self.height];
         let mut levels = Vec::new();
         let mut times = Vec::with_capacity(regions.len());
@@ -207,7 +207,7 @@ impl GpuSynthesizer {
                 let k = &self.upsample;
                 rec.dispatch(k, k.groups_for(region.pixels() as u64), &[], &push)?;
                 rec.timestamp()?;
-                for _ in 0..params.passes {
+                for _ in 0..params.passes[l] {
                     for class in CLASSES {
                         let (fx, cx) = class_span(region.origin[0], region.size[0], class[0]);
                         let (fy, cy) = class_span(region.origin[1], region.size[1], class[1]);

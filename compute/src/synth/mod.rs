@@ -44,7 +44,10 @@ pub use neighbourhood::{
     exemplar_neighbourhoods, neighbourhood_distance, pack_i8_words, synthesized_neighbourhood,
     DIAGONALS, NEIGHBOURHOOD_DIMS,
 };
-pub use params::{SynthParams, JITTER_ONE, MAX_PASSES};
+pub use params::{
+    default_passes, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER, DEFAULT_PASSES, JITTER_ONE,
+    MAX_PASSES,
+};
 pub use pat::{decode_pattern, Pattern};
 pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};
 pub use synthesis::{check_window, LevelCoords, Synthesis, MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};

@@ -129,9 +129,8 @@ mod tests {
             .collect();
         let neighbourhoods = exemplar_neighbourhoods(&appearance, w, h, s as u32);
         let centre = pack(0, 3);
-        let around: [u32; 9] = std::array::from_fn(|n| {
-            shifted(centre, n as i32 % 3 - 1, n as i32 / 3 - 1, s, w, h)
-        });
+        let around: [u32; 9] =
+            std::array::from_fn(|n| shifted(centre, n as i32 % 3 - 1, n as i32 / 3 - 1, s, w, h));
         let syn = synthesized_neighbourhood(
             &around,
             |c| {
