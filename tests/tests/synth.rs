@@ -3,9 +3,9 @@
 //! and the errors of bad exemplars.
 
 use lazysolid_compute::synth::{
-    analyze, energy_cpu, histogram_distance, plan_regions, synthesize_cpu, unpack, AnalysisParams,
-    EnergyKernel, Exemplar, ExemplarAnalysis, GpuSynthesizer, Region, SynthError, SynthParams,
-    MIN_EXEMPLAR_SIDE,
+    analyze, default_passes, energy_cpu, histogram_distance, plan_regions, synthesize_cpu, unpack,
+    AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis, GpuSynthesizer, Region, SynthError,
+    SynthParams, MIN_EXEMPLAR_SIDE,
 };
 use lazysolid_tests::{asset_exemplar, with_gpu};
 use std::sync::OnceLock;
@@ -63,7 +63,14 @@ fn gimp_patterns_decode() {
 fn gpu_equals_cpu_on_every_level() {
     for (case, (_, analysis)) in [leather(), terra_crop()].into_iter().enumerate() {
         let levels = analysis.levels.len() as u32;
-        let params = SynthParams::new(levels, 7 + case as u32, 2, &[0.6]).unwrap();
+        // Case 0: the default schedule; case 1: different pass counts per level (so per-level
+        // padding), one level without correction.
+        let passes = if case == 0 {
+            default_passes(levels)
+        } else {
+            (0..levels).map(|l| [3, 0, 1, 2][l as usize % 4]).collect()
+        };
+        let params = SynthParams::new(levels, 7 + case as u32, &passes, &[0.6]).unwrap();
         let win = window(-13, 29, 40, 24);
         let cpu = synthesize_cpu(analysis, &params, win).unwrap();
         let gpu = with_gpu(|gpu| {
@@ -104,7 +111,7 @@ fn gpu_equals_cpu_on_every_level() {
 #[test]
 fn overlapping_windows_agree() {
     let (_, analysis) = leather();
-    let params = SynthParams::new(analysis.levels.len() as u32, 99, 2, &[0.5]).unwrap();
+    let params = SynthParams::new(analysis.levels.len() as u32, 99, &[2], &[0.5]).unwrap();
     let (a, b) = (window(0, 0, 80, 64), window(37, -21, 64, 72));
     let (sa, sb) = with_gpu(|gpu| {
         let synth = GpuSynthesizer::new(gpu, analysis).unwrap();
@@ -139,7 +146,7 @@ fn overlapping_windows_agree() {
 #[test]
 fn zero_jitter_reproduces_the_tiling() {
     for (_, analysis) in [leather(), terra_crop()] {
-        let params = SynthParams::new(analysis.levels.len() as u32, 5, 2, &[0.0]).unwrap();
+        let params = SynthParams::new(analysis.levels.len() as u32, 5, &[2], &[0.0]).unwrap();
         let win = window(-100, 55, 50, 30);
         let gpu = with_gpu(|gpu| {
             let synth = GpuSynthesizer::new(gpu, analysis).unwrap();
@@ -162,12 +169,18 @@ fn zero_jitter_reproduces_the_tiling() {
 #[test]
 fn padding_follows_the_formula() {
     // L = 6, two passes: c = 8 at every level, parents cover floor/ceil halves.
-    let regions = plan_regions(window(-5, 3, 20, 10), 6, 2);
+    let regions = plan_regions(window(-5, 3, 20, 10), &[2; 7]);
     assert_eq!(regions.len(), 7);
     assert_eq!(regions[6], window(-13, -5, 36, 26));
     // Parents of x in -13..23 are -7..12, grown by 8: -15..20.
     assert_eq!(regions[5].origin[0], -15);
     assert_eq!(regions[5].size[0], 35);
+    // Per-level passes: level 6 with one pass grows by 4, level 5 with three by 12.
+    let regions = plan_regions(window(-5, 3, 20, 10), &[2, 2, 2, 2, 2, 3, 1]);
+    assert_eq!(regions[6], window(-9, -1, 28, 18));
+    // Parents of x in -9..19 are -5..10, grown by 12: -17..22.
+    assert_eq!(regions[5].origin[0], -17);
+    assert_eq!(regions[5].size[0], 39);
 }
 
 #[test]
@@ -194,7 +207,7 @@ fn energy_known_answers() {
     assert_eq!(cpu_const, vec![245_000; 100]);
     let (_, analysis) = terra_crop();
     let (terra, _) = terra_crop();
-    let params = SynthParams::new(analysis.levels.len() as u32, 3, 2, &[0.5]).unwrap();
+    let params = SynthParams::new(analysis.levels.len() as u32, 3, &[2], &[0.5]).unwrap();
     let synthesized = synthesize_cpu(analysis, &params, window(0, 0, 24, 20))
         .unwrap()
         .colours(terra);
@@ -290,8 +303,10 @@ fn bad_exemplars_are_rejected_with_the_file_and_limit() {
 
     // Parameters out of range.
     let (_, analysis) = leather();
-    assert!(SynthParams::new(7, 0, 2, &[1.5]).is_err());
-    assert!(SynthParams::new(7, 0, 2, &[0.1, 0.2]).is_err());
-    let params = SynthParams::new(analysis.levels.len() as u32, 0, 2, &[0.5]).unwrap();
+    assert!(SynthParams::new(7, 0, &[2], &[1.5]).is_err());
+    assert!(SynthParams::new(7, 0, &[2], &[0.1, 0.2]).is_err());
+    assert!(SynthParams::new(7, 0, &[2, 2], &[0.5]).is_err());
+    assert!(SynthParams::new(7, 0, &[9], &[0.5]).is_err());
+    let params = SynthParams::new(analysis.levels.len() as u32, 0, &[2], &[0.5]).unwrap();
     assert!(synthesize_cpu(analysis, &params, window(0, 0, 0, 4)).is_err());
 }

@@ -7,6 +7,7 @@ use super::appearance::{appearance, APPEARANCE_DIMS};
 use super::coherence::coherence_sets;
 use super::error::{SynthError, SynthResult};
 use super::exemplar::Exemplar;
+use super::neighbourhood::{exemplar_neighbourhoods, NEIGHBOURHOOD_DIMS};
 use super::stack::gaussian_stack;
 
 /// Largest k of the similarity sets (9k candidates per pixel and correction).
@@ -42,7 +43,10 @@ pub struct LevelAnalysis {
     /// Coordinate spacing `h_l = 2^(L−l)` of this level, in exemplar pixels.
     pub spacing: u32,
     /// Quantized appearance vector of every exemplar pixel, row-major.
-    pub appearance: Vec<[i16; APPEARANCE_DIMS]>,
+    pub appearance: Vec<[i8; APPEARANCE_DIMS]>,
+    /// The 4-diagonal exemplar neighbourhood of every exemplar pixel, row-major: what the
+    /// correction compares each candidate with, precomputed so a candidate is one record.
+    pub neighbourhoods: Vec<[i8; NEIGHBOURHOOD_DIMS]>,
     /// `k` packed coordinates per exemplar pixel, the pixel itself first.
     pub coherence: Vec<u32>,
     /// Fraction of the appearance variance PCA dropped at this level.
@@ -100,6 +104,7 @@ pub fn analyze(exemplar: &Exemplar, params: &AnalysisParams) -> SynthResult<Exem
             let coherence = coherence_sets(&a.vectors, w, h, params.k, params.spread);
             LevelAnalysis {
                 spacing,
+                neighbourhoods: exemplar_neighbourhoods(&a.vectors, w, h, spacing),
                 appearance: a.vectors,
                 coherence,
                 residual_variance: a.residual_variance,

@@ -13,9 +13,10 @@ use nalgebra::{DMatrix, SymmetricEigen};
 /// Dimensions of a reduced appearance vector.
 pub const APPEARANCE_DIMS: usize = 8;
 
-/// Largest magnitude of a quantized component. With 8 neighbours of 8 dimensions the largest
-/// squared distance is 64 · (2·1023)² ≈ 2.7e8, far inside `u32`.
-pub const APPEARANCE_QUANT_MAX: f64 = 1023.0;
+/// Largest magnitude of a quantized component: vectors are `i8`, so one vector is two 32-bit
+/// words and a precomputed 4-diagonal neighbourhood is 32 bytes (see `neighbourhood.rs`).
+/// The largest correction distance is 32 · (2 · 3 · 127)² ≈ 1.9·10⁷, far inside `u32`.
+pub const APPEARANCE_QUANT_MAX: f64 = 127.0;
 
 /// Radius of the analysed neighbourhood (5×5).
 const RADIUS: i64 = 2;
@@ -27,7 +28,7 @@ const WEIGHT_SIGMA: f64 = 1.5;
 #[derive(Clone, Debug)]
 pub struct Appearance {
     /// One quantized vector per exemplar pixel, row-major.
-    pub vectors: Vec<[i16; APPEARANCE_DIMS]>,
+    pub vectors: Vec<[i8; APPEARANCE_DIMS]>,
     /// Fraction of the neighbourhood variance the kept dimensions lose (0 = none).
     pub residual_variance: f64,
 }
@@ -96,7 +97,7 @@ pub fn appearance(level: &[[f32; 3]], w: u32, h: u32, spacing: u32, toroidal: bo
         1.0
     };
     let vectors = (0..n)
-        .map(|p| std::array::from_fn(|k| (projected[(p, k)] * scale).round() as i16))
+        .map(|p| std::array::from_fn(|k| (projected[(p, k)] * scale).round() as i8))
         .collect();
     Appearance {
         vectors,
@@ -105,7 +106,7 @@ pub fn appearance(level: &[[f32; 3]], w: u32, h: u32, spacing: u32, toroidal: bo
 }
 
 /// Squared distance between two quantized vectors (exact).
-pub fn appearance_distance(a: &[i16; APPEARANCE_DIMS], b: &[i16; APPEARANCE_DIMS]) -> u32 {
+pub fn appearance_distance(a: &[i8; APPEARANCE_DIMS], b: &[i8; APPEARANCE_DIMS]) -> u32 {
     a.iter()
         .zip(b)
         .map(|(&x, &y)| {

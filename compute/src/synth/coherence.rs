@@ -23,7 +23,7 @@ fn torus_distance(a: u32, b: u32, n: u32) -> u32 {
 
 /// The similarity sets of a `w`×`h` level: `k` packed coordinates per pixel, row-major.
 pub fn coherence_sets(
-    vectors: &[[i16; APPEARANCE_DIMS]],
+    vectors: &[[i8; APPEARANCE_DIMS]],
     w: u32,
     h: u32,
     k: u32,

@@ -2,10 +2,10 @@
 //! `glsl/synth/`, in plain Rust, so tests can demand that both agree exactly.
 
 use super::analysis::{ExemplarAnalysis, LevelAnalysis};
-use super::appearance::{appearance_distance, APPEARANCE_DIMS};
 use super::coords::{pack, unpack};
 use super::error::SynthResult;
 use super::jitter::jitter;
+use super::neighbourhood::{neighbourhood_distance, shifted, synthesized_neighbourhood};
 use super::params::SynthParams;
 use super::plan::{plan_regions, Region, SUBPASSES};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
@@ -61,13 +61,10 @@ pub fn upsample_jitter(
     out
 }
 
-fn wrap(c: u32, d: i32, n: u32) -> u32 {
-    (c as i32 + d + n as i32) as u32 % n
-}
-
 /// One correction subpass: every pixel of parity `class` not on the region's border gets the
-/// candidate whose exemplar neighbourhood best matches its synthesized one (ties keep the
-/// current coordinate, then go to the smallest packed coordinate).
+/// candidate whose exemplar neighbourhood best matches its synthesized one (the 4-diagonal,
+/// 3-prediction neighbourhood of `neighbourhood.rs`; ties keep the current coordinate, then go
+/// to the smallest packed coordinate).
 pub fn correct_subpass(
     analysis: &ExemplarAnalysis,
     level: u32,
@@ -78,9 +75,9 @@ pub fn correct_subpass(
     let lv: &LevelAnalysis = &analysis.levels[level as usize];
     let (w, h, k) = (analysis.width, analysis.height, analysis.k as usize);
     let s = lv.spacing as i32;
-    let at = |c: u32| {
+    let appearance = |c: u32| {
         let (x, y) = unpack(c);
-        &lv.appearance[(y * w + x) as usize]
+        lv.appearance[(y * w + x) as usize]
     };
     let rw = region.size[0] as usize;
     for iy in 1..region.size[1] as i32 - 1 {
@@ -88,28 +85,24 @@ pub fn correct_subpass(
             if (region.origin[0] + ix) & 1 != class[0] || (region.origin[1] + iy) & 1 != class[1] {
                 continue;
             }
-            let mut neighbours = [0u32; 9];
-            let mut synthesized = [[0i16; APPEARANCE_DIMS]; 9];
+            let mut around = [0u32; 9];
             for (n, (dx, dy)) in offsets().enumerate() {
-                neighbours[n] = coords[(iy + dy) as usize * rw + (ix + dx) as usize];
-                synthesized[n] = *at(neighbours[n]);
+                around[n] = coords[(iy + dy) as usize * rw + (ix + dx) as usize];
             }
+            let synthesized = synthesized_neighbourhood(&around, appearance, s, w, h);
             // Ranked by (distance, 0 for the current coordinate else 1 + packed candidate):
             // the current coordinate survives every tie, so zero jitter keeps the tiling.
-            let current = neighbours[4];
+            let current = around[4];
             let mut best = (u32::MAX, u32::MAX, current);
             for (n, (dx, dy)) in offsets().enumerate() {
-                let (x, y) = unpack(neighbours[n]);
-                let base = (wrap(y, -dy * s, h) * w + wrap(x, -dx * s, w)) as usize;
+                let (x, y) = unpack(shifted(around[n], -dx, -dy, s, w, h));
+                let base = (y * w + x) as usize;
                 for &candidate in &lv.coherence[base * k..][..k] {
                     let (cx, cy) = unpack(candidate);
-                    let mut d = 0;
-                    for (m, (ex, ey)) in offsets().enumerate() {
-                        if m != 4 {
-                            let e = pack(wrap(cx, ex * s, w), wrap(cy, ey * s, h));
-                            d += appearance_distance(&synthesized[m], at(e));
-                        }
-                    }
+                    let d = neighbourhood_distance(
+                        &synthesized,
+                        &lv.neighbourhoods[(cy * w + cx) as usize],
+                    );
                     let rank = if candidate == current {
                         0
                     } else {
@@ -138,12 +131,12 @@ pub fn synthesize_cpu(
     window: Region,
 ) -> SynthResult<Synthesis> {
     check_window(analysis, params, window)?;
-    let regions = plan_regions(window, analysis.finest_level(), params.passes);
+    let regions = plan_regions(window, &params.passes);
     let mut levels: Vec<LevelCoords> = Vec::with_capacity(regions.len());
     for (l, &region) in regions.iter().enumerate() {
         let l = l as u32;
         let mut coords = upsample_jitter(analysis, params, l, region, levels.last());
-        for _ in 0..params.passes {
+        for _ in 0..params.passes[l as usize] {
             for class in CLASSES {
                 correct_subpass(analysis, l, region, &mut coords, class);
             }

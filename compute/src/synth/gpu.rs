@@ -4,6 +4,7 @@
 use super::analysis::ExemplarAnalysis;
 use super::cpu::CLASSES;
 use super::error::SynthResult;
+use super::neighbourhood::pack_i8_words;
 use super::params::SynthParams;
 use super::plan::{plan_regions, Region};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
@@ -34,6 +35,7 @@ struct UpsamplePush {
 struct CorrectPush {
     coords: u64,
     appearance: u64,
+    neighbourhoods: u64,
     coherence: u64,
     origin: [i32; 2],
     size: [u32; 2],
@@ -62,6 +64,7 @@ pub struct LevelTimes {
 struct GpuLevel {
     spacing: u32,
     appearance: GpuBuffer<u32>,
+    neighbourhoods: GpuBuffer<u32>,
     coherence: GpuBuffer<u32>,
 }
 
@@ -98,21 +101,19 @@ impl GpuSynthesizer {
             .iter()
             .enumerate()
             .map(|(l, lv)| {
-                let words: Vec<u32> = lv
-                    .appearance
-                    .iter()
-                    .flat_map(|v| {
-                        (0..4).map(move |w| {
-                            (v[2 * w] as u16 as u32) | ((v[2 * w + 1] as u16 as u32) << 16)
-                        })
-                    })
-                    .collect();
+                let words = pack_i8_words(lv.appearance.as_flattened());
+                let records = pack_i8_words(lv.neighbourhoods.as_flattened());
                 Ok(GpuLevel {
                     spacing: lv.spacing,
                     appearance: GpuBuffer::from_slice(
                         gpu,
                         format!("synth appearance level {l}"),
                         &words,
+                    )?,
+                    neighbourhoods: GpuBuffer::from_slice(
+                        gpu,
+                        format!("synth neighbourhoods level {l}"),
+                        &records,
                     )?,
                     coherence: GpuBuffer::from_slice(
                         gpu,
@@ -172,7 +173,7 @@ impl GpuSynthesizer {
     ) -> SynthResult<(Synthesis, Vec<LevelTimes>)> {
         check_window(analysis, params, window)?;
         let finest = self.levels.len() as u32 - 1;
-        let regions = plan_regions(window, finest, params.passes);
+        let regions = plan_regions(window, &params.passes);
         let exemplar = [self.width, self.height];
         let mut levels = Vec::new();
         let mut times = Vec::with_capacity(regions.len());
@@ -206,7 +207,7 @@ impl GpuSynthesizer {
                 let k = &self.upsample;
                 rec.dispatch(k, k.groups_for(region.pixels() as u64), &[], &push)?;
                 rec.timestamp()?;
-                for _ in 0..params.passes {
+                for _ in 0..params.passes[l] {
                     for class in CLASSES {
                         let (fx, cx) = class_span(region.origin[0], region.size[0], class[0]);
                         let (fy, cy) = class_span(region.origin[1], region.size[1], class[1]);
@@ -216,6 +217,7 @@ impl GpuSynthesizer {
                         let push = CorrectPush {
                             coords: coords.address(),
                             appearance: lv.appearance.address(),
+                            neighbourhoods: lv.neighbourhoods.address(),
                             coherence: lv.coherence.address(),
                             origin: region.origin,
                             size: region.size,

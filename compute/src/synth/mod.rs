@@ -19,6 +19,7 @@ mod error;
 mod exemplar;
 mod gpu;
 mod jitter;
+mod neighbourhood;
 mod params;
 mod pat;
 mod plan;
@@ -39,7 +40,14 @@ pub use error::{SynthError, SynthResult};
 pub use exemplar::{Exemplar, MAX_EXEMPLAR_SIDE, MIN_EXEMPLAR_SIDE};
 pub use gpu::{GpuSynthesizer, LevelTimes};
 pub use jitter::{hash4, jitter};
-pub use params::{SynthParams, JITTER_ONE, MAX_PASSES};
+pub use neighbourhood::{
+    exemplar_neighbourhoods, neighbourhood_distance, pack_i8_words, synthesized_neighbourhood,
+    DIAGONALS, NEIGHBOURHOOD_DIMS,
+};
+pub use params::{
+    default_passes, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER, DEFAULT_PASSES, JITTER_ONE,
+    MAX_PASSES,
+};
 pub use pat::{decode_pattern, Pattern};
 pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};
 pub use synthesis::{check_window, LevelCoords, Synthesis, MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};

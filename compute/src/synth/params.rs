@@ -9,32 +9,70 @@ pub const MAX_PASSES: u32 = 8;
 /// on both synthesizers.
 pub const JITTER_ONE: u32 = 256;
 
+/// Default correction passes of every level but the finest. More passes at the coarse levels
+/// lower the neighbourhood energy most (they fix the layout that every finer level inherits),
+/// and a coarse level is small, so they cost little; see docs/synthesis.md for the measurements.
+pub const DEFAULT_PASSES: u32 = 4;
+
+/// Default correction passes of the finest level, the largest region: a third and fourth pass
+/// there change the energy by a few percent at twice the cost.
+pub const DEFAULT_FINEST_PASSES: u32 = 2;
+
+/// Default jitter strength of every level (in 0..=1). Lower strengths give lower energies
+/// (zero reproduces the exemplar tiling); 0.4 keeps every level's layout random while letting
+/// the correction repair the seams it makes (docs/synthesis.md).
+pub const DEFAULT_JITTER: f32 = 0.4;
+
+/// The default pass counts of a pyramid of `levels` levels, coarsest first.
+pub fn default_passes(levels: u32) -> Vec<u32> {
+    (0..levels)
+        .map(|l| {
+            if l + 1 == levels {
+                DEFAULT_FINEST_PASSES
+            } else {
+                DEFAULT_PASSES
+            }
+        })
+        .collect()
+}
+
 /// A validated synthesis configuration.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SynthParams {
     /// Seed of the jitter hash: different seeds give different (equally deterministic) planes.
     pub seed: u32,
-    /// Correction passes per level (the paper uses 2).
-    pub passes: u32,
+    /// Correction passes of every level `0..=L` (the paper uses 2 everywhere; coarse levels
+    /// are cheap, so more passes there buy quality at little cost).
+    pub passes: Vec<u32>,
     /// Jitter strength of every level `0..=L`, in 1/[`JITTER_ONE`] steps of the level spacing.
     pub jitter: Vec<u32>,
 }
 
 impl SynthParams {
-    /// Validates and quantizes: `jitter` holds one strength in 0..=1 for every level (coarsest
-    /// first), or a single one used at every level.
+    /// Validates and quantizes: `passes` and `jitter` each hold one value for every level
+    /// (coarsest first), or a single one used at every level; jitter strengths lie in 0..=1.
     ///
     /// # Errors
-    /// [`SynthError::Parameter`] for a strength outside 0..=1, a wrong count of strengths, or
-    /// a pass count above [`MAX_PASSES`].
-    pub fn new(levels: u32, seed: u32, passes: u32, jitter: &[f32]) -> SynthResult<SynthParams> {
-        if passes > MAX_PASSES {
+    /// [`SynthError::Parameter`] for a strength outside 0..=1, a wrong count of strengths or
+    /// pass counts, or a pass count above [`MAX_PASSES`].
+    pub fn new(levels: u32, seed: u32, passes: &[u32], jitter: &[f32]) -> SynthResult<SynthParams> {
+        if passes.len() != 1 && passes.len() != levels as usize {
             return Err(SynthError::Parameter {
                 name: "passes",
-                value: passes.to_string(),
+                value: format!("{} counts", passes.len()),
+                limit: format!("give one count or one per level ({levels} levels)"),
+            });
+        }
+        if let Some(bad) = passes.iter().find(|&&p| p > MAX_PASSES) {
+            return Err(SynthError::Parameter {
+                name: "passes",
+                value: bad.to_string(),
                 limit: format!("must be at most {MAX_PASSES}"),
             });
         }
+        let passes = (0..levels as usize)
+            .map(|l| passes[l.min(passes.len() - 1)])
+            .collect();
         if jitter.len() != 1 && jitter.len() != levels as usize {
             return Err(SynthError::Parameter {
                 name: "jitter",

@@ -11,8 +11,8 @@
 //! most 1, and every later subpass can widen it by `r`. With `P` passes of `S = 4` subpasses,
 //!
 //! ```text
-//!     c = P · S · r = 4P                      (8 for the default P = 2)
-//!     C_l = V_l grown by c on every side       (region computed at level l)
+//!     c_l = P_l · S · r = 4 P_l               (P_l passes at level l)
+//!     C_l = V_l grown by c_l on every side     (region computed at level l)
 //!     V_(l−1) = [floor(C_l.min / 2), floor((C_l.max − 1) / 2) + 1)   (parents of C_l)
 //!     V_L = the requested window
 //! ```
@@ -61,13 +61,13 @@ pub fn correction_padding(passes: u32) -> u32 {
     passes * SUBPASSES
 }
 
-/// The regions to compute at levels `0..=finest` for `window` (a region of the finest level).
-pub fn plan_regions(window: Region, finest: u32, passes: u32) -> Vec<Region> {
-    let c = correction_padding(passes);
-    let mut regions = Vec::with_capacity(finest as usize + 1);
+/// The regions to compute at every level for `window` (a region of the finest level), given
+/// the correction passes of every level (coarsest first; one entry per level).
+pub fn plan_regions(window: Region, passes: &[u32]) -> Vec<Region> {
+    let mut regions = Vec::with_capacity(passes.len());
     let mut exact = window;
-    for _ in 0..=finest {
-        let computed = exact.grown(c);
+    for &p in passes.iter().rev() {
+        let computed = exact.grown(correction_padding(p));
         regions.push(computed);
         exact = computed.parents();
     }

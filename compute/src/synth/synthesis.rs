@@ -98,6 +98,13 @@ pub fn check_window(
             });
         }
     }
+    if params.passes.len() != analysis.levels.len() {
+        return Err(SynthError::Parameter {
+            name: "passes",
+            value: format!("{} counts", params.passes.len()),
+            limit: format!("the exemplar has {} levels", analysis.levels.len()),
+        });
+    }
     if params.jitter.len() != analysis.levels.len() {
         return Err(SynthError::Parameter {
             name: "jitter",

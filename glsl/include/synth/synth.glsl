@@ -50,17 +50,15 @@ ivec2 synth_jitter(ivec2 p, uint level, uint seed, uint spacing, uint strength) 
     return j;
 }
 
-// Squared distance of two quantized 8D appearance vectors stored as four words of two i16.
-uint synth_distance(uvec4 a, uvec4 b) {
-    uint d = 0;
-    for (int w = 0; w < 4; w++) {
-        for (int half_ = 0; half_ < 2; half_++) {
-            int x = bitfieldExtract(int(a[w]), 16 * half_, 16);
-            int y = bitfieldExtract(int(b[w]), 16 * half_, 16);
-            d += uint((x - y) * (x - y));
-        }
-    }
-    return d;
+// Appearance vectors are 8 x i8, two words; the 4-diagonal records 8 words (16-byte aligned).
+layout(buffer_reference, scalar, buffer_reference_align = 8) buffer UVec2Ptr { uvec2 v[]; };
+
+// The 4 signed bytes of a word, the first in the low byte (compute/src/synth/neighbourhood.rs,
+// pack_i8_words).
+ivec4 synth_i8x4(uint w) {
+    int v = int(w);
+    return ivec4(bitfieldExtract(v, 0, 8), bitfieldExtract(v, 8, 8), bitfieldExtract(v, 16, 8),
+                 bitfieldExtract(v, 24, 8));
 }
 
 #endif

@@ -6,8 +6,8 @@ use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::synth::{
-    analyze, histogram_distance, unpack, AnalysisParams, EnergyKernel, EnergyReport, Exemplar,
-    GpuSynthesizer, Region, SynthParams,
+    analyze, default_passes, histogram_distance, unpack, AnalysisParams, EnergyKernel,
+    EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -27,11 +27,12 @@ pub struct SynthArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
     /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first.
-    #[arg(long, default_value = "0.5", value_delimiter = ',')]
+    #[arg(long, default_value = "0.4", value_delimiter = ',')]
     pub jitter: Vec<f32>,
-    /// Correction passes per level.
-    #[arg(long, default_value_t = 2)]
-    pub passes: u32,
+    /// Correction passes, one for all levels or a comma-separated list, coarsest first
+    /// [default: 4 at every level, 2 at the finest].
+    #[arg(long, value_delimiter = ',')]
+    pub passes: Vec<u32>,
     /// Size of the k-coherence similarity sets.
     #[arg(short, long, default_value_t = 2)]
     pub k: u32,
@@ -115,7 +116,16 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let analysis = analyze(&exemplar, &analysis_params)?;
     let analysis_s = start.elapsed().as_secs_f64();
     let levels = analysis.levels.len() as u32;
-    let params = SynthParams::new(levels, args.seed, args.passes, &args.jitter)?;
+    let params = SynthParams::new(
+        levels,
+        args.seed,
+        &if args.passes.is_empty() {
+            default_passes(levels)
+        } else {
+            args.passes.clone()
+        },
+        &args.jitter,
+    )?;
     let window = Region {
         origin: [args.offset.0, args.offset.1],
         size: [args.size.0, args.size.1],
@@ -166,8 +176,8 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.k
     );
     println!(
-        "window {}x{} at ({}, {}), seed {}, {} passes",
-        w, h, args.offset.0, args.offset.1, args.seed, args.passes
+        "window {}x{} at ({}, {}), seed {}, passes {:?}",
+        w, h, args.offset.0, args.offset.1, args.seed, params.passes
     );
     println!("analysis (CPU)   {:8.3} s", analysis_s);
     println!("synthesis (GPU)  {:8.3} s", synth_s);

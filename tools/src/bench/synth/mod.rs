@@ -23,8 +23,9 @@ use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::synth::{
-    analyze, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis, GpuSynthesizer, LevelTimes,
-    Region, SynthParams,
+    analyze, default_passes, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis,
+    GpuSynthesizer, LevelTimes, Region, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER,
+    DEFAULT_PASSES,
 };
 use quality::Quality;
 use std::path::PathBuf;
@@ -48,8 +49,12 @@ pub struct SynthArgs {
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
     /// Jitter strength of lazysolid's synthesis at every level.
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = DEFAULT_JITTER)]
     pub jitter: f32,
+    /// Correction passes of lazysolid's synthesis, one for all levels or one per level
+    /// (coarsest first) [default: 4 at every level, 2 at the finest].
+    #[arg(long, value_delimiter = ',')]
+    pub passes: Vec<u32>,
     /// Most output pixels the neighbourhood energy evaluates, for both outputs.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -163,7 +168,16 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         )?;
         let analysis = analysis.expect("analysed at least once");
         let levels = analysis.levels.len() as u32;
-        let params = SynthParams::new(levels, args.seed, 2, &[args.jitter])?;
+        let params = SynthParams::new(
+            levels,
+            args.seed,
+            &if args.passes.is_empty() {
+                default_passes(levels)
+            } else {
+                args.passes.clone()
+            },
+            &[args.jitter],
+        )?;
         let synth = GpuSynthesizer::new(&gpu, &analysis)?;
 
         for &size in sizes {
@@ -292,6 +306,14 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         ),
         ("seed".to_string(), args.seed as f64),
         ("jitter".to_string(), args.jitter as f64),
+        (
+            "passes (finest level)".to_string(),
+            args.passes.last().copied().unwrap_or(DEFAULT_FINEST_PASSES) as f64,
+        ),
+        (
+            "passes (other levels)".to_string(),
+            args.passes.first().copied().unwrap_or(DEFAULT_PASSES) as f64,
+        ),
         ("baseline threads".to_string(), threads as f64),
     ];
     for r in &results {
