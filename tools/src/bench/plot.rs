@@ -182,6 +182,7 @@ pub fn bar_chart(
                 }
                 chart
                     .configure_series_labels()
+                    .position(SeriesLabelPosition::UpperRight)
                     .background_style(WHITE.mix(0.85))
                     .border_style(BLACK)
                     .label_font(("sans-serif", 15))
@@ -191,7 +192,8 @@ pub fn bar_chart(
         if log_y {
             draw!(builder.build_cartesian_2d(-0.6..(n - 0.4), (0.5..max * 2.0).log_scale())?);
         } else {
-            draw!(builder.build_cartesian_2d(-0.6..(n - 0.4), 0.0..max * 1.1)?);
+            // Headroom above the tallest bar keeps the legend clear of the bars.
+            draw!(builder.build_cartesian_2d(-0.6..(n - 0.4), 0.0..max * 1.35)?);
         }
         root.present()?;
     }

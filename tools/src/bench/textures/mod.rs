@@ -54,6 +54,8 @@ pub struct TexturesArgs {
 /// One measured structure.
 struct Measured {
     label: String,
+    /// A few characters for the charts' axis.
+    short: String,
     filter: Filter,
     thesis: Option<ThesisRow>,
     bytes: u64,
@@ -110,6 +112,7 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     };
     let baseline = |f: Filter| format!("octree {}", octree_name(&octrees[0])) + descents(f);
     let mut measured = Vec::new();
+    let mut tree_notes = Vec::new();
 
     for filter in [Filter::Nearest, Filter::Trilinear] {
         let keys = match filter {
@@ -119,6 +122,10 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         for (i, config) in octrees.iter().enumerate() {
             let label = format!("octree {}", octree_name(config)) + descents(filter);
             let (store, build_ms) = build_octree(&kernels, args.res, keys, &source, config)?;
+            // Nodes per level: what the memory of each tree shape is made of.
+            for (level, n) in store.node_counts().into_iter().enumerate() {
+                tree_notes.push((format!("{label} nodes at level {level}"), n as f64));
+            }
             let thesis = (i == 0).then_some(match filter {
                 Filter::Nearest => ThesisRow::OctreeNearest,
                 Filter::Trilinear => ThesisRow::OctreeTrilinear,
@@ -243,6 +250,7 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             view.points.len() as f64,
         ),
     ];
+    notes.extend(tree_notes);
     for m in &measured {
         notes.push((format!("{} bytes", m.label), m.bytes as f64));
         notes.push((format!("{} build ms", m.label), m.build_ms));
@@ -368,6 +376,7 @@ fn measure<S: SparseStore>(
         viewpoint::picture(view, &colours),
     )?;
     Ok(Measured {
+        short: short_label(&label, filter),
         label,
         filter,
         thesis,
@@ -376,6 +385,48 @@ fn measure<S: SparseStore>(
         lookup_ms,
         missing,
     })
+}
+
+/// "octree 8·8·4·4 (nearest)" → "oct 8844 N", "perfect hash blocked, b = 2 (1 block)" →
+/// "psh b2 T": bars stay readable with a dozen structures.
+fn short_label(label: &str, filter: Filter) -> String {
+    let kind = if let Some(rest) = label.strip_prefix("octree ") {
+        let digits: String = rest
+            .split(' ')
+            .next()
+            .unwrap_or("")
+            .chars()
+            .filter(char::is_ascii_digit)
+            .collect();
+        // Trees of one level size read as N^levels (2^10), others by their digits (8844).
+        match digits.chars().next() {
+            Some(first) if digits.len() > 4 && digits.chars().all(|c| c == first) => {
+                format!("oct {first}^{}", digits.len())
+            }
+            _ => format!("oct {digits}"),
+        }
+    } else if label.starts_with("perfect hash blocked") {
+        format!(
+            "psh b{}",
+            label
+                .split("b = ")
+                .nth(1)
+                .and_then(|r| r.chars().next())
+                .unwrap_or('?')
+        )
+    } else if label.starts_with("perfect hash") {
+        "psh".to_string()
+    } else if label.starts_with("coherent hash") {
+        "cohash".to_string()
+    } else if label.starts_with("tiletree") {
+        "tile".to_string()
+    } else {
+        label.chars().take(8).collect()
+    };
+    match filter {
+        Filter::Nearest => format!("{kind} N"),
+        Filter::Trilinear => format!("{kind} T"),
+    }
 }
 
 fn slug(label: &str) -> String {
@@ -441,11 +492,12 @@ fn summary(
             println!("  {} stands for the thesis' {}", m.label, t.label());
         }
     }
-    let labels: Vec<String> = measured.iter().map(|m| m.label.clone()).collect();
+    // Axis labels are short forms (N: nearest, T: trilinear or bilinear); the table names them.
+    let labels: Vec<String> = measured.iter().map(|m| m.short.clone()).collect();
     bar_chart(
         &dir.join("textures-memory.png"),
         &format!("{} at {}³: GPU memory", args.mesh, args.res),
-        "structure",
+        "structure (N nearest, T trilinear; oct: octree level sizes, psh: perfect hash)",
         "MB",
         &labels,
         &[
@@ -469,7 +521,7 @@ fn summary(
             "{} at {}³, {}² viewpoint: lookup speed relative to the octree of the same filtering",
             args.mesh, args.res, args.view
         ),
-        "structure",
+        "structure (N nearest, T trilinear; oct: octree level sizes, psh: perfect hash)",
         "× octree",
         &labels,
         &[
