@@ -73,3 +73,15 @@ pub fn unit_mesh(name: &str) -> lazysolid_renderer::mesh::Mesh {
     lazysolid_renderer::mesh::Mesh::load_unit_cube(asset_mesh(name))
         .unwrap_or_else(|e| panic!("{e}"))
 }
+
+/// A uniformly distributed point of the triangle `[p0, p1, p2]` (two draws of `g`, folded
+/// back into the triangle when they fall in the other half of the parallelogram).
+pub fn point_on_triangle(g: &mut impl Rng, [p0, p1, p2]: [glam::Vec3; 3]) -> glam::Vec3 {
+    let (a, b): (f32, f32) = (g.random(), g.random());
+    let (a, b) = if a + b > 1.0 {
+        (1.0 - a, 1.0 - b)
+    } else {
+        (a, b)
+    };
+    p0 + (p1 - p0) * a + (p2 - p0) * b
+}

@@ -9,7 +9,7 @@ use lazysolid_compute::hash::{HashError, KeyLayout, Universe};
 use lazysolid_compute::shader_constants::HASH_NOT_FOUND;
 use lazysolid_compute::store::trilinear_cpu;
 use lazysolid_compute::voxel::{VoxelGrid, Voxelizer};
-use lazysolid_tests::{asset_exemplar, rng, unit_mesh, with_gpu};
+use lazysolid_tests::{asset_exemplar, point_on_triangle, rng, unit_mesh, with_gpu};
 use rand::Rng;
 use std::collections::HashSet;
 use std::sync::Arc;
@@ -421,16 +421,7 @@ fn blocked_trilinear_lookups_equal_a_dense_grid() {
             .triangles
             .iter()
             .step_by(3)
-            .map(|t| {
-                let (a, b): (f32, f32) = (g.random(), g.random());
-                let (a, b) = if a + b > 1.0 {
-                    (1.0 - a, 1.0 - b)
-                } else {
-                    (a, b)
-                };
-                let [p0, p1, p2] = t.map(|i| m.positions[i as usize]);
-                p0 + (p1 - p0) * a + (p2 - p0) * b
-            })
+            .map(|t| point_on_triangle(&mut g, t.map(|i| m.positions[i as usize])))
             .collect();
         for block in [None, Some(1), Some(2), Some(3), Some(4)] {
             let table = match block {

@@ -9,7 +9,7 @@ use lazysolid_compute::store::*;
 use lazysolid_compute::voxel::VoxelGrid;
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_tests::{rng, unit_mesh, with_gpu};
+use lazysolid_tests::{point_on_triangle, rng, unit_mesh, with_gpu};
 use rand::Rng;
 use std::collections::HashMap;
 
@@ -35,16 +35,7 @@ fn points(m: &Mesh, r: u32, seed: u64) -> Vec<Vec3> {
         .triangles
         .iter()
         .step_by(5)
-        .map(|t| {
-            let (a, b): (f32, f32) = (g.random(), g.random());
-            let (a, b) = if a + b > 1.0 {
-                (1.0 - a, 1.0 - b)
-            } else {
-                (a, b)
-            };
-            let [p0, p1, p2] = t.map(|i| m.positions[i as usize]);
-            p0 + (p1 - p0) * a + (p2 - p0) * b
-        })
+        .map(|t| point_on_triangle(&mut g, t.map(|i| m.positions[i as usize])))
         .collect();
     // Points anywhere (mostly not stored) and outside the cube.
     pts.extend((0..500).map(|_| Vec3::new(g.random(), g.random(), g.random())));

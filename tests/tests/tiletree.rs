@@ -7,7 +7,7 @@ use glam::{Vec3, Vec4};
 use lazysolid_compute::store::tiletree::{self, pick_face, Plan, TileTreeHost, LEAF_WORDS};
 use lazysolid_compute::store::*;
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_tests::{rng, unit_mesh, with_gpu};
+use lazysolid_tests::{point_on_triangle, rng, unit_mesh, with_gpu};
 use rand::Rng;
 
 /// GPU and CPU bilinear lookups sum four weighted colours in f32 in the same order; 1e-6
@@ -35,13 +35,7 @@ fn surface_points(m: &Mesh, step: usize, per: usize, seed: u64) -> (Vec<Vec3>, V
             continue;
         }
         for _ in 0..per {
-            let (a, b): (f32, f32) = (g.random(), g.random());
-            let (a, b) = if a + b > 1.0 {
-                (1.0 - a, 1.0 - b)
-            } else {
-                (a, b)
-            };
-            pts.push(p0 + (p1 - p0) * a + (p2 - p0) * b);
+            pts.push(point_on_triangle(&mut g, [p0, p1, p2]));
             nrm.push(n.normalize());
         }
     }

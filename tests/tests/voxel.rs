@@ -155,16 +155,8 @@ fn interpolation_voxels_cover_every_trilinear_footprint_on_the_surface() {
             .into_iter()
             .collect();
     let mut rng = lazysolid_tests::rng(7);
-    use rand::Rng;
     for t in m.triangles.iter().step_by(7) {
-        let (a, b): (f32, f32) = (rng.random(), rng.random());
-        let (a, b) = if a + b > 1.0 {
-            (1.0 - a, 1.0 - b)
-        } else {
-            (a, b)
-        };
-        let [p0, p1, p2] = t.map(|i| m.positions[i as usize]);
-        let p = p0 + (p1 - p0) * a + (p2 - p0) * b;
+        let p = lazysolid_tests::point_on_triangle(&mut rng, t.map(|i| m.positions[i as usize]));
         let q = p * r as f32 - 0.5;
         let base = q.floor();
         for o in 0..8 {

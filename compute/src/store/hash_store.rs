@@ -6,7 +6,7 @@
 
 use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{prepare_lookup, run_lookup, StoreKernels, TimedLookup};
+use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::GpuBuffer;
 use crate::hash::{
@@ -15,7 +15,7 @@ use crate::hash::{
 };
 use crate::voxel::VoxelKeys;
 use bytemuck::{Pod, Zeroable};
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 use std::sync::Arc;
 
 /// What `store/hash.glsl` receives: the `HashStoreParams` struct, field for field.
@@ -214,41 +214,21 @@ impl SparseStore for HashStore {
         }
     }
 
-    fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError> {
-        let store = self.params();
-        Ok(run_lookup(
-            &self.kernels,
-            &self.kernels.hash_lookup,
-            points,
-            |p, r| LookupPush {
-                store,
-                points: p,
-                results: r,
-                n: points.len() as u32,
-                mode: (filter == Filter::Trilinear) as u32,
-            },
-        )?)
-    }
-
     fn timed_lookup(
         &self,
         points: &[Vec3],
         _normals: &[Vec3],
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
-        let store = self.params();
-        let n = points.len() as u32;
-        Ok(prepare_lookup(
-            &self.kernels,
-            &self.kernels.hash_lookup,
-            points,
-            |p, r| LookupPush {
-                store,
-                points: p,
-                results: r,
-                n,
+        let k = &self.kernels;
+        Ok(prepare_lookup(k, &k.hash_lookup, points, &[], |a| {
+            LookupPush {
+                store: self.params(),
+                points: a.points,
+                results: a.results,
+                n: points.len() as u32,
                 mode: (filter == Filter::Trilinear) as u32,
-            },
-        )?)
+            }
+        })?)
     }
 }

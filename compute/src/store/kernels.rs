@@ -57,22 +57,6 @@ impl StoreKernels {
     }
 }
 
-/// Uploads `points`, runs `kernel` with `make(points, results)` as push block, reads back.
-pub(crate) fn run_lookup<P: Pod>(
-    kernels: &StoreKernels,
-    kernel: &Kernel,
-    points: &[Vec3],
-    push: impl FnOnce(u64, u64) -> P,
-) -> GpuResult<Vec<Vec4>> {
-    let gpu = &kernels.gpu;
-    let flat: Vec<f32> = points.iter().flat_map(|p| p.to_array()).collect();
-    let pts = GpuBuffer::from_slice(gpu, "store lookup points", &flat)?;
-    let out = GpuBuffer::<[f32; 4]>::new(gpu, "store lookup results", points.len())?;
-    let p = push(pts.address(), out.address());
-    gpu.submit(|rec| rec.dispatch(kernel, kernel.groups_for(points.len() as u64), &[], &p))?;
-    Ok(out.read()?.into_iter().map(Vec4::from_array).collect())
-}
-
 /// Records one lookup dispatch.
 type RecordFn<'a> = Box<dyn Fn(&mut Recorder<'_>) -> GpuResult<()> + 'a>;
 
@@ -109,47 +93,49 @@ impl TimedLookup<'_> {
     }
 }
 
-/// Uploads `points` and prepares `kernel` with `make(points, results)` as push block.
+/// Device addresses a lookup kernel's push block takes.
+#[derive(Clone, Copy)]
+pub(crate) struct LookupAddresses {
+    pub points: u64,
+    /// 0 when no normals were given.
+    pub normals: u64,
+    pub results: u64,
+}
+
+/// Uploads `points` (and `normals` when given) and prepares `kernel` with `make(addresses)`
+/// as push block: every store's lookup, timed or not, goes through here.
 pub(crate) fn prepare_lookup<'a, P: Pod>(
     kernels: &'a StoreKernels,
     kernel: &'a Kernel,
     points: &[Vec3],
-    push: impl FnOnce(u64, u64) -> P,
-) -> GpuResult<TimedLookup<'a>> {
-    let gpu = &kernels.gpu;
-    let flat: Vec<f32> = points.iter().flat_map(|p| p.to_array()).collect();
-    let pts = GpuBuffer::from_slice(gpu, "store lookup points", &flat)?;
-    let results = GpuBuffer::<[f32; 4]>::zeroed(gpu, "store lookup results", points.len())?;
-    let p = push(pts.address(), results.address());
-    let groups = kernel.groups_for(points.len() as u64);
-    Ok(TimedLookup {
-        gpu: gpu.clone(),
-        results,
-        _inputs: vec![pts],
-        record: Box::new(move |rec| rec.dispatch(kernel, groups, &[], &p)),
-    })
-}
-
-/// [`prepare_lookup`] for kernels that also read a normal per point:
-/// `make(points, normals, results)`.
-pub(crate) fn prepare_lookup_with_normals<'a, P: Pod>(
-    kernels: &'a StoreKernels,
-    kernel: &'a Kernel,
-    points: &[Vec3],
     normals: &[Vec3],
-    push: impl FnOnce(u64, u64, u64) -> P,
+    push: impl FnOnce(LookupAddresses) -> P,
 ) -> GpuResult<TimedLookup<'a>> {
     let gpu = &kernels.gpu;
     let flat = |v: &[Vec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f32>>();
-    let pts = GpuBuffer::from_slice(gpu, "store lookup points", &flat(points))?;
-    let nrm = GpuBuffer::from_slice(gpu, "store lookup normals", &flat(normals))?;
+    let mut inputs = vec![GpuBuffer::from_slice(
+        gpu,
+        "store lookup points",
+        &flat(points),
+    )?];
+    if !normals.is_empty() {
+        inputs.push(GpuBuffer::from_slice(
+            gpu,
+            "store lookup normals",
+            &flat(normals),
+        )?);
+    }
     let results = GpuBuffer::<[f32; 4]>::zeroed(gpu, "store lookup results", points.len())?;
-    let p = push(pts.address(), nrm.address(), results.address());
+    let p = push(LookupAddresses {
+        points: inputs[0].address(),
+        normals: inputs.get(1).map_or(0, GpuBuffer::address),
+        results: results.address(),
+    });
     let groups = kernel.groups_for(points.len() as u64);
     Ok(TimedLookup {
         gpu: gpu.clone(),
         results,
-        _inputs: vec![pts, nrm],
+        _inputs: inputs,
         record: Box::new(move |rec| rec.dispatch(kernel, groups, &[], &p)),
     })
 }

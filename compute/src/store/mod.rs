@@ -99,7 +99,9 @@ pub trait SparseStore {
     fn params(&self) -> Self::Params;
 
     /// Runs the store's GLSL lookup at `points` on the GPU (tests and benchmarks).
-    fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError>;
+    fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError> {
+        self.lookup_with_normals(points, &[], filter)
+    }
 
     /// Runs the store's GLSL lookup at surface points with their normals: what a renderer has
     /// at a hit, and what a surface store (the TileTree picks a tile face from the normal)
@@ -110,8 +112,9 @@ pub trait SparseStore {
         normals: &[Vec3],
         filter: Filter,
     ) -> Result<Vec<Vec4>, StoreError> {
-        let _ = normals;
-        self.lookup(points, filter)
+        let lookup = self.timed_lookup(points, normals, filter)?;
+        lookup.run()?;
+        Ok(lookup.results()?)
     }
 
     /// Uploads `points` (and `normals`, which volume stores ignore) once and returns a lookup

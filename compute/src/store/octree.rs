@@ -8,7 +8,7 @@
 
 use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{prepare_lookup, run_lookup, StoreKernels, TimedLookup};
+use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::{GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
@@ -568,52 +568,33 @@ impl SparseStore for OctreeStore {
         p
     }
 
-    fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError> {
-        self.lookup_mode(points, (filter == Filter::Trilinear) as u32)
-    }
-
     fn timed_lookup(
         &self,
         points: &[Vec3],
         _normals: &[Vec3],
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
-        let store = self.params();
-        let n = points.len() as u32;
-        Ok(prepare_lookup(
-            &self.kernels,
-            &self.kernels.octree_lookup,
-            points,
-            |p, r| LookupPush {
-                store,
-                points: p,
-                results: r,
-                n,
-                mode: (filter == Filter::Trilinear) as u32,
-            },
-        )?)
+        Ok(self.prepare(points, (filter == Filter::Trilinear) as u32)?)
     }
 }
 
 impl OctreeStore {
     /// MIP lookup: the average colour of the node of level `depth` containing each point.
     pub fn lookup_mip(&self, points: &[Vec3], depth: u32) -> Result<Vec<Vec4>, StoreError> {
-        self.lookup_mode(points, 2 + depth)
+        let lookup = self.prepare(points, 2 + depth)?;
+        lookup.run()?;
+        Ok(lookup.results()?)
     }
 
-    fn lookup_mode(&self, points: &[Vec3], mode: u32) -> Result<Vec<Vec4>, StoreError> {
-        let store = self.params();
-        Ok(run_lookup(
-            &self.kernels,
-            &self.kernels.octree_lookup,
-            points,
-            |p, r| LookupPush {
-                store,
-                points: p,
-                results: r,
-                n: points.len() as u32,
-                mode,
-            },
-        )?)
+    /// The lookup kernel in `mode` (0 nearest, 1 trilinear, 2 + depth MIP) at `points`.
+    fn prepare(&self, points: &[Vec3], mode: u32) -> GpuResult<TimedLookup<'_>> {
+        let k = &self.kernels;
+        prepare_lookup(k, &k.octree_lookup, points, &[], |a| LookupPush {
+            store: self.params(),
+            points: a.points,
+            results: a.results,
+            n: points.len() as u32,
+            mode,
+        })
     }
 }

@@ -13,7 +13,7 @@
 
 use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{prepare_lookup, run_lookup, StoreKernels, TimedLookup};
+use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::GpuBuffer;
 use crate::hash::perfect::{
@@ -22,7 +22,7 @@ use crate::hash::perfect::{
 use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
 use crate::voxel::VoxelKeys;
 use bytemuck::{Pod, Zeroable};
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 use std::sync::Arc;
 
 /// What `store/perfect.glsl` receives: the `PerfectStoreParams` struct, field for field.
@@ -197,16 +197,6 @@ impl PerfectStore {
     pub fn block(&self) -> Option<u32> {
         (self.block != 0).then_some(self.block)
     }
-
-    fn push(&self, points: u64, results: u64, n: usize, filter: Filter) -> LookupPush {
-        LookupPush {
-            store: self.params(),
-            points,
-            results,
-            n: n as u32,
-            mode: (filter == Filter::Trilinear) as u32,
-        }
-    }
 }
 
 impl SparseStore for PerfectStore {
@@ -316,13 +306,6 @@ impl SparseStore for PerfectStore {
         }
     }
 
-    fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError> {
-        let k = &self.kernels;
-        Ok(run_lookup(k, &k.perfect_lookup, points, |p, r| {
-            self.push(p, r, points.len(), filter)
-        })?)
-    }
-
     fn timed_lookup(
         &self,
         points: &[Vec3],
@@ -330,12 +313,13 @@ impl SparseStore for PerfectStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        let push = self.push(0, 0, points.len(), filter);
-        Ok(prepare_lookup(k, &k.perfect_lookup, points, |p, r| {
+        Ok(prepare_lookup(k, &k.perfect_lookup, points, &[], |a| {
             LookupPush {
-                points: p,
-                results: r,
-                ..push
+                store: self.params(),
+                points: a.points,
+                results: a.results,
+                n: points.len() as u32,
+                mode: (filter == Filter::Trilinear) as u32,
             }
         })?)
     }

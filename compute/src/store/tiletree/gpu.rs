@@ -5,7 +5,7 @@ use super::plan::Plan;
 use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
 use crate::gpu::{GpuBuffer, GpuResult};
 use crate::store::colours::fill_colours;
-use crate::store::kernels::{prepare_lookup_with_normals, StoreKernels, TimedLookup};
+use crate::store::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use crate::store::{ColourSource, Filter, SparseStore, StoreError, StoreReport};
 use crate::voxel::VoxelKeys;
 use bytemuck::{Pod, Zeroable};
@@ -343,31 +343,6 @@ impl SparseStore for TileTree {
     }
 
     /// `Filter::Trilinear` runs the tile's bilinear filter, `Filter::Nearest` the nearest texel.
-    fn lookup_with_normals(
-        &self,
-        points: &[Vec3],
-        normals: &[Vec3],
-        filter: Filter,
-    ) -> Result<Vec<Vec4>, StoreError> {
-        check_normals(points, normals)?;
-        let gpu = &self.kernels.gpu;
-        let flat = |v: &[Vec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f32>>();
-        let pts = GpuBuffer::from_slice(gpu, "tiletree lookup points", &flat(points))?;
-        let nrm = GpuBuffer::from_slice(gpu, "tiletree lookup normals", &flat(normals))?;
-        let out = GpuBuffer::<[f32; 4]>::new(gpu, "tiletree lookup results", points.len())?;
-        let push = LookupPush {
-            store: self.params(),
-            points: pts.address(),
-            normals: nrm.address(),
-            results: out.address(),
-            n: points.len() as u32,
-            mode: (filter == Filter::Trilinear) as u32,
-        };
-        let k = &self.kernels.tiletree_lookup;
-        gpu.submit(|rec| rec.dispatch(k, k.groups_for(points.len() as u64), &[], &push))?;
-        Ok(out.read()?.into_iter().map(Vec4::from_array).collect())
-    }
-
     fn timed_lookup(
         &self,
         points: &[Vec3],
@@ -375,19 +350,18 @@ impl SparseStore for TileTree {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         check_normals(points, normals)?;
-        let store = self.params();
-        let n = points.len() as u32;
-        Ok(prepare_lookup_with_normals(
-            &self.kernels,
-            &self.kernels.tiletree_lookup,
+        let k = &self.kernels;
+        Ok(prepare_lookup(
+            k,
+            &k.tiletree_lookup,
             points,
             normals,
-            |p, nrm, r| LookupPush {
-                store,
-                points: p,
-                normals: nrm,
-                results: r,
-                n,
+            |a| LookupPush {
+                store: self.params(),
+                points: a.points,
+                normals: a.normals,
+                results: a.results,
+                n: points.len() as u32,
                 mode: (filter == Filter::Trilinear) as u32,
             },
         )?)

@@ -100,8 +100,14 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         mesh_path.display()
     );
     let cases = 2 * (3 + octrees.len() as u64) + 1;
-    let mut bench = Bench::new("bench-textures", &gpu, &args.common, cases)?;
+    let bench = Bench::new("bench-textures", &gpu, &args.common, cases)?;
     let dir = bench.artifact_dir()?;
+    let mut session = Session {
+        bench,
+        dir,
+        view: &view,
+        measured: Vec::new(),
+    };
     let source = ColourSource::Marble { seed: args.seed };
     let octree_name = |c: &OctreeConfig| {
         c.levels
@@ -111,7 +117,6 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             .join("·")
     };
     let baseline = |f: Filter| format!("octree {}", octree_name(&octrees[0])) + descents(f);
-    let mut measured = Vec::new();
     let mut tree_notes = Vec::new();
 
     for filter in [Filter::Nearest, Filter::Trilinear] {
@@ -131,9 +136,7 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 Filter::Trilinear => ThesisRow::OctreeTrilinear,
             });
             let base = (i > 0).then(|| baseline(filter));
-            measured.push(measure(
-                &mut bench, &dir, &view, &store, filter, label, thesis, base, build_ms,
-            )?);
+            session.measure(&store, filter, label, thesis, base, build_ms)?;
         }
         let label = "coherent hash".to_string() + lookups(filter);
         let (store, build_ms) = time_cpu(|| {
@@ -146,17 +149,14 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             )
         });
         let store = store.with_context(|| format!("building the {label}"))?;
-        measured.push(measure(
-            &mut bench,
-            &dir,
-            &view,
+        session.measure(
             &store,
             filter,
             label,
             None,
             Some(baseline(filter)),
             build_ms,
-        )?);
+        )?;
         let label = "perfect hash".to_string() + lookups(filter);
         let (store, build_ms) = time_cpu(|| {
             PerfectStore::build(
@@ -172,17 +172,14 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             Filter::Nearest => ThesisRow::HashNearest,
             Filter::Trilinear => ThesisRow::HashTrilinear,
         };
-        measured.push(measure(
-            &mut bench,
-            &dir,
-            &view,
+        session.measure(
             &store,
             filter,
             label,
             Some(thesis),
             Some(baseline(filter)),
             build_ms,
-        )?);
+        )?;
         drop(store);
         if filter == Filter::Trilinear {
             let (store, build_ms) =
@@ -192,17 +189,14 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 "perfect hash blocked, b = {} (1 block)",
                 store.block().unwrap_or(0)
             );
-            measured.push(measure(
-                &mut bench,
-                &dir,
-                &view,
+            session.measure(
                 &store,
                 filter,
                 label,
                 Some(ThesisRow::HashBlocked),
                 Some(baseline(filter)),
                 build_ms,
-            )?);
+            )?;
         }
         let label = "tiletree".to_string() + tile_filter(filter);
         let (tree, build_ms) = time_cpu(|| {
@@ -217,22 +211,25 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         });
         let (tree, _) = tree.with_context(|| format!("building the {label}"))?;
         if filter == Filter::Trilinear {
-            tree.write_tile_map_png(&dir.join("tiletree-tile-map.png"))?;
+            tree.write_tile_map_png(&session.dir.join("tiletree-tile-map.png"))?;
         }
         let thesis = (filter == Filter::Trilinear).then_some(ThesisRow::TileTree);
-        measured.push(measure(
-            &mut bench,
-            &dir,
-            &view,
+        session.measure(
             &tree,
             filter,
             label,
             thesis,
             Some(baseline(filter)),
             build_ms,
-        )?);
+        )?;
     }
 
+    let Session {
+        bench,
+        dir,
+        measured,
+        ..
+    } = session;
     summary(&measured, &bench, &dir, args)?;
     let mut notes = vec![
         ("triangles".to_string(), mesh.triangles.len() as f64),
@@ -339,52 +336,62 @@ fn build_octree(
     Ok((store?.0, ms))
 }
 
-/// Times the viewpoint's lookups through `store`, saves its picture, counts points that read
-/// an unstored texel.
-#[allow(clippy::too_many_arguments)]
-fn measure<S: SparseStore>(
-    bench: &mut Bench,
-    dir: &std::path::Path,
-    view: &Viewpoint,
-    store: &S,
-    filter: Filter,
-    label: String,
-    thesis: Option<ThesisRow>,
-    baseline: Option<String>,
-    build_ms: f64,
-) -> anyhow::Result<Measured> {
-    let lookup: TimedLookup<'_> = store.timed_lookup(&view.points, &view.normals, filter)?;
-    let case = match filter {
-        Filter::Nearest => "viewpoint lookups, nearest",
-        Filter::Trilinear => "viewpoint lookups, trilinear",
-    };
-    let lookup_ms = bench.case(
-        case,
-        view.points.len() as u64,
-        &label,
-        Throughput::Elements,
-        baseline.as_deref(),
-        || Ok(lookup.run()?),
-    )?;
-    let colours = lookup.results()?;
-    let missing = colours.iter().filter(|c| c.w == 0.0).count();
-    let file = dir.join(format!("{}.png", slug(&label)));
-    rgb_image(
-        &file,
-        view.size,
-        view.size,
-        viewpoint::picture(view, &colours),
-    )?;
-    Ok(Measured {
-        short: short_label(&label, filter),
-        label,
-        filter,
-        thesis,
-        bytes: store.bytes(),
-        build_ms,
-        lookup_ms,
-        missing,
-    })
+/// What every structure's measurement shares: the harness, the figures folder, the viewpoint
+/// and the rows so far.
+struct Session<'a> {
+    bench: Bench,
+    dir: PathBuf,
+    view: &'a Viewpoint,
+    measured: Vec<Measured>,
+}
+
+impl Session<'_> {
+    /// Times the viewpoint's lookups through `store`, saves its picture, counts points that
+    /// read an unstored texel.
+    fn measure<S: SparseStore>(
+        &mut self,
+        store: &S,
+        filter: Filter,
+        label: String,
+        thesis: Option<ThesisRow>,
+        baseline: Option<String>,
+        build_ms: f64,
+    ) -> anyhow::Result<()> {
+        let view = self.view;
+        let lookup: TimedLookup<'_> = store.timed_lookup(&view.points, &view.normals, filter)?;
+        let case = match filter {
+            Filter::Nearest => "viewpoint lookups, nearest",
+            Filter::Trilinear => "viewpoint lookups, trilinear",
+        };
+        let lookup_ms = self.bench.case(
+            case,
+            view.points.len() as u64,
+            &label,
+            Throughput::Elements,
+            baseline.as_deref(),
+            || Ok(lookup.run()?),
+        )?;
+        let colours = lookup.results()?;
+        let missing = colours.iter().filter(|c| c.w == 0.0).count();
+        let file = self.dir.join(format!("{}.png", slug(&label)));
+        rgb_image(
+            &file,
+            view.size,
+            view.size,
+            viewpoint::picture(view, &colours),
+        )?;
+        self.measured.push(Measured {
+            short: short_label(&label, filter),
+            label,
+            filter,
+            thesis,
+            bytes: store.bytes(),
+            build_ms,
+            lookup_ms,
+            missing,
+        });
+        Ok(())
+    }
 }
 
 /// "octree 8·8·4·4 (nearest)" → "oct 8844 N", "perfect hash blocked, b = 2 (1 block)" →
