@@ -45,8 +45,8 @@ pub use neighbourhood::{
     DIAGONALS, NEIGHBOURHOOD_DIMS,
 };
 pub use params::{
-    default_passes, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER, DEFAULT_PASSES, JITTER_ONE,
-    MAX_PASSES,
+    default_passes, passes_or_default, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER,
+    DEFAULT_PASSES, JITTER_ONE, MAX_PASSES,
 };
 pub use pat::{decode_pattern, Pattern};
 pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};

@@ -23,6 +23,16 @@ pub const DEFAULT_FINEST_PASSES: u32 = 2;
 /// the correction repair the seams it makes (docs/synthesis.md).
 pub const DEFAULT_JITTER: f32 = 0.4;
 
+/// `given` pass counts, or the defaults for `levels` levels when none were given (how the
+/// command line reads an absent `--passes`).
+pub fn passes_or_default(given: &[u32], levels: u32) -> Vec<u32> {
+    if given.is_empty() {
+        default_passes(levels)
+    } else {
+        given.to_vec()
+    }
+}
+
 /// The default pass counts of a pyramid of `levels` levels, coarsest first.
 pub fn default_passes(levels: u32) -> Vec<u32> {
     (0..levels)

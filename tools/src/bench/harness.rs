@@ -7,7 +7,7 @@
 use super::CommonArgs;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
-use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::gpu::{Gpu, GpuResult, Recorder};
 use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
@@ -295,6 +295,20 @@ fn write_atomically(
     std::fs::rename(&tmp, path)
         .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
     Ok(())
+}
+
+/// The device time of the commands `work` records, in milliseconds, from two GPU timestamps
+/// around them (no submission, waiting or read-back in the time).
+pub fn time_gpu(
+    gpu: &Gpu,
+    work: impl FnOnce(&mut Recorder<'_>) -> GpuResult<()>,
+) -> anyhow::Result<f64> {
+    let ((), t) = gpu.submit_timed(|rec| {
+        rec.timestamp()?;
+        work(rec)?;
+        rec.timestamp()
+    })?;
+    Ok((t[1] - t[0]) * 1e-6)
 }
 
 /// Times a CPU closure in milliseconds.

@@ -6,7 +6,7 @@
 //! (cosine-distributed about the geometric normal at each primary hit): incoherent rays, the
 //! hard case of any traversal.
 
-use super::harness::{time_cpu, Bench, Throughput};
+use super::harness::{time_cpu, time_gpu, Bench, Throughput};
 use super::plot::bar_chart;
 use super::CommonArgs;
 use crate::cli::GlobalArgs;
@@ -102,12 +102,9 @@ pub fn run(args: &TraceArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             Throughput::Elements,
             Some(&cpu_single),
             || {
-                let ((), t) = gpu.submit_timed(|rec| {
-                    rec.timestamp()?;
-                    queries.record(rec, &device, &ray_buf, &hit_buf, QueryKind::Closest)?;
-                    rec.timestamp()
-                })?;
-                Ok((t[1] - t[0]) * 1e-6)
+                time_gpu(&gpu, |rec| {
+                    queries.record(rec, &device, &ray_buf, &hit_buf, QueryKind::Closest)
+                })
             },
         )?;
         let gpu_hits = hit_buf.read()?;

@@ -6,7 +6,7 @@ use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::synth::{
-    analyze, default_passes, histogram_distance, unpack, AnalysisParams, EnergyKernel,
+    analyze, histogram_distance, passes_or_default, unpack, AnalysisParams, EnergyKernel,
     EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
 };
 use std::path::{Path, PathBuf};
@@ -119,11 +119,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let params = SynthParams::new(
         levels,
         args.seed,
-        &if args.passes.is_empty() {
-            default_passes(levels)
-        } else {
-            args.passes.clone()
-        },
+        &passes_or_default(&args.passes, levels),
         &args.jitter,
     )?;
     let window = Region {

@@ -7,7 +7,7 @@
 pub(super) mod datasets;
 mod figures;
 
-use super::harness::{time_cpu, Bench, Throughput};
+use super::harness::{time_cpu, time_gpu, Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
@@ -125,20 +125,6 @@ fn upload(gpu: &Gpu, ds: &Dataset, u: &Universe) -> anyhow::Result<Uploaded> {
         queries,
         n: keys.len(),
     })
-}
-
-fn gpu_ms(
-    gpu: &Gpu,
-    work: impl FnOnce(
-        &mut lazysolid_compute::gpu::Recorder<'_>,
-    ) -> lazysolid_compute::gpu::GpuResult<()>,
-) -> anyhow::Result<f64> {
-    let ((), t) = gpu.submit_timed(|rec| {
-        rec.timestamp()?;
-        work(rec)?;
-        rec.timestamp()
-    })?;
-    Ok((t[1] - t[0]) * 1e-6)
 }
 
 /// A scheme under test.
@@ -286,7 +272,7 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 "dense array (gpu)",
                 Throughput::Elements,
                 None,
-                || gpu_ms(&gpu, |rec| dense.record_query(rec, q, &up.results, up.n)),
+                || time_gpu(&gpu, |rec| dense.record_query(rec, q, &up.results, up.n)),
             )?;
             ensure!(
                 &up.results.read()? == expected,
@@ -399,7 +385,7 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     let case = format!("{} lf {lf:.2} query {name}", ds.name);
                     let ms =
                         bench.case(&case, n, scheme, Throughput::Elements, baseline, || {
-                            gpu_ms(&gpu, |rec| table.record_query(rec, q, &up.results, up.n))
+                            time_gpu(&gpu, |rec| table.record_query(rec, q, &up.results, up.n))
                         })?;
                     ensure!(
                         &up.results.read()? == expected,
@@ -433,7 +419,7 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 scheme,
                 Throughput::Elements,
                 baseline,
-                || gpu_ms(&gpu, |rec| table.record_query(rec, q, &up.results, up.n)),
+                || time_gpu(&gpu, |rec| table.record_query(rec, q, &up.results, up.n)),
             )?;
             ensure!(
                 &up.results.read()? == expected,

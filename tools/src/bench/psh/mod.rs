@@ -5,14 +5,14 @@
 //! probing, load factor 0.85) and the dense array on the same keys. Also the blocked variant's
 //! bytes for b = 1..4 on the armadillo's interpolation cells.
 
-use super::harness::{time_cpu, Bench, Throughput};
+use super::harness::{time_cpu, time_gpu, Bench, Throughput};
 use super::hash::datasets::{self, Dataset};
 use super::plot::bar_chart;
 use super::CommonArgs;
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
-use lazysolid_compute::gpu::{Gpu, GpuBuffer};
+use lazysolid_compute::gpu::GpuBuffer;
 use lazysolid_compute::hash::perfect::*;
 use lazysolid_compute::hash::*;
 use std::collections::HashSet;
@@ -49,20 +49,6 @@ pub struct PshArgs {
 
 /// Largest dense array measured (bytes): lavapipe's heap is 2 GiB.
 const DENSE_LIMIT: u64 = 1 << 30;
-
-fn gpu_ms(
-    gpu: &Gpu,
-    work: impl FnOnce(
-        &mut lazysolid_compute::gpu::Recorder<'_>,
-    ) -> lazysolid_compute::gpu::GpuResult<()>,
-) -> anyhow::Result<f64> {
-    let ((), t) = gpu.submit_timed(|rec| {
-        rec.timestamp()?;
-        work(rec)?;
-        rec.timestamp()
-    })?;
-    Ok((t[1] - t[0]) * 1e-6)
-}
 
 /// Perfect on the keys and every payload found by the CPU lookup.
 fn check(t: &PerfectHash, keys: &[u64], payloads: &[u32], what: &str) -> anyhow::Result<()> {
@@ -210,7 +196,7 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             Throughput::Elements,
             Some("coherent hash lf 0.85 (gpu)"),
             || {
-                gpu_ms(&gpu, |rec| {
+                time_gpu(&gpu, |rec| {
                     gpu_table.record_query(rec, &key_buf, &results, n)
                 })
             },
@@ -237,7 +223,7 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             Throughput::Elements,
             None,
             || {
-                gpu_ms(&gpu, |rec| {
+                time_gpu(&gpu, |rec| {
                     coherent.record_query(rec, &key_buf, &results, n)
                 })
             },
@@ -260,7 +246,7 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 "dense array (gpu)",
                 Throughput::Elements,
                 None,
-                || gpu_ms(&gpu, |rec| dense.record_query(rec, &key_buf, &results, n)),
+                || time_gpu(&gpu, |rec| dense.record_query(rec, &key_buf, &results, n)),
             )?;
             ensure!(
                 results.read()? == ds.payloads,

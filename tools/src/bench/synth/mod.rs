@@ -23,7 +23,7 @@ use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::synth::{
-    analyze, default_passes, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis,
+    analyze, passes_or_default, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis,
     GpuSynthesizer, LevelTimes, Region, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER,
     DEFAULT_PASSES,
 };
@@ -171,11 +171,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         let params = SynthParams::new(
             levels,
             args.seed,
-            &if args.passes.is_empty() {
-                default_passes(levels)
-            } else {
-                args.passes.clone()
-            },
+            &passes_or_default(&args.passes, levels),
             &[args.jitter],
         )?;
         let synth = GpuSynthesizer::new(&gpu, &analysis)?;
