@@ -690,3 +690,64 @@ fn bench_textures_refuses_bad_resolutions_views_and_meshes() {
     assert!(!ok && err.contains("--octree \"8.4\""), "{err}");
     assert!(!err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn bench_psh_writes_its_table_files_and_figures() {
+    let out = tempfile::tempdir().unwrap();
+    let (ok, stdout, err) = run(lazysolid()
+        .args(["bench", "psh", "--quick", "--runs", "1", "--warmup", "0"])
+        .arg("--mesh")
+        .arg(repo("assets/meshes/armadillo.off"))
+        .arg("--out")
+        .arg(out.path())
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    for needle in [
+        "random-2d build",
+        "cpu reference (1 thread)",
+        "gpu construction",
+        "voxels-128 query",
+        "coherent hash lf 0.85 (gpu)",
+        "dense array (gpu)",
+        "blocked R=64: chosen b",
+    ] {
+        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
+    }
+    let entries: Vec<_> = std::fs::read_dir(out.path())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let json = entries
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .expect("a JSON file");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let derived = &json["derived"];
+    // The GPU construction ends at the CPU reference's sizes on every dataset.
+    for set in ["random-2d", "image", "voxels-128"] {
+        let get = |k: &str| {
+            derived[format!("{set}: {k}")]
+                .as_f64()
+                .unwrap_or_else(|| panic!("no {set}: {k}"))
+        };
+        assert_eq!(
+            get("cpu |Phi| per axis"),
+            get("gpu |Phi| per axis"),
+            "{set}"
+        );
+        let bits = get("gpu Phi bits per key");
+        assert!(bits > 0.0 && bits.is_finite(), "{set}: {bits}");
+    }
+    let figures = entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    for f in [
+        "psh-construction.png",
+        "psh-queries.png",
+        "psh-blocked-bytes.png",
+    ] {
+        assert!(figures.join(f).exists(), "missing {f}");
+    }
+}
