@@ -3,9 +3,9 @@
 //! and the errors of bad exemplars.
 
 use lazysolid_compute::synth::{
-    analyze, default_passes, energy_cpu, histogram_distance, plan_regions, synthesize_cpu, unpack,
-    AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis, GpuSynthesizer, Region, SynthError,
-    SynthParams, MIN_EXEMPLAR_SIDE,
+    analyze, default_passes, energy_cpu, hash4, histogram_distance, pack, period_repetition,
+    plan_regions, synthesize_cpu, unpack, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis,
+    GpuSynthesizer, Region, SynthError, SynthParams, MIN_EXEMPLAR_SIDE, REPETITION_TOLERANCE,
 };
 use lazysolid_tests::{asset_exemplar, with_gpu};
 use std::sync::OnceLock;
@@ -164,6 +164,39 @@ fn zero_jitter_reproduces_the_tiling() {
             assert_eq!(unpack(c), expected, "pixel ({px}, {py})");
         }
     }
+}
+
+/// Coordinates of a `w`×`h` output made of 16×16 blocks, each a copy of a 32×40 exemplar
+/// shifted by `shift(block x, block y)`.
+fn block_copies(w: u32, h: u32, shift: impl Fn(u32, u32) -> (u32, u32)) -> Vec<u32> {
+    (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let (sx, sy) = shift(x / 16, y / 16);
+            pack((x + sx) % 32, (y + sy) % 40)
+        })
+        .collect()
+}
+
+#[test]
+fn period_repetition_separates_tilings_from_independent_patches() {
+    let (w, h) = (200, 150);
+    let measure = |c: &[u32]| period_repetition(c, w, h, 32, 40);
+    // The plain tiling, and a near-tiling shifted by up to the tolerance per block, repeat fully.
+    assert_eq!(measure(&block_copies(w, h, |_, _| (0, 0))), 1.0);
+    let t = REPETITION_TOLERANCE;
+    assert_eq!(
+        measure(&block_copies(w, h, |bx, by| ((bx + by) % 2 * t, 0))),
+        1.0
+    );
+    // Blocks shifted by hashed offsets repeat by chance only: (2·4 + 1)² / (32·40) ≈ 6 %.
+    let random = block_copies(w, h, |bx, by| {
+        (hash4(bx, by, 1, 2) % 32, hash4(bx, by, 3, 4) % 40)
+    });
+    let r = measure(&random);
+    assert!(r < 0.15, "independent patches: {r}");
+    // No pair one period apart fits: 0, not a division by zero.
+    assert_eq!(period_repetition(&vec![0; 31 * 39], 31, 39, 32, 40), 0.0);
 }
 
 #[test]

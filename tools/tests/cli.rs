@@ -481,6 +481,7 @@ fn bench_synth_writes_its_tables_files_and_images() {
     let (ok, stdout, err) = run(lazysolid()
         .args(["bench", "synth", "--exemplars", "leather", "--sizes", "64"])
         .args(["--energy-samples", "256", "--runs", "1", "--warmup", "0"])
+        .args(["--quality-seeds", "2"])
         .arg("--exemplar-dir")
         .arg(&exemplars)
         .arg("--out")
@@ -494,6 +495,7 @@ fn bench_synth_writes_its_tables_files_and_images() {
         "lazysolid end-to-end (wall)",
         "texture-synthesis 0.8.2 (2 threads)",
         "energy lazysolid",
+        "mean of 2 seed(s)",
         "gpu profile",
         "target leather 64x64 -> 64x64: >= 20x faster",
     ] {
@@ -524,10 +526,22 @@ fn bench_synth_writes_its_tables_files_and_images() {
         "leather 64x64 -> 64x64: texture-synthesis energy",
         "leather 64x64 -> 64x64: lazysolid histogram distance",
         "leather 64x64 -> 64x64: texture-synthesis histogram distance",
+        "leather 64x64 -> 64x64: lazysolid period repetition",
+        "leather 64x64 -> 64x64: texture-synthesis period repetition",
     ] {
         let v = derived[key].as_f64().unwrap_or_else(|| panic!("no {key}"));
         assert!(v.is_finite() && v >= 0.0, "{key} = {v}");
     }
+    // The mean lies within the range of the two seeds' energies, for both synthesizers.
+    for who in ["lazysolid", "texture-synthesis"] {
+        let get = |key: &str| {
+            let key = format!("leather 64x64 -> 64x64: {who} {key}");
+            derived[&key].as_f64().unwrap_or_else(|| panic!("no {key}"))
+        };
+        let (lo, mean, hi) = (get("energy min"), get("energy"), get("energy max"));
+        assert!(lo <= mean && mean <= hi, "{who}: {lo} {mean} {hi}");
+    }
+    assert_eq!(derived["quality seeds"], 2.0);
     // 58² interior positions on the coarsest subgrid with at most 256: every 4th, 15².
     assert_eq!(derived["leather 64x64 -> 64x64: energy samples"], 225.0);
     let ratio = json["rows"][1]["ratio"].as_f64().expect("a ratio");
@@ -556,6 +570,11 @@ fn bench_synth_refuses_missing_exemplars_and_bad_sizes() {
     let (ok, _, err) = run(lazysolid().args(["bench", "synth", "--sizes", "4"]));
     assert!(
         !ok && err.contains("--sizes 4 is out of range (7..=2048)"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid().args(["bench", "synth", "--quality-seeds", "0"]));
+    assert!(
+        !ok && err.contains("--quality-seeds 0 is out of range (1..=16)"),
         "{err}"
     );
     let (ok, _, err) = run(lazysolid().args([

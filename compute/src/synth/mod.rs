@@ -23,11 +23,13 @@ mod neighbourhood;
 mod params;
 mod pat;
 mod plan;
+mod repetition;
 mod stack;
 mod synthesis;
 
 pub use analysis::{
-    analyze, AnalysisParams, ExemplarAnalysis, LevelAnalysis, MAX_COHERENCE_K, MAX_COHERENCE_SPREAD,
+    analyze, AnalysisParams, ExemplarAnalysis, LevelAnalysis, DEFAULT_COHERENCE_K,
+    DEFAULT_COHERENCE_SPREAD, MAX_COHERENCE_K, MAX_COHERENCE_SPREAD,
 };
 pub use appearance::{appearance_distance, APPEARANCE_DIMS, APPEARANCE_QUANT_MAX};
 pub use coherence::MAX_POOL;
@@ -45,9 +47,11 @@ pub use neighbourhood::{
     DIAGONALS, NEIGHBOURHOOD_DIMS,
 };
 pub use params::{
-    default_passes, passes_or_default, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER,
-    DEFAULT_PASSES, JITTER_ONE, MAX_PASSES,
+    default_jitter, default_passes, jitter_or_default, passes_or_default, SynthParams,
+    DEFAULT_COARSE_JITTER, DEFAULT_FINEST_PASSES, DEFAULT_FINE_JITTER, DEFAULT_PASSES, JITTER_ONE,
+    MAX_PASSES,
 };
 pub use pat::{decode_pattern, Pattern};
 pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};
+pub use repetition::{period_repetition, REPETITION_TOLERANCE};
 pub use synthesis::{check_window, LevelCoords, Synthesis, MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};

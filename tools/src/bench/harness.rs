@@ -173,6 +173,11 @@ impl Bench {
         Ok(min)
     }
 
+    /// Shows what the suite is doing between timed cases (untimed work such as scoring).
+    pub fn status(&self, message: String) {
+        self.progress.set_message(message);
+    }
+
     /// `<out>/<suite>-<date>/`, created on first use: where a suite puts its figures.
     pub fn artifact_dir(&self) -> anyhow::Result<PathBuf> {
         let dir = self.artifact_path();

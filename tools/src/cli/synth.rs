@@ -6,8 +6,9 @@ use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::synth::{
-    analyze, histogram_distance, passes_or_default, unpack, AnalysisParams, EnergyKernel,
-    EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
+    analyze, histogram_distance, jitter_or_default, passes_or_default, period_repetition, unpack,
+    AnalysisParams, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
+    DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -26,18 +27,19 @@ pub struct SynthArgs {
     /// Seed of the jitter.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
-    /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first.
-    #[arg(long, default_value = "0.4", value_delimiter = ',')]
+    /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first
+    /// [default: 0.6, 0.5, 0.4, 0.3 at the four coarsest levels, 0.2 below].
+    #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes, one for all levels or a comma-separated list, coarsest first
-    /// [default: 4 at every level, 2 at the finest].
+    /// [default: 4 at every level, 3 at the finest].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
     /// Size of the k-coherence similarity sets.
-    #[arg(short, long, default_value_t = 2)]
+    #[arg(short, long, default_value_t = DEFAULT_COHERENCE_K)]
     pub k: u32,
     /// Smallest distance in pixels between members of a similarity set.
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = DEFAULT_COHERENCE_SPREAD)]
     pub spread: u32,
     /// The exemplar does not tile: clamp at its borders instead of wrapping.
     #[arg(long)]
@@ -120,7 +122,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         levels,
         args.seed,
         &passes_or_default(&args.passes, levels),
-        &args.jitter,
+        &jitter_or_default(&args.jitter, levels),
     )?;
     let window = Region {
         origin: [args.offset.0, args.offset.1],
@@ -140,10 +142,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
 
     let (w, h) = args.size;
     let colours = result.colours(&exemplar);
-    let coords: Vec<[u8; 3]> = result
-        .window_coords()
-        .into_iter()
-        .map(|c| {
+    let window_coords = result.window_coords();
+    let repetition = period_repetition(&window_coords, w, h, exemplar.width, exemplar.height);
+    let coords: Vec<[u8; 3]> = window_coords
+        .iter()
+        .map(|&c| {
             let (x, y) = unpack(c);
             [
                 (x * 256 / exemplar.width) as u8,
@@ -183,6 +186,10 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         report.mean, report.per_value, report.samples
     );
     println!("colour histogram distance {histogram:.4}");
+    println!(
+        "period repetition {repetition:.3} (share of pixels one exemplar period apart that copy \
+         the same exemplar pixel; the plain tiling is 1)"
+    );
     println!(
         "wrote {} and {}",
         args.output.display(),

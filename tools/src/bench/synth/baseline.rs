@@ -2,9 +2,9 @@
 //! CPU), run with its defaults except the seed, the output size and the thread count.
 
 use anyhow::Context;
-use lazysolid_compute::synth::Exemplar;
-use texture_synthesis::image::{DynamicImage, RgbImage};
-use texture_synthesis::{Dims, Session};
+use lazysolid_compute::synth::{pack, Exemplar, MAX_EXEMPLAR_SIDE};
+use texture_synthesis::image::{DynamicImage, RgbImage, Rgba, RgbaImage};
+use texture_synthesis::{Dims, GeneratedImage, Session};
 
 /// The settings the baseline runs with, as the bench reports them.
 pub fn settings(threads: usize) -> String {
@@ -15,14 +15,23 @@ pub fn settings(threads: usize) -> String {
     )
 }
 
+/// One output of the baseline.
+pub struct Output {
+    /// RGB pixels, row-major.
+    pub rgb: Vec<[u8; 3]>,
+    /// The exemplar pixel every output pixel was copied from, packed as lazysolid's
+    /// coordinates, so both synthesizers' outputs can be measured for repetition alike.
+    pub coords: Vec<u32>,
+}
+
 /// Synthesizes a `size`² image from `exemplar`: session build (the example's pyramid) and run,
-/// the whole of what a user of the crate waits for. Returns the RGB pixels, row-major.
+/// the whole of what a user of the crate waits for (what the bench times).
 pub fn synthesize(
     exemplar: &Exemplar,
     size: u32,
     seed: u64,
     threads: usize,
-) -> anyhow::Result<Vec<[u8; 3]>> {
+) -> anyhow::Result<GeneratedImage> {
     let bytes: Vec<u8> = exemplar.rgb.iter().flatten().copied().collect();
     let image = RgbImage::from_raw(exemplar.width, exemplar.height, bytes)
         .context("exemplar size does not match its pixels")?;
@@ -33,11 +42,32 @@ pub fn synthesize(
         .max_thread_count(threads)
         .build()
         .map_err(|e| anyhow::anyhow!("texture-synthesis refused the session: {e}"))?;
-    let out = session.run(None).into_image().to_rgb8();
+    Ok(session.run(None))
+}
+
+/// The pixels and the coordinate map of a `size`² output of [`synthesize`] (untimed).
+pub fn output(generated: GeneratedImage, exemplar: &Exemplar, size: u32) -> anyhow::Result<Output> {
+    const _: () = assert!(MAX_EXEMPLAR_SIDE <= 256, "positions are stored in 8 bits");
+    let transform = generated.get_coordinate_transform();
+    let out = generated.into_image().to_rgb8();
     anyhow::ensure!(
         out.dimensions() == (size, size),
         "texture-synthesis returned {:?} pixels, expected {size}x{size}",
         out.dimensions()
     );
-    Ok(out.pixels().map(|p| p.0).collect())
+    // Applying the transform to an image that holds each pixel's own position recovers the
+    // source position of every output pixel (exemplars are at most 256 pixels a side).
+    let positions = RgbaImage::from_fn(exemplar.width, exemplar.height, |x, y| {
+        Rgba([x as u8, y as u8, 0, 255])
+    });
+    let map = transform
+        .apply([DynamicImage::ImageRgba8(positions)])
+        .map_err(|e| anyhow::anyhow!("texture-synthesis coordinate transform: {e}"))?;
+    Ok(Output {
+        rgb: out.pixels().map(|p| p.0).collect(),
+        coords: map
+            .pixels()
+            .map(|p| pack(u32::from(p.0[0]), u32::from(p.0[1])))
+            .collect(),
+    })
 }

@@ -23,11 +23,11 @@ use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::synth::{
-    analyze, passes_or_default, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis,
-    GpuSynthesizer, LevelTimes, Region, SynthParams, DEFAULT_FINEST_PASSES, DEFAULT_JITTER,
-    DEFAULT_PASSES,
+    analyze, jitter_or_default, passes_or_default, AnalysisParams, EnergyKernel, Exemplar,
+    ExemplarAnalysis, GpuSynthesizer, LevelTimes, Region, SynthParams, DEFAULT_COARSE_JITTER,
+    DEFAULT_FINEST_PASSES, DEFAULT_PASSES,
 };
-use quality::Quality;
+use quality::SeedScores;
 use std::path::PathBuf;
 
 /// What to compare.
@@ -45,14 +45,19 @@ pub struct SynthArgs {
     /// Square output sizes in pixels per side.
     #[arg(long, value_delimiter = ',', default_value = "256,512")]
     pub sizes: Vec<u32>,
-    /// Seed of both synthesizers.
+    /// Seed of both synthesizers in the timed runs, and the first of the scored seeds.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
-    /// Jitter strength of lazysolid's synthesis at every level.
-    #[arg(long, default_value_t = DEFAULT_JITTER)]
-    pub jitter: f32,
+    /// Seeds each synthesizer's quality is averaged over (--seed, --seed + 1, ...): one seed's
+    /// energy moves by about ±25 % with the layout it draws.
+    #[arg(long, default_value_t = 3)]
+    pub quality_seeds: u32,
+    /// Jitter strengths of lazysolid's synthesis, one for all levels or one per level (coarsest
+    /// first) [default: 0.6, 0.5, 0.4, 0.3 at the four coarsest levels, 0.2 below].
+    #[arg(long, value_delimiter = ',')]
+    pub jitter: Vec<f32>,
     /// Correction passes of lazysolid's synthesis, one for all levels or one per level
-    /// (coarsest first) [default: 4 at every level, 2 at the finest].
+    /// (coarsest first) [default: 4 at every level, 3 at the finest].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
     /// Most output pixels the neighbourhood energy evaluates, for both outputs.
@@ -78,6 +83,9 @@ const END_TO_END: &str = "lazysolid end-to-end (wall)";
 const TARGET_SPEEDUP: f64 = 20.0;
 const TARGET_512_FROM_64_MS: f64 = 500.0;
 
+/// Most scored seeds per case (each costs one more run of texture-synthesis).
+const MAX_QUALITY_SEEDS: u32 = 16;
+
 /// One exemplar and output size, measured.
 struct CaseResult {
     case: String,
@@ -88,8 +96,8 @@ struct CaseResult {
     end_to_end_ms: f64,
     baseline_ms: f64,
     levels: Vec<LevelTimes>,
-    ours: Quality,
-    theirs: Quality,
+    ours: SeedScores,
+    theirs: SeedScores,
 }
 
 fn exemplar_path(args: &SynthArgs, name: &str) -> PathBuf {
@@ -119,6 +127,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         );
     }
     ensure!(args.cpu_threads >= 1, "--cpu-threads must be at least 1");
+    ensure!(
+        (1..=MAX_QUALITY_SEEDS).contains(&args.quality_seeds),
+        "--quality-seeds {} is out of range (1..={MAX_QUALITY_SEEDS})",
+        args.quality_seeds
+    );
     let (names, sizes) = if args.quick {
         (&args.exemplars[..1], &args.sizes[..1])
     } else {
@@ -168,12 +181,9 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         )?;
         let analysis = analysis.expect("analysed at least once");
         let levels = analysis.levels.len() as u32;
-        let params = SynthParams::new(
-            levels,
-            args.seed,
-            &passes_or_default(&args.passes, levels),
-            &[args.jitter],
-        )?;
+        let passes = passes_or_default(&args.passes, levels);
+        let jitter = jitter_or_default(&args.jitter, levels);
+        let params = SynthParams::new(levels, args.seed, &passes, &jitter)?;
         let synth = GpuSynthesizer::new(&gpu, &analysis)?;
 
         for &size in sizes {
@@ -199,6 +209,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 },
             )?;
             let mut ours = Vec::new();
+            let mut ours_coords = Vec::new();
             let wall_ms = bench.case(
                 &case,
                 pixels,
@@ -209,7 +220,9 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     let (s, ms) = time_cpu(|| {
                         synth.synthesize(&analysis, &params, window, false, &mut |_| {})
                     });
-                    ours = s?.colours(exemplar);
+                    let s = s?;
+                    ours = s.colours(exemplar);
+                    ours_coords = s.window_coords();
                     Ok(ms)
                 },
             )?;
@@ -230,7 +243,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     Ok(ms)
                 },
             )?;
-            let mut theirs = Vec::new();
+            let mut theirs = None;
             let baseline_ms = bench.case(
                 &case,
                 pixels,
@@ -241,16 +254,40 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     let (out, ms) = time_cpu(|| {
                         baseline::synthesize(exemplar, size, args.seed as u64, threads)
                     });
-                    theirs = out?;
+                    theirs = Some(out?);
                     Ok(ms)
                 },
             )?;
-            let ours_q = quality::measure(&energy, exemplar, &ours, size, args.energy_samples)?;
-            let theirs_q = quality::measure(&energy, exemplar, &theirs, size, args.energy_samples)?;
+            let theirs = baseline::output(
+                theirs.expect("texture-synthesis ran at least once"),
+                exemplar,
+                size,
+            )?;
+            let score = |image: &[[u8; 3]], coords: &[u32]| {
+                quality::measure(&energy, exemplar, image, coords, size, args.energy_samples)
+            };
+            let mut ours_q = SeedScores {
+                per_seed: vec![score(&ours, &ours_coords)?],
+            };
+            let mut theirs_q = SeedScores {
+                per_seed: vec![score(&theirs.rgb, &theirs.coords)?],
+            };
+            for extra in 1..args.quality_seeds {
+                let seed = args.seed.wrapping_add(extra);
+                bench.status(format!("{case} — scoring seed {seed} of both"));
+                let p = SynthParams::new(levels, seed, &passes, &jitter)?;
+                let s = synth.synthesize(&analysis, &p, window, false, &mut |_| {})?;
+                ours_q
+                    .per_seed
+                    .push(score(&s.colours(exemplar), &s.window_coords())?);
+                let generated = baseline::synthesize(exemplar, size, seed as u64, threads)?;
+                let t = baseline::output(generated, exemplar, size)?;
+                theirs_q.per_seed.push(score(&t.rgb, &t.coords)?);
+            }
             figures.push((
                 format!("{name}-{size}-lazysolid-vs-texture-synthesis.png"),
                 ours,
-                theirs,
+                theirs.rgb,
                 size,
             ));
             results.push(CaseResult {
@@ -301,7 +338,14 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             args.energy_samples as f64,
         ),
         ("seed".to_string(), args.seed as f64),
-        ("jitter".to_string(), args.jitter as f64),
+        ("quality seeds".to_string(), args.quality_seeds as f64),
+        (
+            "jitter (coarsest level)".to_string(),
+            args.jitter
+                .first()
+                .copied()
+                .unwrap_or(DEFAULT_COARSE_JITTER[0]) as f64,
+        ),
         (
             "passes (finest level)".to_string(),
             args.passes.last().copied().unwrap_or(DEFAULT_FINEST_PASSES) as f64,
@@ -315,17 +359,41 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     for r in &results {
         let c = &r.case;
         notes.extend([
-            (format!("{c}: lazysolid energy"), r.ours.energy),
-            (format!("{c}: texture-synthesis energy"), r.theirs.energy),
+            (format!("{c}: lazysolid energy"), r.ours.energy()),
+            (format!("{c}: texture-synthesis energy"), r.theirs.energy()),
+            (
+                format!("{c}: lazysolid energy min"),
+                r.ours.energy_range().0,
+            ),
+            (
+                format!("{c}: lazysolid energy max"),
+                r.ours.energy_range().1,
+            ),
+            (
+                format!("{c}: texture-synthesis energy min"),
+                r.theirs.energy_range().0,
+            ),
+            (
+                format!("{c}: texture-synthesis energy max"),
+                r.theirs.energy_range().1,
+            ),
             (
                 format!("{c}: lazysolid histogram distance"),
-                r.ours.histogram,
+                r.ours.histogram(),
             ),
             (
                 format!("{c}: texture-synthesis histogram distance"),
-                r.theirs.histogram,
+                r.theirs.histogram(),
             ),
-            (format!("{c}: energy samples"), r.ours.samples as f64),
+            (
+                format!("{c}: lazysolid period repetition"),
+                r.ours.repetition(),
+            ),
+            (
+                format!("{c}: texture-synthesis period repetition"),
+                r.theirs.repetition(),
+            ),
+            (format!("{c}: energy samples"), r.ours.samples() as f64),
             (
                 format!("{c}: gpu upsample ms"),
                 r.levels.iter().map(|t| t.upsample_ms).sum(),
@@ -345,32 +413,49 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     bench.finish(&notes)?;
     println!();
     println!("baseline: {}", baseline::settings(threads));
-    print_quality(&results);
+    print_quality(&results, args.quality_seeds);
     print_profile(&results);
     print_targets(&results);
     Ok(())
 }
 
-fn print_quality(results: &[CaseResult]) {
+fn print_quality(results: &[CaseResult], seeds: u32) {
     println!();
     println!(
-        "quality against the exemplar (7x7 neighbourhood energy: mean per neighbourhood / per value; colour-histogram distance)"
+        "quality against the exemplar, mean of {seeds} seed(s) (7x7 neighbourhood energy: mean \
+         per neighbourhood, per value and the single-seed range; colour-histogram distance; \
+         period repetition: share of pixels one exemplar period apart copying exemplar pixels at most 4 apart)"
     );
     println!(
-        "{:<28} {:>8} {:>20} {:>20} {:>10} {:>10}",
-        "case", "samples", "energy lazysolid", "energy tex-synth", "hist ours", "hist theirs"
+        "{:<28} {:>8} {:>34} {:>34} {:>10} {:>11} {:>9} {:>10}",
+        "case",
+        "samples",
+        "energy lazysolid",
+        "energy tex-synth",
+        "hist ours",
+        "hist theirs",
+        "rep ours",
+        "rep theirs"
     );
+    let cell = |q: &SeedScores| {
+        let (lo, hi) = q.energy_range();
+        format!(
+            "{:.1} ({:.2}) [{lo:.0}..{hi:.0}]",
+            q.energy(),
+            q.energy_per_value()
+        )
+    };
     for r in results {
         println!(
-            "{:<28} {:>8} {:>11.1} ({:>6.2}) {:>11.1} ({:>6.2}) {:>10.4} {:>10.4}",
+            "{:<28} {:>8} {:>34} {:>34} {:>10.4} {:>11.4} {:>9.3} {:>10.3}",
             r.case,
-            r.ours.samples,
-            r.ours.energy,
-            r.ours.energy_per_value,
-            r.theirs.energy,
-            r.theirs.energy_per_value,
-            r.ours.histogram,
-            r.theirs.histogram
+            r.ours.samples(),
+            cell(&r.ours),
+            cell(&r.theirs),
+            r.ours.histogram(),
+            r.theirs.histogram(),
+            r.ours.repetition(),
+            r.theirs.repetition()
         );
     }
 }
@@ -407,17 +492,17 @@ fn print_targets(results: &[CaseResult]) {
     for r in results {
         let speedup = r.baseline_ms / r.passes_ms;
         let wall_speedup = r.baseline_ms / r.wall_ms;
-        let not_worse = r.ours.energy <= r.theirs.energy;
+        let not_worse = r.ours.energy() <= r.theirs.energy();
         let met = speedup >= TARGET_SPEEDUP && not_worse;
         println!(
             "target {}: >= {TARGET_SPEEDUP}x faster at equal or lower energy: {} \
              (gpu passes {speedup:.1}x, synthesize wall {wall_speedup:.1}x, end-to-end {:.1}x; \
-             energy {:.1} vs {:.1})",
+             mean energy {:.1} vs {:.1})",
             r.case,
             if met { "met" } else { "missed" },
             r.baseline_ms / r.end_to_end_ms,
-            r.ours.energy,
-            r.theirs.energy
+            r.ours.energy(),
+            r.theirs.energy()
         );
     }
     for r in results

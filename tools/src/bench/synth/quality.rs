@@ -3,7 +3,9 @@
 //! against the exemplar; and a side-by-side image so the numbers can be checked by eye.
 
 use super::super::plot::rgb_image;
-use lazysolid_compute::synth::{histogram_distance, EnergyKernel, EnergyReport, Exemplar};
+use lazysolid_compute::synth::{
+    histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar,
+};
 use std::path::Path;
 
 /// Scores of one output image.
@@ -17,13 +19,18 @@ pub struct Quality {
     pub samples: usize,
     /// Total variation between the joint RGB histograms, in [0, 1].
     pub histogram: f64,
+    /// Share of pixel pairs one exemplar period apart that copy (nearly) the same exemplar pixel
+    /// (`period_repetition`): the plain tiling scores 1.
+    pub repetition: f64,
 }
 
-/// Scores a `size`² image against `exemplar` with at most `samples` energy positions.
+/// Scores a `size`² image (and its coordinate map) against `exemplar` with at most `samples`
+/// energy positions.
 pub fn measure(
     kernel: &EnergyKernel,
     exemplar: &Exemplar,
     image: &[[u8; 3]],
+    coords: &[u32],
     size: u32,
     samples: usize,
 ) -> anyhow::Result<Quality> {
@@ -34,7 +41,56 @@ pub fn measure(
         energy_per_value: report.per_value,
         samples: report.samples,
         histogram: histogram_distance(&exemplar.rgb, image),
+        repetition: period_repetition(coords, size, size, exemplar.width, exemplar.height),
     })
+}
+
+/// Scores of one synthesizer over several seeds: single-seed energies move by ±25 % with the
+/// seed (the layout the jitter picks), so the comparison is made on the mean.
+#[derive(Clone, Debug)]
+pub struct SeedScores {
+    /// One score per seed, in seed order.
+    pub per_seed: Vec<Quality>,
+}
+
+impl SeedScores {
+    fn mean(&self, f: impl Fn(&Quality) -> f64) -> f64 {
+        self.per_seed.iter().map(f).sum::<f64>() / self.per_seed.len().max(1) as f64
+    }
+
+    /// Mean energy over the seeds.
+    pub fn energy(&self) -> f64 {
+        self.mean(|q| q.energy)
+    }
+
+    /// Mean energy per compared value.
+    pub fn energy_per_value(&self) -> f64 {
+        self.mean(|q| q.energy_per_value)
+    }
+
+    /// Smallest and largest single-seed energy.
+    pub fn energy_range(&self) -> (f64, f64) {
+        self.per_seed
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+                (lo.min(q.energy), hi.max(q.energy))
+            })
+    }
+
+    /// Mean period repetition.
+    pub fn repetition(&self) -> f64 {
+        self.mean(|q| q.repetition)
+    }
+
+    /// Mean histogram distance.
+    pub fn histogram(&self) -> f64 {
+        self.mean(|q| q.histogram)
+    }
+
+    /// Energy positions per image (the same for every seed).
+    pub fn samples(&self) -> usize {
+        self.per_seed.first().map_or(0, |q| q.samples)
+    }
 }
 
 /// Pixels of white between the two images.
