@@ -153,6 +153,63 @@ fn robin_hood_3d_and_compact_cells() {
     });
 }
 
+/// The kernels reduce keys modulo |H| without a division: keys on either side of multiples of
+/// |H|, below and past 2^32, must land exactly where the CPU reference's `%` puts them.
+#[test]
+fn home_slots_are_exact_around_multiples_of_the_table_size_and_2_to_the_32() {
+    with_gpu(|gpu| {
+        let kernels = HashKernels::new(gpu).unwrap();
+        let u = Universe::new_3d([2048; 3], KeyLayout::Morton).unwrap();
+        let top = 1u64 << 33; // keys of the 2048^3 universe lie below 2^33
+        let config = RobinHoodConfig {
+            load_factor: 0.5,
+            ..Default::default()
+        };
+        // The table size depends only on the key count and the load factor: learn it first.
+        let n = 400;
+        let first: Vec<u64> = (0..n as u64).collect();
+        let d = RobinHoodTable::build_from_slices(&kernels, u, &first, &vec![0; n], config)
+            .unwrap()
+            .table_size() as u64;
+        let mut keys = std::collections::BTreeSet::new();
+        for k in [
+            1,
+            2,
+            3,
+            (1 << 32) / d,
+            (1 << 32) / d + 1,
+            top / d - 1,
+            top / d,
+        ] {
+            for delta in [-1i64, 0, 1] {
+                let key = (k * d).wrapping_add_signed(delta);
+                if key < top {
+                    keys.insert(key);
+                }
+            }
+        }
+        keys.extend([0, (1 << 32) - 1, 1 << 32, (1 << 32) + 1, top - 2, top - 1]);
+        let (random, _) = sample(&u, n, 0, 23);
+        keys.extend(random.into_iter().take(n - keys.len()));
+        let keys: Vec<u64> = keys.into_iter().collect();
+        let payloads: Vec<u32> = (0..keys.len() as u32).collect();
+        let table =
+            RobinHoodTable::build_from_slices(&kernels, u, &keys, &payloads, config).unwrap();
+        assert_eq!(table.table_size() as u64, d);
+        let format = CellFormat::new(config.width, &u).unwrap();
+        let mut cpu = RobinHoodCpu::new(table.table_size(), format, config.probe);
+        cpu.insert(&keys, &payloads);
+        cpu.finish();
+        assert_eq!(table.cells().unwrap(), cpu.cells, "|H| = {d}");
+        assert_eq!(table.query(&keys).unwrap(), payloads, "|H| = {d}");
+        for key in [2 * d + 2, (1 << 32) + d - 1, top - 3] {
+            if !keys.contains(&key) {
+                assert_eq!(table.query(&[key]).unwrap(), [HASH_NOT_FOUND], "{key}");
+            }
+        }
+    });
+}
+
 #[test]
 fn coherent_image_keys_at_load_factor_0_99_stay_within_the_age_field() {
     with_gpu(|gpu| {

@@ -243,6 +243,16 @@ fn bench_hash_refuses_bad_load_factors_and_missing_meshes() {
         !ok && err.contains("/no/such/mesh.off") && err.contains("fetch-assets"),
         "{err}"
     );
+    let (ok, _, err) = run(lazysolid().args(["bench", "hash", "--datasets", "image,fish"]));
+    assert!(
+        !ok && err.contains("--datasets: unknown dataset \"fish\""),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid().args(["bench", "hash", "--schemes", "linear"]));
+    assert!(
+        !ok && err.contains("--schemes: unknown scheme \"linear\""),
+        "{err}"
+    );
 }
 
 /// Two 40x30 PNGs in a fresh folder: a gradient, and the same with a few pixels changed.

@@ -3,9 +3,11 @@
 
 use super::cell::CellWidth;
 use super::error::HashError;
-use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use super::probe::Probe;
+use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, KernelDef, Recorder};
 use crate::kernels::hash;
 use crate::prims::{RadixSort, Reduce};
+use crate::shader_constants::DEFAULT_WORKGROUP_SIZE;
 use std::sync::{Arc, Mutex};
 
 /// The Robin Hood kernels of one cell width.
@@ -13,7 +15,33 @@ pub(crate) struct RobinHoodKernels {
     pub insert: Kernel,
     pub max_age: Kernel,
     pub set_ages: Kernel,
-    pub query: Kernel,
+    /// The query kernel specialized for the coherent probe (`PROBE`, constant 1) ...
+    pub query_coherent: Kernel,
+    /// ... and for the random one.
+    pub query_random: Kernel,
+}
+
+impl RobinHoodKernels {
+    fn new(gpu: &Gpu, defs: [&'static KernelDef; 4]) -> GpuResult<RobinHoodKernels> {
+        let [insert, max_age, set_ages, query] = defs;
+        let probe =
+            |p: Probe| Kernel::with_constants(gpu, query, DEFAULT_WORKGROUP_SIZE, &[(1, p.id())]);
+        Ok(RobinHoodKernels {
+            insert: Kernel::new(gpu, insert)?,
+            max_age: Kernel::new(gpu, max_age)?,
+            set_ages: Kernel::new(gpu, set_ages)?,
+            query_coherent: probe(Probe::Coherent)?,
+            query_random: probe(Probe::Random)?,
+        })
+    }
+
+    /// The query kernel of `probe`.
+    pub fn query(&self, probe: Probe) -> &Kernel {
+        match probe {
+            Probe::Coherent => &self.query_coherent,
+            Probe::Random => &self.query_random,
+        }
+    }
 }
 
 /// All kernels of the hash tables, plus the primitives they use.
@@ -36,18 +64,24 @@ impl HashKernels {
     pub fn new(gpu: &Gpu) -> GpuResult<Arc<HashKernels>> {
         Ok(Arc::new(HashKernels {
             gpu: gpu.clone(),
-            cells64: RobinHoodKernels {
-                insert: Kernel::new(gpu, &hash::ROBIN_HOOD_INSERT64)?,
-                max_age: Kernel::new(gpu, &hash::ROBIN_HOOD_MAX_AGE64)?,
-                set_ages: Kernel::new(gpu, &hash::ROBIN_HOOD_SET_AGES64)?,
-                query: Kernel::new(gpu, &hash::ROBIN_HOOD_QUERY64)?,
-            },
-            cells32: RobinHoodKernels {
-                insert: Kernel::new(gpu, &hash::ROBIN_HOOD_INSERT32)?,
-                max_age: Kernel::new(gpu, &hash::ROBIN_HOOD_MAX_AGE32)?,
-                set_ages: Kernel::new(gpu, &hash::ROBIN_HOOD_SET_AGES32)?,
-                query: Kernel::new(gpu, &hash::ROBIN_HOOD_QUERY32)?,
-            },
+            cells64: RobinHoodKernels::new(
+                gpu,
+                [
+                    &hash::ROBIN_HOOD_INSERT64,
+                    &hash::ROBIN_HOOD_MAX_AGE64,
+                    &hash::ROBIN_HOOD_SET_AGES64,
+                    &hash::ROBIN_HOOD_QUERY64,
+                ],
+            )?,
+            cells32: RobinHoodKernels::new(
+                gpu,
+                [
+                    &hash::ROBIN_HOOD_INSERT32,
+                    &hash::ROBIN_HOOD_MAX_AGE32,
+                    &hash::ROBIN_HOOD_SET_AGES32,
+                    &hash::ROBIN_HOOD_QUERY32,
+                ],
+            )?,
             open_addressing: Kernel::new(gpu, &hash::OPEN_ADDRESSING_AGES)?,
             cuckoo_insert: Kernel::new(gpu, &hash::CUCKOO_INSERT)?,
             cuckoo_query: Kernel::new(gpu, &hash::CUCKOO_QUERY)?,

@@ -50,6 +50,26 @@ pub fn fastmod_multiplier(d: u32) -> u64 {
     (u64::MAX / d.max(1) as u64).wrapping_add(1)
 }
 
+/// `key mod d` for any 64-bit key without a division, as the kernels compute it (`table_mod`
+/// in `glsl/include/hash/probe.glsl`), given `m = fastmod_multiplier(d)`: the high half of
+/// key · m is ⌊key / d⌋ or one more, and the remainder is corrected for the latter. The CPU
+/// reference uses `%`; this mirror lets the tests check the kernels' arithmetic over every
+/// edge case.
+pub fn table_mod(key: u64, d: u32, m: u64) -> u32 {
+    let q = ((key as u128 * m as u128) >> 64) as u64;
+    let r = key.wrapping_sub(q.wrapping_mul(d as u64));
+    let r = if r >= d as u64 {
+        r.wrapping_add(d as u64)
+    } else {
+        r
+    };
+    if d == 1 {
+        0
+    } else {
+        r as u32
+    }
+}
+
 /// The slot that `key` probes at step `age` (1-based) in a table of `table_size` cells.
 ///
 /// Coherent: (key + o_(age−1)) mod |H|, computed as ((key mod |H|) + (o mod |H|)) mod |H|.
@@ -87,6 +107,51 @@ mod tests {
             }
             assert_eq!(fastmod32(u32::MAX, m, d), u32::MAX % d);
             assert_eq!(fastmod32(0, m, d), 0);
+        }
+    }
+
+    /// The kernels' four-product high half of key · m, as GLSL computes it.
+    fn mulhi_by_parts(key: u64, m: u64) -> u64 {
+        let (k0, k1, m0, m1) = (key & 0xffff_ffff, key >> 32, m & 0xffff_ffff, m >> 32);
+        let p01 = k0 * m1;
+        let p10 = k1 * m0;
+        let mid = ((k0 * m0) >> 32) + (p01 & 0xffff_ffff) + (p10 & 0xffff_ffff);
+        k1 * m1 + (p01 >> 32) + (p10 >> 32) + (mid >> 32)
+    }
+
+    #[test]
+    fn table_mod_is_exact_for_every_64_bit_key() {
+        let mut x = 0x0123_4567_89ab_cdefu64;
+        let mut divisors = vec![1u32, 2, 3, 5, 7, 64, 1 << 31, 1_000_003, 7_624_331];
+        divisors.extend([0x7fff_ffff, 0x8000_0001, u32::MAX - 1, u32::MAX]);
+        for _ in 0..200 {
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            divisors.push((x >> 33) as u32 | 1);
+            divisors.push((x >> 40) as u32 + 2);
+        }
+        for d in divisors {
+            let m = fastmod_multiplier(d);
+            let d64 = d as u64;
+            let mut keys = vec![0u64, 1, u64::MAX, u64::MAX - 1, 1 << 32, (1 << 32) - 1];
+            for k in [1u64, 2, 3, 1 << 20, (1 << 32) / d64.max(1), u64::MAX / d64] {
+                let base = k.wrapping_mul(d64);
+                keys.extend([base.wrapping_sub(1), base, base.wrapping_add(1)]);
+            }
+            for _ in 0..2_000 {
+                x = x
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                keys.extend([x, x >> 31, x >> 40]);
+            }
+            for key in keys {
+                assert_eq!(
+                    mulhi_by_parts(key, m),
+                    ((key as u128 * m as u128) >> 64) as u64
+                );
+                assert_eq!(table_mod(key, d, m) as u64, key % d64, "{key} mod {d}");
+            }
         }
     }
 }

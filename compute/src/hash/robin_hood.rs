@@ -170,7 +170,6 @@ struct QueryPush {
     n: u32,
     table_size: u32,
     key_bits: u32,
-    probe: u32,
 }
 
 /// Cells for `keys` at `load_factor`: the smallest odd count with keys / cells ≤ load_factor.
@@ -597,9 +596,9 @@ impl RobinHoodTable {
             n: n as u32,
             table_size: self.table_size,
             key_bits: self.format.key_bits,
-            probe: self.config.probe.id(),
         };
-        rec.dispatch(&k.query, k.query.groups_for(n as u64), &[], &push)
+        let query = k.query(self.config.probe);
+        rec.dispatch(query, query.groups_for(n as u64), &[], &push)
     }
 
     /// Queries `keys` and reads the results back.

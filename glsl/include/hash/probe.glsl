@@ -34,13 +34,24 @@ uint fastmod32(uint x, uint64_t m, uint d) {
     return uint(t2 >> 32);
 }
 
-// key mod table_size (keys of 2^32 and more take the slow path). A branch, not `?:`: a select
-// would compute the 64-bit division for every key.
-uint table_mod(uint64_t key, uint table_size, uint64_t m) {
-    if (key < (1ul << 32)) {
-        return fastmod32(uint(key), m, table_size);
-    }
-    return uint(key % uint64_t(table_size));
+// key mod d for any 64-bit key, exact and without a division (m = ceil(2^64 / d), 0 for d = 1):
+// q = floor(key * m / 2^64) is floor(key / d) or one more, because key * m / 2^64 exceeds
+// key / d by less than 1; so key - q * d is the remainder, or the remainder minus d, which
+// wraps to 2^64 - d or more and is put right by adding d back. No branch: CPU drivers run
+// both sides of a divergent branch, so a 64-bit `%` behind `if` would cost every key a
+// lane-by-lane division. Must match `table_mod` in compute/src/hash/probe.rs.
+uint table_mod(uint64_t key, uint d, uint64_t m) {
+    uint64_t k0 = key & 0xfffffffful;
+    uint64_t k1 = key >> 32;
+    uint64_t m0 = m & 0xfffffffful;
+    uint64_t m1 = m >> 32;
+    uint64_t p01 = k0 * m1;
+    uint64_t p10 = k1 * m0;
+    uint64_t mid = ((k0 * m0) >> 32) + (p01 & 0xfffffffful) + (p10 & 0xfffffffful);
+    uint64_t q = k1 * m1 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+    uint64_t r = key - q * uint64_t(d);
+    r = r >= uint64_t(d) ? r + uint64_t(d) : r;
+    return d == 1u ? 0u : uint(r);
 }
 
 // The slot of step `age` (1-based) of `key`; `base` is table_mod(key) for the coherent probe
@@ -55,6 +66,17 @@ uint hash_slot_from(uint64_t key, uint base, uint age, uint probe, uint table_si
     }
     // Multiply-shift range reduction of a 32-bit hash: no division.
     return uint((uint64_t(uint(hash_mix64(key * 16ul + uint64_t(age)) >> 32)) * uint64_t(table_size)) >> 32);
+}
+
+// hash_slot_from for a lookup, whose ages never exceed HASH_MAX_AGE (< 16): the coherent
+// offset comes from the table alone, without the pseudo-random fallback of longer sequences
+// (a CPU driver would compute that fallback for every probe, as it runs both sides of `?:`).
+uint hash_lookup_slot(uint64_t key, uint base, uint age, uint probe, uint table_size, uint64_t m) {
+    if (probe == HASH_PROBE_COHERENT) {
+        uint s = base + fastmod32(COHERENT_OFFSETS[age - 1u], m, table_size);
+        return s >= table_size ? s - table_size : s;
+    }
+    return hash_slot_from(key, base, age, probe, table_size, m);
 }
 
 uint hash_slot(uint64_t key, uint age, uint probe, uint table_size, uint64_t m) {

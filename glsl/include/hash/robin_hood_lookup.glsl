@@ -22,7 +22,7 @@ uint robin_hood_lookup(uint64_t cells_address, uint table_size, uint64_t fastmod
         return cell_payload(cell, key_bits, AGE_SHIFT);
     }
     for (uint age = 2u; age <= max_age; ++age) {
-        uint64_t c = uint64_t(cells.v[hash_slot_from(key, base, age, probe, table_size, fastmod_m)]);
+        uint64_t c = uint64_t(cells.v[hash_lookup_slot(key, base, age, probe, table_size, fastmod_m)]);
         if (cell_key1(c, key_bits) == key1) {
             return cell_payload(c, key_bits, AGE_SHIFT);
         }

@@ -15,7 +15,7 @@ use std::sync::Arc;
 pub(crate) fn draw(
     dir: &Path,
     kernels: &Arc<HashKernels>,
-    random: &Dataset,
+    random: Option<&Dataset>,
     sweeps: &[Sweep],
     pictures: &[(String, Vec<u64>, CellFormat, u32)],
 ) -> anyhow::Result<()> {
@@ -76,6 +76,13 @@ pub(crate) fn draw(
     }
 
     // Fig. 4.16: ages of random keys at load factor 0.8, plain open addressing vs Robin Hood.
+    if let Some(random) = random {
+        age_histogram(dir, kernels, random)?;
+    }
+    table_pictures(dir, pictures)
+}
+
+fn age_histogram(dir: &Path, kernels: &Arc<HashKernels>, random: &Dataset) -> anyhow::Result<()> {
     let u = random.universe(KeyLayout::RowMajor);
     let keys: Vec<u64> = random.points.iter().map(|&p| u.key(p)).collect();
     let size = ((keys.len() as f64 / 0.8).ceil() as u32) | 1;
@@ -121,8 +128,14 @@ pub(crate) fn draw(
         &series,
         true,
     )?;
+    Ok(())
+}
 
-    // Figs. 4.15 and 4.17: table contents and max-age maps, one table row per image row.
+/// Figs. 4.15 and 4.17: table contents and max-age maps, one table row per image row.
+fn table_pictures(
+    dir: &Path,
+    pictures: &[(String, Vec<u64>, CellFormat, u32)],
+) -> anyhow::Result<()> {
     for (name, cells, format, width) in pictures {
         let w = *width;
         let h = (cells.len() as u32).div_ceil(w);

@@ -45,6 +45,14 @@ pub struct HashArgs {
     /// The mesh of the image and voxel datasets.
     #[arg(long, default_value = "assets/meshes/armadillo.off")]
     pub mesh: PathBuf,
+    /// Datasets to run, of `random-2d`, `image` and `voxels` (the key-layout comparison needs
+    /// `image`, the age histogram `random-2d`): a subset is a quick look at one case.
+    #[arg(long, value_delimiter = ',', default_value = "random-2d,image,voxels")]
+    pub datasets: Vec<String>,
+    /// Hash schemes to run, of `coherent`, `random` and `cuckoo` (the baselines, dense array
+    /// and hashbrown, always run).
+    #[arg(long, value_delimiter = ',', default_value = "coherent,random,cuckoo")]
+    pub schemes: Vec<String>,
     /// Small sizes (1024² image, 128³ voxels, 2^16 random keys): a quick look, not the
     /// reference measurement.
     #[arg(long)]
@@ -222,17 +230,47 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             args.random_universe,
         )
     };
+    const DATASETS: [&str; 3] = ["random-2d", "image", "voxels"];
+    for name in &args.datasets {
+        ensure!(
+            DATASETS.contains(&name.as_str()),
+            "--datasets: unknown dataset {name:?} (known: {})",
+            DATASETS.join(", ")
+        );
+    }
+    for name in &args.schemes {
+        ensure!(
+            SCHEMES.contains(&name.as_str()),
+            "--schemes: unknown scheme {name:?} (known: {})",
+            SCHEMES.join(", ")
+        );
+    }
+    let wanted = |name: &str| args.datasets.iter().any(|d| d == name);
+    let schemes: Vec<&str> = SCHEMES
+        .into_iter()
+        .filter(|s| args.schemes.iter().any(|a| a == s))
+        .collect();
     let gpu = global.gpu()?;
     let kernels = HashKernels::new(&gpu)?;
     eprintln!("preparing datasets…");
-    let datasets = vec![
-        datasets::random_2d(random_universe, random_keys, 1),
-        datasets::armadillo_image(&args.mesh, image_size)?,
-        datasets::armadillo_voxels(&args.mesh, voxel_res)?,
-    ];
-    let per_dataset = (args.load_factors.len() * SCHEMES.len() * (1 + QUERY_SETS.len())
+    let mut datasets = Vec::new();
+    if wanted("random-2d") {
+        datasets.push(datasets::random_2d(random_universe, random_keys, 1));
+    }
+    if wanted("image") {
+        datasets.push(datasets::armadillo_image(&args.mesh, image_size)?);
+    }
+    if wanted("voxels") {
+        datasets.push(datasets::armadillo_voxels(&args.mesh, voxel_res)?);
+    }
+    let per_dataset = (args.load_factors.len() * schemes.len() * (1 + QUERY_SETS.len())
         + 2 * QUERY_SETS.len()) as u64;
-    let mut bench = Bench::new("bench-hash", &gpu, &args.common, per_dataset * 3 + 6)?;
+    let mut bench = Bench::new(
+        "bench-hash",
+        &gpu,
+        &args.common,
+        per_dataset * datasets.len() as u64 + 6,
+    )?;
     let figures_dir = bench.artifact_dir()?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
     let mut notes: Vec<(String, f64)> = Vec::new();
@@ -311,7 +349,7 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
 
         let mut validated = false;
         for &lf in &args.load_factors {
-            for scheme in SCHEMES {
+            for &scheme in &schemes {
                 let mut table = match build(&kernels, u, &up, scheme, lf, !validated) {
                     Ok(t) => t,
                     Err(e @ (HashError::CuckooFailed { .. } | HashError::AgeOverflow { .. })) => {
@@ -404,15 +442,16 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     }
 
     // Key layouts on the image dataset at load factor 0.85, queries in raster order.
-    let image = &datasets[1];
-    for layout in KeyLayout::ALL {
+    let image = datasets.iter().find(|d| d.name == "image");
+    for layout in KeyLayout::ALL.into_iter().filter(|_| image.is_some()) {
+        let image = image.expect("filtered");
         let u = image.universe(layout);
         let up = upload(&gpu, image, &u)?;
         let (_, q, expected) = &up.queries[0];
-        for scheme in ["coherent", "random"] {
+        for scheme in schemes.iter().filter(|s| **s != "cuckoo") {
             let table = build(&kernels, u, &up, scheme, 0.85, false)?;
             let case = format!("image layout {} lf 0.85 query raster order", layout.name());
-            let baseline = (scheme == "coherent").then_some("random");
+            let baseline = (*scheme == "coherent").then_some("random");
             bench.case(
                 &case,
                 up.n as u64,
@@ -470,7 +509,7 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     figures::draw(
         &figures_dir,
         &kernels,
-        &datasets[0],
+        datasets.iter().find(|d| d.name == "random-2d"),
         &sweeps,
         &table_pictures,
     )?;
