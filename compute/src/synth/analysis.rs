@@ -22,7 +22,7 @@ pub const DEFAULT_COHERENCE_K: u32 = 2;
 /// Default smallest distance between the members of a similarity set. Members 8 pixels apart
 /// come from different features of the exemplar rather than the next pixel of the same one,
 /// which gives the correction real alternatives: against a spread of 4, the neighbourhood
-/// energy of 64² exemplars drops by about 10 % (docs/synthesis.md, "Jitter schedule").
+/// energy of leather 512² drops by 7 % over seeds 1–6 (docs/synthesis.md, "Jitter schedule").
 pub const DEFAULT_COHERENCE_SPREAD: u32 = 8;
 
 /// Choices of the analysis.

@@ -15,9 +15,10 @@ pub const JITTER_ONE: u32 = 256;
 pub const DEFAULT_PASSES: u32 = 4;
 
 /// Default correction passes of the finest level, the largest region: each pass there costs
-/// as much as all coarser levels together, and a third pass lowers the energy by 1–2 % (a
-/// fourth by under 1 % more), measured in docs/synthesis.md ("Jitter schedule").
-pub const DEFAULT_FINEST_PASSES: u32 = 3;
+/// about as much as all coarser levels together, and a third pass lowers the energy by only
+/// 1–2 % while taking 512² from a 64² exemplar from about 350 to about 440 ms on lavapipe,
+/// too close to the 0.5 s budget (docs/synthesis.md, "Jitter schedule").
+pub const DEFAULT_FINEST_PASSES: u32 = 2;
 
 /// Default jitter strengths of the coarsest levels, coarsest first; finer levels take
 /// [`DEFAULT_FINE_JITTER`]. The coarse levels set the layout every finer level inherits, so

@@ -32,7 +32,7 @@ pub struct SynthArgs {
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes, one for all levels or a comma-separated list, coarsest first
-    /// [default: 4 at every level, 3 at the finest].
+    /// [default: 4 at every level, 2 at the finest].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
     /// Size of the k-coherence similarity sets.

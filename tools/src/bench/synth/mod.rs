@@ -57,7 +57,7 @@ pub struct SynthArgs {
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes of lazysolid's synthesis, one for all levels or one per level
-    /// (coarsest first) [default: 4 at every level, 3 at the finest].
+    /// (coarsest first) [default: 4 at every level, 2 at the finest].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
     /// Most output pixels the neighbourhood energy evaluates, for both outputs.
