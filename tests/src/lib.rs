@@ -5,6 +5,7 @@
 //! leaks, which the layer reports only when the device is destroyed.
 
 use lazysolid_compute::gpu::{Gpu, GpuOptions};
+use lazysolid_compute::hash::Universe;
 use rand::{Rng, SeedableRng};
 
 /// Runs `test` on a fresh validated device, then destroys the device and asserts that the
@@ -28,6 +29,26 @@ pub fn with_gpu<R>(test: impl FnOnce(&Gpu) -> R) -> R {
 /// A deterministic random generator for test data.
 pub fn rng(seed: u64) -> rand_pcg::Pcg64Mcg {
     rand_pcg::Pcg64Mcg::seed_from_u64(seed)
+}
+
+/// `n` distinct random points of `u` as keys, and the keys of `absent` other points (keys
+/// that a table built from the first `n` must reject).
+pub fn random_keys(u: &Universe, n: usize, absent: usize, seed: u64) -> (Vec<u64>, Vec<u64>) {
+    let mut r = rng(seed);
+    let mut seen = std::collections::HashSet::new();
+    let mut keys = Vec::new();
+    while keys.len() < n + absent {
+        let p = [
+            r.random_range(0..u.dims[0]),
+            r.random_range(0..u.dims[1]),
+            r.random_range(0..u.dims[2]),
+        ];
+        if seen.insert(p) {
+            keys.push(u.key(p));
+        }
+    }
+    let missing = keys.split_off(n);
+    (keys, missing)
 }
 
 /// `n` random `u32` drawn with `seed`.

@@ -3,28 +3,8 @@
 
 use lazysolid_compute::hash::*;
 use lazysolid_compute::shader_constants::{HASH_MAX_AGE, HASH_NOT_FOUND};
-use lazysolid_tests::{rng, with_gpu};
+use lazysolid_tests::{random_keys, rng, with_gpu};
 use rand::seq::SliceRandom;
-use rand::Rng;
-
-/// `n` distinct random points of `u` as keys, and the keys of `absent` other points.
-fn sample(u: &Universe, n: usize, absent: usize, seed: u64) -> (Vec<u64>, Vec<u64>) {
-    let mut r = rng(seed);
-    let mut seen = std::collections::HashSet::new();
-    let mut keys = Vec::new();
-    while keys.len() < n + absent {
-        let p = [
-            r.random_range(0..u.dims[0]),
-            r.random_range(0..u.dims[1]),
-            r.random_range(0..u.dims[2]),
-        ];
-        if seen.insert(p) {
-            keys.push(u.key(p));
-        }
-    }
-    let missing = keys.split_off(n);
-    (keys, missing)
-}
 
 fn payloads_for(keys: &[u64], max: u32) -> Vec<u32> {
     keys.iter()
@@ -39,7 +19,7 @@ fn check_robin_hood(
     n: usize,
     seed: u64,
 ) {
-    let (keys, absent) = sample(&u, n, n / 2 + 1, seed);
+    let (keys, absent) = random_keys(&u, n, n / 2 + 1, seed);
     let format = CellFormat::new(config.width, &u).unwrap();
     let payloads = payloads_for(&keys, format.max_payload());
     let table = RobinHoodTable::build_from_slices(kernels, u, &keys, &payloads, config)
@@ -189,7 +169,7 @@ fn home_slots_are_exact_around_multiples_of_the_table_size_and_2_to_the_32() {
             }
         }
         keys.extend([0, (1 << 32) - 1, 1 << 32, (1 << 32) + 1, top - 2, top - 1]);
-        let (random, _) = sample(&u, n, 0, 23);
+        let (random, _) = random_keys(&u, n, 0, 23);
         keys.extend(random.into_iter().take(n - keys.len()));
         let keys: Vec<u64> = keys.into_iter().collect();
         let payloads: Vec<u32> = (0..keys.len() as u32).collect();
@@ -293,7 +273,7 @@ fn dynamic_insertion_equals_building_everything_at_once() {
     with_gpu(|gpu| {
         let kernels = HashKernels::new(gpu).unwrap();
         let u = Universe::new_3d([64, 64, 64], KeyLayout::Morton).unwrap();
-        let (keys, absent) = sample(&u, 12_000, 3000, 23);
+        let (keys, absent) = random_keys(&u, 12_000, 3000, 23);
         let payloads = payloads_for(&keys, 1 << 30);
         let (a, b) = keys.split_at(8000);
         let (pa, pb) = payloads.split_at(8000);
@@ -332,7 +312,7 @@ fn dynamic_insertion_equals_building_everything_at_once() {
             "{err}"
         );
         // Past the maximum load factor: rebuilt larger, reported.
-        let (more, _) = sample(&u, 30_000, 0, 29);
+        let (more, _) = random_keys(&u, 30_000, 0, 29);
         let more: Vec<u64> = more
             .into_iter()
             .filter(|k| !keys.contains(k))
@@ -459,7 +439,7 @@ fn cuckoo_finds_every_key_and_rejects_absent_ones() {
                 (Universe::new_3d([40, 32, 24], layout).unwrap(), 6000),
             ] {
                 for lf in [0.5, 0.8, 0.9] {
-                    let (keys, absent) = sample(&u, n, n / 2, 31);
+                    let (keys, absent) = random_keys(&u, n, n / 2, 31);
                     let payloads = payloads_for(&keys, HASH_NOT_FOUND - 1);
                     let config = CuckooConfig {
                         load_factor: lf,
@@ -508,7 +488,7 @@ fn plain_open_addressing_has_far_older_keys_than_robin_hood() {
         let kernels = HashKernels::new(gpu).unwrap();
         // Thesis Fig. 4.16 in small: random keys, load factor 0.8.
         let u = Universe::new_2d(4096, 4096, KeyLayout::RowMajor).unwrap();
-        let (keys, _) = sample(&u, 50_000, 0, 37);
+        let (keys, _) = random_keys(&u, 50_000, 0, 37);
         let size = (50_000f64 / 0.8).ceil() as u32 | 1;
         let ages = plain_open_addressing_ages(&kernels, &keys, size, Probe::Random, 1000).unwrap();
         assert!(ages.iter().all(|&a| a > 0));

@@ -9,33 +9,13 @@ use lazysolid_compute::hash::{HashError, KeyLayout, Universe};
 use lazysolid_compute::shader_constants::HASH_NOT_FOUND;
 use lazysolid_compute::store::trilinear_cpu;
 use lazysolid_compute::voxel::{VoxelGrid, Voxelizer};
-use lazysolid_tests::{asset_exemplar, point_on_triangle, rng, unit_mesh, with_gpu};
-use rand::Rng;
+use lazysolid_tests::{asset_exemplar, point_on_triangle, random_keys, rng, unit_mesh, with_gpu};
 use std::collections::HashSet;
 use std::sync::Arc;
 
 /// Blocked and dense trilinear lookups sum the same eight products in the same order; the
 /// GPU may contract them into fused multiply-adds.
 const TRILINEAR_TOLERANCE: f32 = 1e-5;
-
-/// `n` distinct random points of `u` as keys, and `absent` further points that are not keys.
-fn random_keys(u: &Universe, n: usize, absent: usize, seed: u64) -> (Vec<u64>, Vec<u64>) {
-    let mut r = rng(seed);
-    let mut seen = HashSet::new();
-    let mut keys = Vec::new();
-    while keys.len() < n + absent {
-        let p = [
-            r.random_range(0..u.dims[0]),
-            r.random_range(0..u.dims[1]),
-            r.random_range(0..u.dims[2]),
-        ];
-        if seen.insert(p) {
-            keys.push(u.key(p));
-        }
-    }
-    let missing = keys.split_off(n);
-    (keys, missing)
-}
 
 fn payloads_for(keys: &[u64]) -> Vec<u32> {
     keys.iter()

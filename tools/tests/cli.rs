@@ -25,6 +25,59 @@ fn run(c: &mut Command) -> (bool, String, String) {
     )
 }
 
+/// What a `lazysolid bench …` run left behind: its standard output and the entries of its
+/// `--out` folder (the CSV, the JSON and the figures folder).
+struct BenchRun {
+    stdout: String,
+    entries: Vec<std::path::PathBuf>,
+}
+
+impl BenchRun {
+    /// Runs `c` with `--out out` and the validation layer on; it must succeed and print every
+    /// one of `needles`.
+    fn new(c: &mut Command, out: &std::path::Path, needles: &[&str]) -> BenchRun {
+        let (ok, stdout, err) = run(c.arg("--out").arg(out).env("LAZYSOLID_VALIDATION", "1"));
+        assert!(ok, "{err}");
+        for needle in needles {
+            assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
+        }
+        let entries = std::fs::read_dir(out)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        BenchRun { stdout, entries }
+    }
+
+    /// The one entry with extension `ext`.
+    fn file(&self, ext: &str) -> &std::path::Path {
+        self.entries
+            .iter()
+            .find(|p| p.extension().is_some_and(|e| e == ext))
+            .unwrap_or_else(|| panic!("no .{ext} file in {:?}", self.entries))
+    }
+
+    /// The JSON file, parsed.
+    fn json(&self) -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(self.file("json")).unwrap()).unwrap()
+    }
+
+    /// The figures folder.
+    fn figures(&self) -> &std::path::Path {
+        self.entries
+            .iter()
+            .find(|p| p.is_dir())
+            .expect("a figures folder")
+    }
+
+    /// The file names in the figures folder.
+    fn figure_names(&self) -> Vec<String> {
+        std::fs::read_dir(self.figures())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect()
+    }
+}
+
 #[test]
 fn device_lists_limits_and_marks_the_chosen_device() {
     let (ok, out, err) = run(lazysolid().arg("device"));
@@ -86,8 +139,8 @@ fn unknown_device_lists_the_available_ones() {
 #[test]
 fn bench_prims_writes_its_table_and_files() {
     let out = tempfile::tempdir().unwrap();
-    let (ok, stdout, err) = run(lazysolid()
-        .args([
+    let bench = BenchRun::new(
+        lazysolid().args([
             "bench",
             "prims",
             "--scan-elements",
@@ -98,29 +151,18 @@ fn bench_prims_writes_its_table_and_files() {
             "2",
             "--warmup",
             "1",
-            "--out",
-        ])
-        .arg(out.path())
-        .env("LAZYSOLID_VALIDATION", "1"));
-    assert!(ok, "{err}");
+        ]),
+        out.path(),
+        &[],
+    );
+    let stdout = &bench.stdout;
     assert!(
         stdout.contains("sort u32 keys") && stdout.contains("ratio"),
         "{stdout}"
     );
-    let files: Vec<_> = std::fs::read_dir(out.path())
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    let csv = files
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "csv"))
-        .expect("a CSV file");
-    let json = files
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "json"))
-        .expect("a JSON file");
+    let files = &bench.entries;
     assert_eq!(files.len(), 2, "no partial files left: {files:?}");
-    let csv = std::fs::read_to_string(csv).unwrap();
+    let csv = std::fs::read_to_string(bench.file("csv")).unwrap();
     assert!(
         csv.starts_with("# {")
             && csv.contains("\"device\"")
@@ -133,8 +175,7 @@ fn bench_prims_writes_its_table_and_files() {
         1 + 14,
         "header + 14 rows:\n{csv}"
     );
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let json = bench.json();
     assert!(json["run"]["driver"]
         .as_str()
         .is_some_and(|d| !d.is_empty()));
@@ -165,59 +206,41 @@ fn bench_hash_writes_tables_files_and_figures() {
         mesh.display()
     );
     let out = tempfile::tempdir().unwrap();
-    let (ok, stdout, err) = run(lazysolid()
-        .args([
-            "bench",
-            "hash",
-            "--image-size",
-            "256",
-            "--voxel-resolution",
-            "32",
-            "--random-keys",
-            "4096",
-            "--random-universe",
-            "512",
-        ])
-        .args([
-            "--load-factors",
-            "0.5,0.85,0.99",
-            "--runs",
-            "1",
-            "--warmup",
-            "0",
-            "--mesh",
-        ])
-        .arg(&mesh)
-        .arg("--out")
-        .arg(out.path())
-        .env("LAZYSOLID_VALIDATION", "1"));
-    assert!(ok, "{err}");
-    for needle in [
-        "image lf 0.85 query sorted 100%",
-        "dense array (gpu)",
-        "hashbrown (cpu, 2 threads)",
-        "target: image lf 0.85 sorted queries coherent / random",
-    ] {
-        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
-    }
-    let entries: Vec<_> = std::fs::read_dir(out.path())
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    assert!(entries
-        .iter()
-        .any(|p| p.extension().is_some_and(|e| e == "csv")));
-    assert!(entries
-        .iter()
-        .any(|p| p.extension().is_some_and(|e| e == "json")));
-    let figures = entries
-        .iter()
-        .find(|p| p.is_dir())
-        .expect("a figures folder");
-    let names: Vec<String> = std::fs::read_dir(figures)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args([
+                "bench",
+                "hash",
+                "--image-size",
+                "256",
+                "--voxel-resolution",
+                "32",
+                "--random-keys",
+                "4096",
+                "--random-universe",
+                "512",
+            ])
+            .args([
+                "--load-factors",
+                "0.5,0.85,0.99",
+                "--runs",
+                "1",
+                "--warmup",
+                "0",
+                "--mesh",
+            ])
+            .arg(&mesh),
+        out.path(),
+        &[
+            "image lf 0.85 query sorted 100%",
+            "dense array (gpu)",
+            "hashbrown (cpu, 2 threads)",
+            "target: image lf 0.85 sorted queries coherent / random",
+        ],
+    );
+    bench.file("csv");
+    bench.file("json");
+    let names = bench.figure_names();
     for f in [
         "age-histogram.png",
         "image-insert-vs-load-factor.png",
@@ -488,48 +511,35 @@ fn bench_synth_writes_its_tables_files_and_images() {
         exemplars.display()
     );
     let out = tempfile::tempdir().unwrap();
-    let (ok, stdout, err) = run(lazysolid()
-        .args(["bench", "synth", "--exemplars", "leather", "--sizes", "64"])
-        .args(["--energy-samples", "256", "--runs", "1", "--warmup", "0"])
-        .args(["--quality-seeds", "2"])
-        .arg("--exemplar-dir")
-        .arg(&exemplars)
-        .arg("--out")
-        .arg(out.path())
-        .env("LAZYSOLID_VALIDATION", "1"));
-    assert!(ok, "{err}");
-    for needle in [
-        "leather 64x64 analysis",
-        "leather 64x64 -> 64x64",
-        "lazysolid gpu passes (timestamps)",
-        "lazysolid end-to-end (wall)",
-        "texture-synthesis 0.8.2 (2 threads)",
-        "energy lazysolid",
-        "mean of 2 seed(s)",
-        "gpu profile",
-        "target leather 64x64 -> 64x64: >= 20x faster",
-    ] {
-        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
-    }
-    let entries: Vec<_> = std::fs::read_dir(out.path())
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    let csv = entries
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "csv"))
-        .expect("a CSV file");
+    let bench = BenchRun::new(
+        lazysolid()
+            .args(["bench", "synth", "--exemplars", "leather", "--sizes", "64"])
+            .args(["--energy-samples", "256", "--runs", "1", "--warmup", "0"])
+            .args(["--quality-seeds", "2"])
+            .arg("--exemplar-dir")
+            .arg(&exemplars),
+        out.path(),
+        &[
+            "leather 64x64 analysis",
+            "leather 64x64 -> 64x64",
+            "lazysolid gpu passes (timestamps)",
+            "lazysolid end-to-end (wall)",
+            "texture-synthesis 0.8.2 (2 threads)",
+            "energy lazysolid",
+            "mean of 2 seed(s)",
+            "gpu profile",
+            "target leather 64x64 -> 64x64: >= 20x faster",
+        ],
+    );
     // Header comment, column names, the analysis row and four rows of the one case.
     assert_eq!(
-        std::fs::read_to_string(csv).unwrap().lines().count(),
+        std::fs::read_to_string(bench.file("csv"))
+            .unwrap()
+            .lines()
+            .count(),
         2 + 1 + 4
     );
-    let json = entries
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "json"))
-        .expect("a JSON file");
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let json = bench.json();
     let derived = &json["derived"];
     for key in [
         "leather 64x64 -> 64x64: lazysolid energy",
@@ -556,14 +566,8 @@ fn bench_synth_writes_its_tables_files_and_images() {
     assert_eq!(derived["leather 64x64 -> 64x64: energy samples"], 225.0);
     let ratio = json["rows"][1]["ratio"].as_f64().expect("a ratio");
     assert!(ratio > 0.0, "{ratio}");
-    let figures = entries
-        .iter()
-        .find(|p| p.is_dir())
-        .expect("a figures folder");
-    let names: Vec<String> = std::fs::read_dir(figures)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
+    let figures = bench.figures();
+    let names = bench.figure_names();
     for f in [
         "leather-64-lazysolid-vs-texture-synthesis.png",
         "synth-times.png",
@@ -604,36 +608,24 @@ fn bench_synth_refuses_missing_exemplars_and_bad_sizes() {
 #[test]
 fn bench_textures_writes_the_table_pictures_and_files() {
     let out = tempfile::tempdir().unwrap();
-    let (ok, stdout, err) = run(lazysolid()
-        .args(["bench", "textures", "--res", "64", "--view", "64"])
-        .args(["--runs", "1", "--warmup", "0", "--mesh"])
-        .arg(repo("assets/meshes/bunny00.off"))
-        .arg("--out")
-        .arg(out.path())
-        .env("LAZYSOLID_VALIDATION", "1"));
-    assert!(ok, "{err}");
-    for needle in [
-        "Table 4.1 on",
-        "octree 8·8 (nearest)",
-        "octree 4·4·4 (8 descents)",
-        "coherent hash (8 lookups)",
-        "perfect hash (nearest)",
-        "perfect hash blocked, b = ",
-        "tiletree (bilinear, 1 fetch)",
-        "stands for the thesis' octree texture, 8 lookups (Table 4.1)",
-    ] {
-        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
-    }
-    let entries: Vec<_> = std::fs::read_dir(out.path())
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    let json = entries
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "json"))
-        .expect("a JSON file");
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args(["bench", "textures", "--res", "64", "--view", "64"])
+            .args(["--runs", "1", "--warmup", "0", "--mesh"])
+            .arg(repo("assets/meshes/bunny00.off")),
+        out.path(),
+        &[
+            "Table 4.1 on",
+            "octree 8·8 (nearest)",
+            "octree 4·4·4 (8 descents)",
+            "coherent hash (8 lookups)",
+            "perfect hash (nearest)",
+            "perfect hash blocked, b = ",
+            "tiletree (bilinear, 1 fetch)",
+            "stands for the thesis' octree texture, 8 lookups (Table 4.1)",
+        ],
+    );
+    let json = bench.json();
     let derived = json["derived"].as_object().unwrap();
     let seen = derived["viewpoint surface points"].as_f64().unwrap();
     assert!(seen > 500.0, "{seen}");
@@ -647,10 +639,7 @@ fn bench_textures_writes_the_table_pictures_and_files() {
         missing.iter().all(|(_, v)| v.as_f64() == Some(0.0)),
         "{missing:?}"
     );
-    let figures = entries
-        .iter()
-        .find(|p| p.is_dir())
-        .expect("a figures folder");
+    let figures = bench.figures();
     let picture = |name: &str| image::open(figures.join(name)).unwrap().to_rgb8();
     for f in [
         "textures-memory.png",
@@ -723,35 +712,23 @@ fn bench_textures_refuses_bad_resolutions_views_and_meshes() {
 #[test]
 fn bench_psh_writes_its_table_files_and_figures() {
     let out = tempfile::tempdir().unwrap();
-    let (ok, stdout, err) = run(lazysolid()
-        .args(["bench", "psh", "--quick", "--runs", "1", "--warmup", "0"])
-        .arg("--mesh")
-        .arg(repo("assets/meshes/armadillo.off"))
-        .arg("--out")
-        .arg(out.path())
-        .env("LAZYSOLID_VALIDATION", "1"));
-    assert!(ok, "{err}");
-    for needle in [
-        "random-2d build",
-        "cpu reference (1 thread)",
-        "gpu construction",
-        "voxels-128 query",
-        "coherent hash lf 0.85 (gpu)",
-        "dense array (gpu)",
-        "blocked R=64: chosen b",
-    ] {
-        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
-    }
-    let entries: Vec<_> = std::fs::read_dir(out.path())
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    let json = entries
-        .iter()
-        .find(|p| p.extension().is_some_and(|e| e == "json"))
-        .expect("a JSON file");
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args(["bench", "psh", "--quick", "--runs", "1", "--warmup", "0"])
+            .arg("--mesh")
+            .arg(repo("assets/meshes/armadillo.off")),
+        out.path(),
+        &[
+            "random-2d build",
+            "cpu reference (1 thread)",
+            "gpu construction",
+            "voxels-128 query",
+            "coherent hash lf 0.85 (gpu)",
+            "dense array (gpu)",
+            "blocked R=64: chosen b",
+        ],
+    );
+    let json = bench.json();
     let derived = &json["derived"];
     // The GPU construction ends at the CPU reference's sizes on every dataset.
     for set in ["random-2d", "image", "voxels-128"] {
@@ -768,10 +745,7 @@ fn bench_psh_writes_its_table_files_and_figures() {
         let bits = get("gpu Phi bits per key");
         assert!(bits > 0.0 && bits.is_finite(), "{set}: {bits}");
     }
-    let figures = entries
-        .iter()
-        .find(|p| p.is_dir())
-        .expect("a figures folder");
+    let figures = bench.figures();
     for f in [
         "psh-construction.png",
         "psh-queries.png",
