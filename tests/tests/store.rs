@@ -108,6 +108,18 @@ fn marble_on_the_gpu_equals_the_cpu() {
     });
 }
 
+/// A colour that differs between neighbouring voxels, so a lookup of the wrong voxel shows.
+fn voxel_colour(p: [u32; 3]) -> u32 {
+    0xff00_0000 | p[0] | (p[1] << 8) | ((p[2] * 7) & 255) << 16
+}
+
+/// [`voxel_colour`] of every Morton key of `all`, by voxel position.
+fn colour_map(all: &[u64]) -> HashMap<[u32; 3], u32> {
+    all.iter()
+        .map(|&k| (morton_decode(k, 3), voxel_colour(morton_decode(k, 3))))
+        .collect()
+}
+
 #[test]
 fn hash_store_matches_its_reference_and_grows_by_inserts() {
     with_gpu(|gpu| {
@@ -116,7 +128,7 @@ fn hash_store_matches_its_reference_and_grows_by_inserts() {
         let m = unit_mesh("bunny00.off");
         let r = 128;
         let (all, first, second) = voxel_sets(&mut v, &m, r);
-        let f = |p: [u32; 3]| 0xff00_0000 | p[0] | (p[1] << 8) | ((p[2] * 7) & 255) << 16;
+        let f = voxel_colour;
         let source = ColourSource::Fn(&f);
         let k1 = VoxelKeys::from_sorted(gpu, "first", &first).unwrap();
         let k2 = VoxelKeys::from_sorted(gpu, "second", &second).unwrap();
@@ -132,10 +144,7 @@ fn hash_store_matches_its_reference_and_grows_by_inserts() {
             !report.reallocations.is_empty(),
             "colours and table must grow"
         );
-        let map: HashMap<[u32; 3], u32> = all
-            .iter()
-            .map(|&k| (morton_decode(k, 3), f(morton_decode(k, 3))))
-            .collect();
+        let map = colour_map(&all);
         check_lookups(&store, |p| map.get(&p).copied(), &all, &points(&m, r, 3));
         assert!(store.bytes() >= all.len() as u64 * 12);
         // Inserting a stored voxel again is refused and changes nothing.
@@ -158,12 +167,9 @@ fn perfect_store_matches_its_reference_in_both_layouts_and_grows_by_rebuilds() {
         let m = unit_mesh("bunny00.off");
         let r = 96;
         let (all, first, second) = voxel_sets(&mut v, &m, r);
-        let f = |p: [u32; 3]| 0xff00_0000 | p[0] | (p[1] << 8) | ((p[2] * 7) & 255) << 16;
+        let f = voxel_colour;
         let source = ColourSource::Fn(&f);
-        let map: HashMap<[u32; 3], u32> = all
-            .iter()
-            .map(|&k| (morton_decode(k, 3), f(morton_decode(k, 3))))
-            .collect();
+        let map = colour_map(&all);
         let texel = |p| map.get(&p).copied();
         let pts = points(&m, r, 5);
         let surface = m.triangles.len().div_ceil(5);

@@ -14,6 +14,24 @@ use rand::Rng;
 /// allows for a different rounding of the weights.
 const ROUNDING: f32 = 1e-6;
 
+/// The TileTree of `m` at resolution `r` with the default configuration.
+fn build(
+    kernels: &std::sync::Arc<StoreKernels>,
+    m: &Mesh,
+    r: u32,
+    source: &ColourSource<'_>,
+) -> (TileTree, StoreReport) {
+    TileTree::build(
+        kernels,
+        &m.positions,
+        &m.triangles,
+        r,
+        source,
+        TileTreeConfig::default(),
+    )
+    .unwrap()
+}
+
 /// The icosphere shrunk to radius 0.4 around the cube's centre (away from the grid's edge).
 fn sphere(subdivisions: u32) -> Mesh {
     let mut m = Mesh::icosphere(subdivisions);
@@ -84,15 +102,7 @@ fn gpu_fill_and_lookups_equal_the_cpu_references() {
             ("bunny", unit_mesh("bunny00.off"), 64),
             ("sphere", sphere(3), 128),
         ] {
-            let (tree, report) = TileTree::build(
-                &kernels,
-                &m.positions,
-                &m.triangles,
-                r,
-                &source,
-                TileTreeConfig::default(),
-            )
-            .unwrap();
+            let (tree, report) = build(&kernels, &m, r, &source);
             let plan = tree.plan();
             assert_eq!(report.texels, plan.stats.tile_texels);
             let map = tree.map_words().unwrap();
@@ -155,15 +165,7 @@ fn lookups_match_a_dense_reference_across_tile_borders_and_face_switches() {
             let f = linear_colour(k);
             let source = ColourSource::Fn(&f);
             let m = sphere(sub);
-            let (tree, _) = TileTree::build(
-                &kernels,
-                &m.positions,
-                &m.triangles,
-                r,
-                &source,
-                TileTreeConfig::default(),
-            )
-            .unwrap();
+            let (tree, _) = build(&kernels, &m, r, &source);
             let map = tree.map_words().unwrap();
             let h = host(tree.plan(), &map);
             // Geometric normals, and the sphere's smooth normals (as a renderer interpolates).
@@ -262,15 +264,7 @@ fn marble_lookups_stay_within_the_local_colour_range() {
         let r = 64;
         let m = unit_mesh("bunny00.off");
         let source = ColourSource::Marble { seed: 3 };
-        let (tree, _) = TileTree::build(
-            &kernels,
-            &m.positions,
-            &m.triangles,
-            r,
-            &source,
-            TileTreeConfig::default(),
-        )
-        .unwrap();
+        let (tree, _) = build(&kernels, &m, r, &source);
         let (pts, nrm) = surface_points(&m, 2, 1, 41);
         let got = tree
             .lookup_with_normals(&pts, &nrm, Filter::Trilinear)
@@ -307,15 +301,7 @@ fn memory_is_the_sum_of_the_buffers_and_the_tile_map_is_written_as_png() {
     with_gpu(|gpu| {
         let kernels = StoreKernels::new(gpu).unwrap();
         let m = unit_mesh("bunny00.off");
-        let (tree, _) = TileTree::build(
-            &kernels,
-            &m.positions,
-            &m.triangles,
-            64,
-            &ColourSource::Marble { seed: 1 },
-            TileTreeConfig::default(),
-        )
-        .unwrap();
+        let (tree, _) = build(&kernels, &m, 64, &ColourSource::Marble { seed: 1 });
         let plan = tree.plan();
         let s = tree.stats();
         let want = 4 * (plan.nodes.len() + plan.leaf_records.len()) as u64

@@ -35,7 +35,6 @@ struct PerfectHashParams {
     uint block_words;
 };
 
-layout(buffer_reference, scalar, buffer_reference_align = 4) buffer PerfectWords { uint v[]; };
 
 // Φ[q] as an offset vector (z = 0 in 2D).
 uvec3 perfect_offset(PerfectHashParams p, uint q) {
@@ -43,7 +42,7 @@ uvec3 perfect_offset(PerfectHashParams p, uint q) {
     uint64_t bit = uint64_t(q) * uint64_t(entry_bits);
     uint w = uint(bit >> 5);
     uint s = uint(bit & 31ul);
-    PerfectWords words = PerfectWords(p.offsets);
+    U32Ptr words = U32Ptr(p.offsets);
     uint64_t v = (uint64_t(words.v[w]) | (uint64_t(words.v[w + 1u]) << 32)) >> s;
     if (s + entry_bits > 64u) {
         v |= uint64_t(words.v[w + 2u]) << (64u - s);
@@ -71,7 +70,7 @@ uint perfect_slot(PerfectHashParams p, uvec3 pt) {
 
 // Constrained access: the payload stored for pt (pt must be a key).
 uint perfect_lookup(PerfectHashParams p, uvec3 pt) {
-    return PerfectWords(p.data).v[perfect_slot(p, pt)];
+    return U32Ptr(p.data).v[perfect_slot(p, pt)];
 }
 
 // Unconstrained access: true and the payload when pt is a key; false for any other point.
@@ -84,10 +83,10 @@ bool perfect_find(PerfectHashParams p, uvec3 pt, out uint payload) {
         return false;
     }
     uint s = perfect_slot(p, pt);
-    if (p.tags != 0ul && PerfectWords(p.tags).v[s] != perfect_bucket(p, pt) + 1u) {
+    if (p.tags != 0ul && U32Ptr(p.tags).v[s] != perfect_bucket(p, pt) + 1u) {
         return false;
     }
-    payload = PerfectWords(p.data).v[s];
+    payload = U32Ptr(p.data).v[s];
     return true;
 }
 

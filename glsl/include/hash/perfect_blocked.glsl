@@ -17,7 +17,7 @@ vec4 perfect_blocked_trilinear(PerfectHashParams p, uint block, uint resolution,
     uvec3 local = j - b * block;
     uint s = perfect_slot(p, b);
     uint side = block + 1u;
-    PerfectWords data = PerfectWords(p.data);
+    U32Ptr data = U32Ptr(p.data);
     uint base = s * p.block_words;
     vec4 sum = vec4(0.0);
     for (int o = 0; o < 8; ++o) {

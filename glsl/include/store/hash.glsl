@@ -45,12 +45,11 @@ struct HashStoreParams {
     uint resolution;
 };
 
-layout(buffer_reference, scalar, buffer_reference_align = 4) buffer StoreHashColours { uint v[]; };
 
 // RGBA8 of a voxel, or 0 when it is not stored.
 uint store_hash_texel(HashStoreParams p, uvec3 voxel) {
     uint index = robin_hood_lookup(p.cells, p.table_size, p.fastmod_m, p.key_bits, p.probe, morton3(voxel));
-    return index == HASH_NOT_FOUND ? 0u : StoreHashColours(p.colours).v[index];
+    return index == HASH_NOT_FOUND ? 0u : U32Ptr(p.colours).v[index];
 }
 
 vec4 store_hash_nearest(HashStoreParams p, vec3 pos) {

@@ -36,7 +36,6 @@ struct OctreeParams {
     uint span[OCTREE_MAX_LEVELS];
 };
 
-layout(buffer_reference, scalar, buffer_reference_align = 4) buffer StoreOctreePool { uint v[]; };
 
 // Index of the word of `voxel`'s cell in the node at `address` of level l.
 uint store_octree_cell(OctreeParams p, uint address, uint l, uvec3 voxel) {
@@ -47,7 +46,7 @@ uint store_octree_cell(OctreeParams p, uint address, uint l, uvec3 voxel) {
 
 // RGBA8 of a voxel (a leaf may sit above the finest level), or 0 when it is not stored.
 uint store_octree_texel(OctreeParams p, uvec3 voxel) {
-    StoreOctreePool pool = StoreOctreePool(p.pool);
+    U32Ptr pool = U32Ptr(p.pool);
     uint address = 0u;
     for (uint l = 0u; l < p.levels; ++l) {
         uint e = pool.v[store_octree_cell(p, address, l, voxel)];
@@ -82,7 +81,7 @@ vec4 store_octree_trilinear(OctreeParams p, vec3 pos) {
 // leaf met on the way is returned itself, an empty cell as vec4(0). depth >= levels gives the
 // nearest texel.
 vec4 store_octree_mip(OctreeParams p, vec3 pos, uint depth) {
-    StoreOctreePool pool = StoreOctreePool(p.pool);
+    U32Ptr pool = U32Ptr(p.pool);
     uvec3 voxel = store_nearest_voxel(pos, p.resolution);
     uint address = 0u;
     for (uint l = 0u; l < p.levels; ++l) {

@@ -55,7 +55,7 @@ uint store_perfect_block_nearest(PerfectStoreParams p, vec3 pos) {
     uvec3 t = j - b * p.block + d;
     uint side = p.block + 1u;
     uint s = perfect_slot(p.table, b);
-    return PerfectWords(p.table.data).v[s * p.table.block_words + t.x + side * (t.y + side * t.z)];
+    return U32Ptr(p.table.data).v[s * p.table.block_words + t.x + side * (t.y + side * t.z)];
 }
 
 vec4 store_perfect_nearest(PerfectStoreParams p, vec3 pos) {

@@ -46,11 +46,10 @@ struct TileTreeParams {
     uint pad;
 };
 
-layout(buffer_reference, scalar, buffer_reference_align = 4) buffer StoreTileTreeWords { uint v[]; };
 
 // The leaf holding `voxel`, or 0xffffffff in empty space.
 uint store_tiletree_leaf(TileTreeParams p, uvec3 voxel) {
-    StoreTileTreeWords nodes = StoreTileTreeWords(p.nodes);
+    U32Ptr nodes = U32Ptr(p.nodes);
     uint levels = findLSB(p.resolution);
     uint e = p.root;
     for (uint d = 0u; d < levels && e != 0u && (e & TILETREE_LEAF) == 0u; ++d) {
@@ -97,7 +96,7 @@ bool store_tiletree_tile(TileTreeParams p, vec3 pos, vec3 n, out uvec2 corner, o
     if (leaf == 0xffffffffu) {
         return false;
     }
-    StoreTileTreeWords leaves = StoreTileTreeWords(p.leaves);
+    U32Ptr leaves = U32Ptr(p.leaves);
     uint w0 = leaves.v[8u * leaf];
     uint w1 = leaves.v[8u * leaf + 1u];
     uvec3 origin = uvec3(w0 & 0xffffu, w0 >> 16, w1 & 0xffffu);
@@ -123,7 +122,7 @@ vec4 store_tiletree_nearest(TileTreeParams p, vec3 pos, vec3 n) {
         return vec4(0.0);
     }
     uvec2 xy = uvec2(clamp(floor(t + 0.5), vec2(1.0), vec2(float(side - 2u))));
-    return unpackUnorm4x8(StoreTileTreeWords(p.map).v[(corner.y + xy.y) * p.map_width + corner.x + xy.x]);
+    return unpackUnorm4x8(U32Ptr(p.map).v[(corner.y + xy.y) * p.map_width + corner.x + xy.x]);
 }
 
 vec4 store_tiletree_bilinear(TileTreeParams p, vec3 pos, vec3 n) {
@@ -136,7 +135,7 @@ vec4 store_tiletree_bilinear(TileTreeParams p, vec3 pos, vec3 n) {
     vec2 i = clamp(floor(t), vec2(0.0), vec2(float(side - 2u)));
     precise vec2 f = clamp(t - i, vec2(0.0), vec2(1.0));
     uvec2 xy = uvec2(i);
-    StoreTileTreeWords map = StoreTileTreeWords(p.map);
+    U32Ptr map = U32Ptr(p.map);
     uint base = (corner.y + xy.y) * p.map_width + corner.x + xy.x;
     vec4 c00 = unpackUnorm4x8(map.v[base]);
     vec4 c10 = unpackUnorm4x8(map.v[base + 1u]);
