@@ -67,21 +67,19 @@ void main() {
     uint best_d = 0xffffffffu;
     uint best_rank = 0xffffffffu;
     uint best_c = current;
-    uint bases[9];
-    for (int n = 0; n < 9; n++) {
-        ivec2 d = ivec2(n % 3 - 1, n / 3 - 1);
-        uvec2 u = synth_unpack(around[n]);
-        bases[n] = synth_wrap(u.y, -d.y * s, pc.exemplar.y) * pc.exemplar.x
-            + synth_wrap(u.x, -d.x * s, pc.exemplar.x);
-    }
     // In coherent regions most neighbours, shifted back, name the same exemplar pixel and so
     // the same candidates. Each is evaluated once (a repeat has the same distance and rank, so
     // skipping it cannot change the choice), from a compacted list: the loop then runs as
     // many times as the lane with the most distinct ones needs, not over the union of the
     // positions where some lane has a new one.
+    uint bases[9];
     uint unique[9];
     uint count = 0;
     for (int n = 0; n < 9; n++) {
+        ivec2 d = ivec2(n % 3 - 1, n / 3 - 1);
+        uvec2 u = synth_unpack(around[n]);
+        bases[n] = synth_wrap(u.y, -d.y * s, pc.exemplar.y) * pc.exemplar.x
+            + synth_wrap(u.x, -d.x * s, pc.exemplar.x);
         bool repeated = false;
         for (int m = 0; m < n; m++) {
             repeated = repeated || bases[m] == bases[n];

@@ -10,16 +10,11 @@
 //! repeats `u`, which is harmless: the correction pass then just sees a duplicate candidate.
 
 use super::appearance::{appearance_distance, APPEARANCE_DIMS};
-use super::coords::pack;
+use super::coords::{pack, torus_distance};
 use rayon::prelude::*;
 
 /// Most pixels the brute-force search compares each pixel against.
 pub const MAX_POOL: usize = 4096;
-
-fn torus_distance(a: u32, b: u32, n: u32) -> u32 {
-    let d = a.abs_diff(b);
-    d.min(n - d)
-}
 
 /// The similarity sets of a `w`×`h` level: `k` packed coordinates per pixel, row-major.
 pub fn coherence_sets(
@@ -37,9 +32,7 @@ pub fn coherence_sets(
         .step_by(stride as usize)
         .flat_map(|y| (0..w).step_by(stride as usize).map(move |x| (x, y)))
         .collect();
-    let far = |a: (u32, u32), b: (u32, u32)| {
-        torus_distance(a.0, b.0, w).max(torus_distance(a.1, b.1, h)) >= spread
-    };
+    let far = |a: (u32, u32), b: (u32, u32)| torus_distance(a, b, w, h) >= spread;
     let mut sets = vec![0u32; (w * h * k) as usize];
     sets.par_chunks_mut(k as usize).enumerate().for_each_init(
         || vec![0u32; pool.len()],

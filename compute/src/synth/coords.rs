@@ -10,3 +10,14 @@ pub fn pack(x: u32, y: u32) -> u32 {
 pub fn unpack(c: u32) -> (u32, u32) {
     (c & 0xffff, c >> 16)
 }
+
+/// Toroidal Chebyshev distance of exemplar pixels `a` and `b` on a `w`×`h` exemplar: how far
+/// apart two places of a tiling exemplar are, which both the similarity sets (their spread)
+/// and the period repetition (its tolerance) measure.
+pub(crate) fn torus_distance(a: (u32, u32), b: (u32, u32), w: u32, h: u32) -> u32 {
+    let axis = |p: u32, q: u32, n: u32| {
+        let d = p.abs_diff(q);
+        d.min(n - d)
+    };
+    axis(a.0, b.0, w).max(axis(a.1, b.1, h))
+}

@@ -10,7 +10,7 @@
 //! tiling. Independently placed patches repeat by chance only: (2t + 1)² / (w h) of the pairs,
 //! 2 % for a 64² exemplar.
 
-use super::coords::unpack;
+use super::coords::{torus_distance, unpack};
 
 /// Largest coordinate distance, in exemplar pixels, of two pixels that repeat each other.
 pub const REPETITION_TOLERANCE: u32 = 4;
@@ -29,13 +29,9 @@ pub fn period_repetition(
     let (w, h) = (width as usize, height as usize);
     let (ew, eh) = (exemplar_width as usize, exemplar_height as usize);
     debug_assert_eq!(coords.len(), w * h);
-    let torus = |a: u32, b: u32, n: u32| {
-        let d = a.abs_diff(b);
-        d.min(n - d)
-    };
     let repeats = |a: u32, b: u32| {
-        let ((ax, ay), (bx, by)) = (unpack(a), unpack(b));
-        torus(ax, bx, exemplar_width).max(torus(ay, by, exemplar_height)) <= REPETITION_TOLERANCE
+        torus_distance(unpack(a), unpack(b), exemplar_width, exemplar_height)
+            <= REPETITION_TOLERANCE
     };
     let mut pairs = 0u64;
     let mut equal = 0u64;

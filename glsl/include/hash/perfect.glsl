@@ -35,7 +35,6 @@ struct PerfectHashParams {
     uint block_words;
 };
 
-
 // Φ[q] as an offset vector (z = 0 in 2D).
 uvec3 perfect_offset(PerfectHashParams p, uint q) {
     uint entry_bits = p.dimensions * p.component_bits;

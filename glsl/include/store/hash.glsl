@@ -45,7 +45,6 @@ struct HashStoreParams {
     uint resolution;
 };
 
-
 // RGBA8 of a voxel, or 0 when it is not stored.
 uint store_hash_texel(HashStoreParams p, uvec3 voxel) {
     uint index = robin_hood_lookup(p.cells, p.table_size, p.fastmod_m, p.key_bits, p.probe, morton3(voxel));

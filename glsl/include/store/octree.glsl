@@ -36,7 +36,6 @@ struct OctreeParams {
     uint span[OCTREE_MAX_LEVELS];
 };
 
-
 // Index of the word of `voxel`'s cell in the node at `address` of level l.
 uint store_octree_cell(OctreeParams p, uint address, uint l, uvec3 voxel) {
     uint n = p.n[l];

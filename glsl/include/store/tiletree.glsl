@@ -46,7 +46,6 @@ struct TileTreeParams {
     uint pad;
 };
 
-
 // The leaf holding `voxel`, or 0xffffffff in empty space.
 uint store_tiletree_leaf(TileTreeParams p, uvec3 voxel) {
     U32Ptr nodes = U32Ptr(p.nodes);
