@@ -6,13 +6,14 @@
 //! searches; a full pool is reallocated at double size (reported) and, pointers being
 //! absolute addresses, copied as is. Layout: `glsl/include/store/octree.glsl`.
 
-use super::colours::{check_keys, fill_colours, ColourSource};
+use super::colours::{fill_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
-use super::{Filter, SparseStore, StoreReport};
+use super::keys::check_keys;
+use super::{Filter, InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
-use crate::prims::Scan;
+use crate::prims::{ReduceOp, Scan};
 use crate::voxel::{VoxelGrid, VoxelKeys};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
@@ -279,17 +280,24 @@ impl OctreeStore {
         let gpu = &self.kernels.gpu;
         let buffer = GpuBuffer::<u32>::new(gpu, "octree new colours", keys.len)?;
         fill_colours(
-            gpu,
-            &self.kernels.fill_marble,
+            &self.kernels,
+            NAME,
             keys,
             source,
             self.resolution,
-            &buffer,
-            0,
+            (&buffer, 0),
+            None,
         )?;
-        if let ColourSource::Fn(_) = source {
-            let colours = buffer.read_range(0, keys.len)?;
-            if let Some(i) = colours.iter().position(|c| c >> 24 < 2) {
+        if !matches!(source, ColourSource::Marble { .. }) && keys.len > 0 {
+            // Alpha is the high byte, so the smallest word has the smallest alpha: one
+            // reduction on the device, and only a refused colour is read back to be named.
+            let least = GpuBuffer::<u32>::new(gpu, "octree least colour", 1)?;
+            let mut reduce = self.kernels.hash.reduce.lock().unwrap();
+            gpu.submit(|rec| reduce.record(rec, &buffer, keys.len, ReduceOp::Min, &least))?;
+            drop(reduce);
+            if least.read()?[0] >> 24 < 2 {
+                let colours = buffer.read_range(0, keys.len)?;
+                let i = colours.iter().position(|c| c >> 24 < 2).unwrap_or(0);
                 let key = keys.keys.read_range(i, 1)?[0];
                 return Err(StoreError::ReservedAlpha {
                     store: NAME,
@@ -482,7 +490,7 @@ impl OctreeStore {
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<(), StoreError> {
-        check_keys(NAME, &keys.read()?, self.resolution)?;
+        check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let buffer = self.colours_for(keys, colours)?;
         let [_, absent] = self.leaves(keys, &buffer, 3)?;
         if absent > 0 {
@@ -513,12 +521,16 @@ impl SparseStore for OctreeStore {
         self.len
     }
 
+    fn insert_unit(&self) -> InsertUnit {
+        InsertUnit::Voxels
+    }
+
     fn insert(
         &mut self,
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<StoreReport, StoreError> {
-        check_keys(NAME, &keys.read()?, self.resolution)?;
+        check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let buffer = self.colours_for(keys, colours)?;
         let [present, _] = self.leaves(keys, &buffer, 1)?;
         if present > 0 {
