@@ -255,10 +255,12 @@ fn perfect_store_matches_its_reference_in_both_layouts_and_grows_by_rebuilds() {
         }
         let e = PerfectStore::build_blocked(&kernels, r, &cells, &source, Some(5));
         assert!(e.is_err());
+        // The blocked layout grows by cells (tested with device colours below); cells it
+        // holds are refused.
         let mut blocked = blocked;
         assert!(matches!(
-            blocked.insert(&k2, &source),
-            Err(StoreError::Unsupported { .. })
+            blocked.insert(&cells, &source),
+            Err(StoreError::AlreadyStored { .. })
         ));
     });
 }
