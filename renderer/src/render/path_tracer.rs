@@ -6,7 +6,7 @@ use super::frame::GpuFrame;
 use super::stores::{BakedStoreInfo, SceneStores};
 use crate::accel::{DeviceBvh, SceneBvh};
 use crate::output::Film;
-use crate::scene::{Environment, RenderSettings, Scene};
+use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
 use bytemuck::{Pod, Zeroable};
 use lazysolid_compute::gpu::{Gpu, GpuBuffer, Kernel};
@@ -251,10 +251,16 @@ fn check_scene(scene: &Scene) -> Result<(), RenderError> {
     let file = scene.source.display();
     let bad = |problem: String| Err(RenderError::Settings(format!("{file}: {problem}")));
     let s = &scene.render;
-    if s.width == 0 || s.height == 0 || s.spp == 0 || s.max_depth == 0 {
+    if s.width == 0 || s.height == 0 || s.spp == 0 {
         return bad(format!(
-            "render settings {}x{}, {} spp, depth {} (each must be at least 1)",
-            s.width, s.height, s.spp, s.max_depth
+            "render settings {}x{}, {} spp (each must be at least 1)",
+            s.width, s.height, s.spp
+        ));
+    }
+    if s.max_depth > MAX_DEPTH {
+        return bad(format!(
+            "render max_depth {} is more than {MAX_DEPTH}",
+            s.max_depth
         ));
     }
     if s.width as u64 * s.height as u64 > 1 << 26 {
