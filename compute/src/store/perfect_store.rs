@@ -15,40 +15,41 @@ use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
-use crate::gpu::GpuBuffer;
+use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::perfect::{
     BlockedPerfectHash, PerfectAccess, PerfectBuilder, PerfectConfig, PerfectHashGpu, PerfectParams,
 };
 use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
 use crate::voxel::VoxelKeys;
-use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use std::sync::Arc;
 
-/// What `store/perfect.glsl` receives: the `PerfectStoreParams` struct, field for field.
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub struct PerfectStoreParams {
-    /// The hash table.
-    pub table: PerfectParams,
-    /// R.
-    pub resolution: u32,
-    /// b of the blocked layout, 0 for the texel layout.
-    pub block: u32,
-    /// 1 when absent voxels are detected (tags stored).
-    pub unconstrained: u32,
-    /// Padding.
-    pub pad: u32,
+crate::push_block! {
+    /// What `store/perfect.glsl` receives: the `PerfectStoreParams` struct, field for field.
+    #[derive(Clone, Copy, Debug, Default)]
+    pub struct PerfectStoreParams<'a> {
+        /// The hash table.
+        pub table: PerfectParams<'a>,
+        /// R.
+        pub resolution: u32,
+        /// b of the blocked layout, 0 for the texel layout.
+        pub block: u32,
+        /// 1 when absent voxels are detected (tags stored).
+        pub unconstrained: u32,
+        /// Padding.
+        pub pad: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct LookupPush {
-    store: PerfectStoreParams,
-    points: u64,
-    results: u64,
-    n: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LookupPush<'a> {
+        store: PerfectStoreParams<'a>,
+        points: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        mode: u32,
+    }
 }
 
 /// The perfect-hash store.
@@ -200,7 +201,7 @@ impl PerfectStore {
 }
 
 impl SparseStore for PerfectStore {
-    type Params = PerfectStoreParams;
+    type Params<'a> = PerfectStoreParams<'a>;
 
     fn name(&self) -> &'static str {
         NAME
@@ -296,7 +297,7 @@ impl SparseStore for PerfectStore {
         self.table.bytes()
     }
 
-    fn params(&self) -> PerfectStoreParams {
+    fn params(&self) -> PerfectStoreParams<'_> {
         PerfectStoreParams {
             table: self.table.params(),
             resolution: self.resolution,
@@ -313,14 +314,17 @@ impl SparseStore for PerfectStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        Ok(prepare_lookup(k, &k.perfect_lookup, points, &[], |a| {
-            LookupPush {
+        let groups = k.perfect_lookup.groups_for(points.len() as u64);
+        let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
+        Ok(prepare_lookup(k, points, &[], move |rec, a| {
+            let push = LookupPush {
                 store: self.params(),
                 points: a.points,
                 results: a.results,
-                n: points.len() as u32,
-                mode: (filter == Filter::Trilinear) as u32,
-            }
+                n,
+                mode,
+            };
+            rec.dispatch(&k.perfect_lookup, groups, &[], &push)
         })?)
     }
 }

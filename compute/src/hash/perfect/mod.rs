@@ -13,10 +13,10 @@
 //! Layout, sizes and measurements: `docs/hashing.md`, "Perfect spatial hashing". Perfect
 //! spatial hashing is the subject of US patent 7,619,623 (see the README).
 
-mod blocked;
+pub(crate) mod blocked;
 mod cpu;
 mod function;
-mod gpu;
+pub(crate) mod gpu;
 mod kernels;
 mod sizes;
 mod table;
