@@ -1,7 +1,7 @@
 //! The perfect-hash store (Lefebvre and Hoppe 2006, thesis §4.2.2): a perfect spatial hash of
-//! the voxels' grid points, built on the GPU, whose payload is the texel's RGBA8 colour itself
-//! — two reads per texel and about 4 bits of offset table per texel beside the colours. Two
-//! layouts, as in thesis Table 4.1:
+//! the voxels' grid points, built where it is faster on the device (`PerfectConstruction`),
+//! whose payload is the texel's RGBA8 colour itself — two reads per texel and about 4 bits of
+//! offset table per texel beside the colours. Two layouts, as in thesis Table 4.1:
 //!
 //! - texel layout ([`PerfectStore::build`]): one texel per key; nearest = one lookup, trilinear = 8 lookups
 //!   over the interpolation voxels;
@@ -17,7 +17,8 @@ use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::perfect::{
-    BlockedPerfectHash, PerfectAccess, PerfectBuilder, PerfectConfig, PerfectHashGpu, PerfectParams,
+    BlockedPerfectHash, PerfectAccess, PerfectConfig, PerfectConstruction, PerfectHashGpu,
+    PerfectParams,
 };
 use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
 use crate::voxel::VoxelKeys;
@@ -57,6 +58,8 @@ pub struct PerfectStore {
     kernels: Arc<StoreKernels>,
     table: PerfectHashGpu,
     access: PerfectAccess,
+    /// Where the texel layout is built, and rebuilt on insert.
+    construction: PerfectConstruction,
     block: u32,
     resolution: u32,
     /// Host copies of the keys and colours (texel layout), for rebuilds on insert.
@@ -92,7 +95,8 @@ fn duplicate(e: HashError) -> StoreError {
 }
 
 impl PerfectStore {
-    /// Builds the texel layout over the voxels `keys` of the `resolution`³ grid on the GPU.
+    /// Builds the texel layout over the voxels `keys` of the `resolution`³ grid, with the
+    /// construction that is faster on the device ([`PerfectConstruction::Auto`]).
     /// Unconstrained access stores a tag per slot so that unstored voxels read (0, 0, 0, 0);
     /// constrained access (the texturing case of the thesis) stores none, and reading an
     /// unstored voxel returns some stored texel.
@@ -107,6 +111,23 @@ impl PerfectStore {
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
         access: PerfectAccess,
+    ) -> Result<PerfectStore, StoreError> {
+        let auto = PerfectConstruction::Auto;
+        Self::build_with(kernels, resolution, keys, colours, access, auto)
+    }
+
+    /// As [`build`](Self::build), constructed where `construction` says (inserts rebuild there
+    /// too).
+    ///
+    /// # Errors
+    /// As [`build`](Self::build).
+    pub fn build_with(
+        kernels: &Arc<StoreKernels>,
+        resolution: u32,
+        keys: &VoxelKeys,
+        colours: &ColourSource<'_>,
+        access: PerfectAccess,
+        construction: PerfectConstruction,
     ) -> Result<PerfectStore, StoreError> {
         let host_keys = keys.read()?;
         check_keys(NAME, &host_keys, resolution)?;
@@ -124,8 +145,9 @@ impl PerfectStore {
         let host_colours = buffer.read_range(0, keys.len)?;
         let mut store = PerfectStore {
             kernels: kernels.clone(),
-            table: Self::hash(kernels, resolution, keys, &buffer, access)?,
+            table: Self::hash(kernels, resolution, keys, &buffer, access, construction)?,
             access,
+            construction,
             block: 0,
             resolution,
             keys: host_keys,
@@ -142,13 +164,22 @@ impl PerfectStore {
         keys: &VoxelKeys,
         colours: &GpuBuffer<u32>,
         access: PerfectAccess,
+        construction: PerfectConstruction,
     ) -> Result<PerfectHashGpu, StoreError> {
         let config = PerfectConfig {
             access,
             ..PerfectConfig::default()
         };
-        PerfectBuilder::new(&kernels.perfect)
-            .build(universe(resolution)?, &keys.keys, colours, keys.len, config)
+        let universe = universe(resolution)?;
+        construction
+            .build(
+                &kernels.perfect,
+                universe,
+                &keys.keys,
+                colours,
+                keys.len,
+                config,
+            )
             .map_err(duplicate)
     }
 
@@ -181,6 +212,7 @@ impl PerfectStore {
             kernels: kernels.clone(),
             table,
             access: PerfectAccess::Constrained,
+            construction: PerfectConstruction::Cpu,
             block: blocked.layout.block,
             resolution,
             keys: Vec::new(),
@@ -192,6 +224,12 @@ impl PerfectStore {
     /// The hash table (sizes, construction report).
     pub fn table(&self) -> &PerfectHashGpu {
         &self.table
+    }
+
+    /// Where the table was built: `Cpu` or `Gpu` (`Auto` resolved on the device; the blocked
+    /// layout is always built on the host).
+    pub fn construction(&self) -> PerfectConstruction {
+        self.construction.resolve(&self.kernels.gpu)
     }
 
     /// b of the blocked layout, `None` for the texel layout.
@@ -270,6 +308,7 @@ impl SparseStore for PerfectStore {
             &key_buffer,
             &colour_buffer,
             self.access,
+            self.construction,
         )?;
         let after = *table.sizes();
         let reallocations = vec![format!(
