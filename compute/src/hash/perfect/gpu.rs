@@ -51,8 +51,12 @@ crate::push_block! {
         pub dimensions: u32,
         /// Bits per offset component.
         pub component_bits: u32,
-        /// Universe extents.
-        pub dims: [u32; 3],
+        /// Universe extent along x.
+        pub dims_x: u32,
+        /// Universe extent along y.
+        pub dims_y: u32,
+        /// Universe extent along z.
+        pub dims_z: u32,
         /// Payload words per slot: 1, or (b+1)³ for blocked tables.
         pub block_words: u32,
     }
@@ -70,7 +74,9 @@ crate::push_block! {
         key_count: u64,
         n: u32,
         layout_id: u32,
-        dims: [u32; 3],
+        dims_x: u32,
+        dims_y: u32,
+        dims_z: u32,
         dimensions: u32,
         axis_bits: u32,
         h: u32,
@@ -400,7 +406,9 @@ impl PerfectBuilder {
                     key_count: universe.key_count(),
                     n: n as u32,
                     layout_id: layout_id(universe.layout),
-                    dims: universe.dims,
+                    dims_x: universe.dims[0],
+                    dims_y: universe.dims[1],
+                    dims_z: universe.dims[2],
                     dimensions: d,
                     axis_bits: universe.axis_bits(),
                     h: sizes.h,
@@ -792,7 +800,9 @@ impl PerfectHashGpu {
             phi: self.sizes.phi,
             dimensions: self.sizes.dimensions,
             component_bits: self.sizes.component_bits,
-            dims: self.universe.dims,
+            dims_x: self.universe.dims[0],
+            dims_y: self.universe.dims[1],
+            dims_z: self.universe.dims[2],
             block_words: self.block_words,
         }
     }
