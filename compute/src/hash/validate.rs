@@ -4,8 +4,7 @@
 use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
-use crate::gpu::{GpuBuffer, GpuResult, Recorder};
-use bytemuck::{Pod, Zeroable};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 
 /// What the check found: the largest key and the duplicates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,14 +53,15 @@ pub fn validate_keys_cpu(keys: &[u64]) -> KeyCheck {
     }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct CheckPush {
-    sorted: u64,
-    counters: u64,
-    key_count: u64,
-    n: u32,
-    resolution: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct CheckPush<'a> {
+        sorted: DeviceAddress<'a>,
+        counters: DeviceAddress<'a>,
+        key_count: u64,
+        n: u32,
+        resolution: u32,
+    }
 }
 
 /// The counters `check_keys.comp` accumulates: duplicates, the smallest duplicate, keys

@@ -4,10 +4,9 @@
 
 use super::error::StoreError;
 use super::kernels::StoreKernels;
-use crate::gpu::{GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
 use crate::voxel::VoxelKeys;
-use bytemuck::{Pod, Zeroable};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -80,29 +79,31 @@ impl HostColours<'_> {
     }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct FillPush {
-    keys: u64,
-    dst: u64,
-    n: u32,
-    resolution: u32,
-    seed: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct FillPush<'a> {
+        keys: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        n: u32,
+        resolution: u32,
+        seed: u32,
+    }
 }
 
-#[derive(Clone, Copy, Default, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct ByKeyPush {
-    queries: u64,
-    keys: u64,
-    colours: u64,
-    dst: u64,
-    required: u64,
-    need_out: u64,
-    counters: u64,
-    n: u32,
-    n_keys: u32,
-    zero_missing: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ByKeyPush<'a> {
+        queries: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        colours: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        required: DeviceAddress<'a>,
+        need_out: DeviceAddress<'a>,
+        counters: DeviceAddress<'a>,
+        n: u32,
+        n_keys: u32,
+        zero_missing: u32,
+    }
 }
 
 fn check_buffer(
@@ -146,12 +147,16 @@ pub(crate) struct ByKey<'a> {
     pub zero_missing: bool,
 }
 
+/// The address of an optional buffer, [`DeviceAddress::NULL`] when absent.
+fn address<T: bytemuck::Pod>(buffer: Option<&GpuBuffer<T>>) -> DeviceAddress<'_> {
+    buffer.map_or(DeviceAddress::NULL, GpuBuffer::address)
+}
+
 impl ByKey<'_> {
     pub(crate) fn record(&self, rec: &mut Recorder<'_>, kernels: &StoreKernels) -> GpuResult<()> {
         if self.n == 0 {
             return Ok(());
         }
-        let address = |b: Option<&GpuBuffer<u32>>| b.map_or(0, GpuBuffer::address);
         let push = ByKeyPush {
             queries: self.queries.address(),
             keys: self.table.keys.address(),
@@ -159,7 +164,7 @@ impl ByKey<'_> {
             dst: address(self.dst),
             required: address(self.required),
             need_out: address(self.need_out),
-            counters: self.counters.map_or(0, GpuBuffer::address),
+            counters: address(self.counters),
             n: self.n as u32,
             n_keys: self.table.len as u32,
             zero_missing: self.zero_missing as u32,
@@ -229,7 +234,7 @@ pub(crate) fn fill_colours(
             gpu.submit(|rec| {
                 let push = FillPush {
                     keys: keys.keys.address(),
-                    dst: dst.address() + 4 * offset as u64,
+                    dst: dst.address_at(offset)?,
                     n: keys.len as u32,
                     resolution,
                     seed,

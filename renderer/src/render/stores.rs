@@ -11,9 +11,8 @@ use crate::output::encode8;
 use crate::scene::{Scene, StoreFilter, StoreKind};
 use crate::shading::reference::solid_texture_albedo;
 use crate::shading::GpuMaterial;
-use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use lazysolid_compute::gpu::{BufferArg, Gpu, GpuBuffer};
+use lazysolid_compute::gpu::{BufferArg, DeviceRecords, Gpu, GpuBuffer};
 use lazysolid_compute::hash::perfect::PerfectAccess;
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::shader_constants::{
@@ -30,26 +29,25 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// One store as the kernel sees it (`StoreRecord` in `glsl/render/path_trace.comp`): the
-/// params of its kind, the others zero.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct GpuStoreRecord {
-    /// `STORE_KIND_*`.
-    pub kind: u32,
-    /// `STORE_FILTER_*`.
-    pub filter: u32,
-    /// The coherent-hash store's params.
-    pub hash: HashStoreParams,
-    /// The octree's params.
-    pub octree: OctreeParams,
-    /// The perfect-hash store's params.
-    pub perfect: PerfectStoreParams,
-    /// The TileTree's params.
-    pub tiletree: TileTreeParams,
+lazysolid_compute::push_block! {
+    /// One store as the kernel sees it (`StoreRecord` in `glsl/render/path_trace.comp`),
+    /// borrowing the store: the params of its kind, the others default (null addresses).
+    #[derive(Clone, Copy, Debug, Default)]
+    pub struct GpuStoreRecord<'a> {
+        /// `STORE_KIND_*`.
+        pub kind: u32,
+        /// `STORE_FILTER_*`.
+        pub filter: u32,
+        /// The coherent-hash store's params.
+        pub hash: HashStoreParams<'a>,
+        /// The octree's params.
+        pub octree: OctreeParams<'a>,
+        /// The perfect-hash store's params.
+        pub perfect: PerfectStoreParams<'a>,
+        /// The TileTree's params.
+        pub tiletree: TileTreeParams<'a>,
+    }
 }
-
-const _: () = assert!(std::mem::size_of::<GpuStoreRecord>() == 264);
 
 /// Marks an instance whose albedo is not read from a store.
 pub const NO_STORE: u32 = u32::MAX;
@@ -69,8 +67,8 @@ pub enum SceneStore {
 
 impl SceneStore {
     /// The record of the store's current buffers, read with `filter`.
-    pub fn record(&self, filter: StoreFilter) -> GpuStoreRecord {
-        let mut r = GpuStoreRecord::zeroed();
+    pub fn record(&self, filter: StoreFilter) -> GpuStoreRecord<'_> {
+        let mut r = GpuStoreRecord::default();
         r.filter = match filter {
             StoreFilter::Nearest => STORE_FILTER_NEAREST,
             StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
@@ -115,12 +113,14 @@ pub struct BakedStoreInfo {
     pub build_time: Duration,
 }
 
-/// Every store of a scene and the per-instance store slots. The records hold device
-/// addresses: after an insert into a store ([`SceneStores::store_mut`]), which may reallocate
-/// its buffers, [`SceneStores::refresh`] rewrites them before the next render.
+/// Every store of a scene, the records the kernel reads (which hold the buffers they point
+/// into) and the per-instance store slots. After an insert into a store
+/// ([`SceneStores::store_mut`]), which may reallocate its buffers, [`SceneStores::refresh`]
+/// rewrites the records before the next render (until then they keep the old buffers alive).
 pub struct SceneStores {
+    gpu: Gpu,
     stores: Vec<(SceneStore, StoreFilter)>,
-    records: GpuBuffer<GpuStoreRecord>,
+    records: DeviceRecords,
     instance_slots: GpuBuffer<u32>,
     info: Vec<BakedStoreInfo>,
 }
@@ -223,7 +223,6 @@ impl SceneStores {
     /// Voxelization or store failures (a mesh outside the unit cube, device limits).
     pub fn build(gpu: &Gpu, scene: &Scene) -> Result<SceneStores, RenderError> {
         let mut stores = Vec::new();
-        let mut records = Vec::new();
         let mut info = Vec::new();
         let mut slot_of: HashMap<(usize, usize), u32> = HashMap::new();
         let mut slots = vec![NO_STORE; scene.instances.len()];
@@ -253,19 +252,16 @@ impl SceneStores {
                 bytes,
                 build_time: start.elapsed(),
             });
-            let slot = records.len() as u32;
-            records.push(store.record(spec.filter));
+            let slot = stores.len() as u32;
             stores.push((store, spec.filter));
             slot_of.insert((inst.mesh, inst.material), slot);
             slots[i] = slot;
         }
-        if records.is_empty() {
-            // Bindings cannot be empty.
-            records.push(GpuStoreRecord::zeroed());
-        }
+        let records = Self::upload(gpu, &stores)?;
         Ok(SceneStores {
+            gpu: gpu.clone(),
             stores,
-            records: GpuBuffer::from_slice(gpu, "render store records", &records)?,
+            records,
             instance_slots: GpuBuffer::from_slice(gpu, "render instance stores", &slots)?,
             info,
         })
@@ -277,8 +273,23 @@ impl SceneStores {
         self.stores.get_mut(slot).map(|(s, _)| s)
     }
 
-    /// The record of every store as the kernel reads it now.
-    pub fn records(&self) -> Vec<GpuStoreRecord> {
+    /// The records of `stores` on the device (one default record when there is no store:
+    /// bindings cannot be empty).
+    fn upload(
+        gpu: &Gpu,
+        stores: &[(SceneStore, StoreFilter)],
+    ) -> Result<DeviceRecords, RenderError> {
+        let mut records: Vec<GpuStoreRecord<'_>> =
+            stores.iter().map(|(s, f)| s.record(*f)).collect();
+        if records.is_empty() {
+            records.push(GpuStoreRecord::default());
+        }
+        Ok(DeviceRecords::new(gpu, "render store records", &records)?)
+    }
+
+    /// The record of every store as the kernel reads it after the next
+    /// [`SceneStores::refresh`] (or now, when no store changed since the last).
+    pub fn records(&self) -> Vec<GpuStoreRecord<'_>> {
         self.stores.iter().map(|(s, f)| s.record(*f)).collect()
     }
 
@@ -288,10 +299,7 @@ impl SceneStores {
     /// # Errors
     /// Device failures.
     pub fn refresh(&mut self) -> Result<(), RenderError> {
-        let records = self.records();
-        if !records.is_empty() {
-            self.records.write(0, &records)?;
-        }
+        self.records = Self::upload(&self.gpu, &self.stores)?;
         for ((store, _), info) in self.stores.iter().zip(&mut self.info) {
             (info.texels, info.bytes) = store.size();
         }

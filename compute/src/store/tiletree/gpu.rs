@@ -3,64 +3,66 @@
 
 use super::plan::Plan;
 use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
-use crate::gpu::{GpuBuffer, GpuResult};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
 use crate::store::colours::{fill_colours, ByKey, KeyedColours};
 use crate::store::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use crate::store::{ColourSource, Filter, InsertUnit, SparseStore, StoreError, StoreReport};
 use crate::voxel::VoxelKeys;
-use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 use std::path::Path;
 use std::sync::Arc;
 
-/// What `store/tiletree.glsl` receives: the `TileTreeParams` struct, field for field.
-#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Eq)]
-#[repr(C)]
-pub struct TileTreeParams {
-    /// Device address of the node cells.
-    pub nodes: u64,
-    /// Device address of the leaf records.
-    pub leaves: u64,
-    /// Device address of the tile map.
-    pub map: u64,
-    /// The root's entry.
-    pub root: u32,
-    /// R.
-    pub resolution: u32,
-    /// Tile map width in texels.
-    pub map_width: u32,
-    /// 0.
-    pub pad: u32,
+crate::push_block! {
+    /// What `store/tiletree.glsl` receives: the `TileTreeParams` struct, field for field.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct TileTreeParams<'a> {
+        /// Device address of the node cells.
+        pub nodes: DeviceAddress<'a>,
+        /// Device address of the leaf records.
+        pub leaves: DeviceAddress<'a>,
+        /// Device address of the tile map.
+        pub map: DeviceAddress<'a>,
+        /// The root's entry.
+        pub root: u32,
+        /// R.
+        pub resolution: u32,
+        /// Tile map width in texels.
+        pub map_width: u32,
+        /// 0.
+        pub pad: u32,
+    }
 }
 
-#[derive(Clone, Copy, Default, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct FillPush {
-    tiles: u64,
-    triangles: u64,
-    positions: u64,
-    indices: u64,
-    keys: u64,
-    colours: u64,
-    filled_in: u64,
-    filled_out: u64,
-    map: u64,
-    n_tiles: u32,
-    n_texels: u32,
-    resolution: u32,
-    map_width: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy, Default)]
+    pub(crate) struct FillPush<'a> {
+        tiles: DeviceAddress<'a>,
+        triangles: DeviceAddress<'a>,
+        positions: DeviceAddress<'a>,
+        indices: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        colours: DeviceAddress<'a>,
+        filled_in: DeviceAddress<'a>,
+        filled_out: DeviceAddress<'a>,
+        map: DeviceAddress<'a>,
+        n_tiles: u32,
+        n_texels: u32,
+        resolution: u32,
+        map_width: u32,
+        mode: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct LookupPush {
-    store: TileTreeParams,
-    points: u64,
-    normals: u64,
-    results: u64,
-    n: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LookupPush<'a> {
+        store: TileTreeParams<'a>,
+        points: DeviceAddress<'a>,
+        normals: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        mode: u32,
+    }
 }
 
 /// The TileTree store. It is built from a mesh; new surface (the caps of a cut) is added by
@@ -75,16 +77,48 @@ pub struct TileTree {
     map: GpuBuffer<u32>,
 }
 
-/// The per-texel buffers of one fill of a plan (step 1 done: voxels and surface hits).
-struct Texels {
-    _inputs: [GpuBuffer<u32>; 2],
-    _positions: GpuBuffer<f32>,
-    _indices: GpuBuffer<u32>,
+/// The per-texel buffers of one fill of a plan (step 1 done: voxels and surface hits), and
+/// the tile map they fill.
+struct Texels<'a> {
+    tiles: GpuBuffer<u32>,
+    triangles: GpuBuffer<u32>,
+    positions: GpuBuffer<f32>,
+    indices: GpuBuffer<u32>,
     keys: VoxelKeys,
     colours: GpuBuffer<u32>,
     hits: GpuBuffer<u32>,
     spare: GpuBuffer<u32>,
-    push: FillPush,
+    map: &'a GpuBuffer<u32>,
+    n_tiles: u32,
+    resolution: u32,
+    map_width: u32,
+}
+
+impl Texels<'_> {
+    /// The fill kernels' push block in `mode`, reading `filled_in` and writing `filled_out`.
+    fn push<'b>(
+        &'b self,
+        mode: u32,
+        filled_in: &'b GpuBuffer<u32>,
+        filled_out: &'b GpuBuffer<u32>,
+    ) -> FillPush<'b> {
+        FillPush {
+            tiles: self.tiles.address(),
+            triangles: self.triangles.address(),
+            positions: self.positions.address(),
+            indices: self.indices.address(),
+            keys: self.keys.keys.address(),
+            colours: self.colours.address(),
+            filled_in: filled_in.address(),
+            filled_out: filled_out.address(),
+            map: self.map.address(),
+            n_tiles: self.n_tiles,
+            n_texels: self.keys.len as u32,
+            resolution: self.resolution,
+            map_width: self.map_width,
+            mode,
+        }
+    }
 }
 
 /// The colours a tree held, by voxel: every texel that met the surface, sorted by key (texels
@@ -238,59 +272,45 @@ impl TileTree {
     }
 
     /// Step 1 of a fill: the buffers, and per texel its voxel and whether it met the surface.
-    fn texels(&self, map: &GpuBuffer<u32>) -> Result<Texels, StoreError> {
+    fn texels<'a>(&self, map: &'a GpuBuffer<u32>) -> Result<Texels<'a>, StoreError> {
         let gpu = &self.kernels.gpu;
         let plan = &self.plan;
         let n = plan.texel_count();
-        let tiles = GpuBuffer::from_slice(gpu, "tiletree tiles", &plan.tile_records())?;
-        let tris = GpuBuffer::from_slice(gpu, "tiletree tile triangles", &plan.tile_triangles)?;
         let flat: Vec<f32> = plan
             .surface
             .positions
             .iter()
             .flat_map(|p| p.to_array())
             .collect();
-        let positions = GpuBuffer::from_slice(gpu, "tiletree positions", &flat)?;
-        let indices = GpuBuffer::from_slice(
-            gpu,
-            "tiletree indices",
-            plan.surface.triangles.as_flattened(),
-        )?;
-        let keys = VoxelKeys {
-            keys: GpuBuffer::new(gpu, "tiletree texel voxels", n)?,
-            len: n,
-        };
-        let colours = GpuBuffer::<u32>::new(gpu, "tiletree texel colours", n)?;
-        let hits = GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?;
-        let spare = GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?;
-        let push = FillPush {
-            tiles: tiles.address(),
-            triangles: tris.address(),
-            positions: positions.address(),
-            indices: indices.address(),
-            keys: keys.keys.address(),
-            colours: colours.address(),
-            filled_in: spare.address(),
-            filled_out: hits.address(),
-            map: map.address(),
+        let t = Texels {
+            tiles: GpuBuffer::from_slice(gpu, "tiletree tiles", &plan.tile_records())?,
+            triangles: GpuBuffer::from_slice(
+                gpu,
+                "tiletree tile triangles",
+                &plan.tile_triangles,
+            )?,
+            positions: GpuBuffer::from_slice(gpu, "tiletree positions", &flat)?,
+            indices: GpuBuffer::from_slice(
+                gpu,
+                "tiletree indices",
+                plan.surface.triangles.as_flattened(),
+            )?,
+            keys: VoxelKeys {
+                keys: GpuBuffer::new(gpu, "tiletree texel voxels", n)?,
+                len: n,
+            },
+            colours: GpuBuffer::<u32>::new(gpu, "tiletree texel colours", n)?,
+            hits: GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?,
+            spare: GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?,
+            map,
             n_tiles: plan.tiles.len() as u32,
-            n_texels: n as u32,
             resolution: plan.resolution,
             map_width: plan.stats.map_width,
-            mode: 0,
         };
+        let push = t.push(0, &t.spare, &t.hits);
         let k = &self.kernels.tiletree_texels;
         gpu.submit(|rec| rec.dispatch(k, k.groups_for(n as u64), &[], &push))?;
-        Ok(Texels {
-            _inputs: [tiles, tris],
-            _positions: positions,
-            _indices: indices,
-            keys,
-            colours,
-            hits,
-            spare,
-            push,
-        })
+        Ok(t)
     }
 
     /// The voxel and colour of every texel that meets the surface, sorted by voxel.
@@ -298,11 +318,7 @@ impl TileTree {
         let t = self.texels(&self.map)?;
         let k = &self.kernels;
         let n = t.keys.len;
-        let gather = FillPush {
-            filled_in: t.hits.address(),
-            mode: 2,
-            ..t.push
-        };
+        let gather = t.push(2, &t.hits, &t.hits);
         let key_bits = 3 * self.plan.resolution.trailing_zeros() + 1;
         let mut sort = k.hash.sort.lock().unwrap();
         k.gpu.submit(|rec| {
@@ -310,6 +326,7 @@ impl TileTree {
             rec.dispatch(s, s.groups_for(n as u64), &[], &gather)?;
             sort.record_u64(rec, &t.keys.keys, Some(&t.colours), n, key_bits)
         })?;
+        drop(sort);
         Ok(Kept {
             keys: t.keys.keys,
             colours: t.colours,
@@ -369,23 +386,14 @@ impl TileTree {
                 .record(rec, k)
             })?;
         }
-        let rows = FillPush {
-            filled_in: t.hits.address(),
-            filled_out: t.spare.address(),
-            mode: 0,
-            ..t.push
-        };
-        let columns = FillPush {
-            filled_in: t.spare.address(),
-            filled_out: t.hits.address(),
-            mode: 1,
-            ..t.push
-        };
+        let rows = t.push(0, &t.hits, &t.spare);
+        let columns = t.push(1, &t.spare, &t.hits);
+        let scatter = t.push(0, &t.spare, &t.hits);
         let groups = k.tiletree_dilate.groups_for(n as u64);
         gpu.submit(|rec| {
             rec.dispatch(&k.tiletree_dilate, groups, &[], &rows)?;
             rec.dispatch(&k.tiletree_dilate, groups, &[], &columns)?;
-            rec.dispatch(&k.tiletree_scatter, groups, &[], &t.push)
+            rec.dispatch(&k.tiletree_scatter, groups, &[], &scatter)
         })?;
         Ok(())
     }
@@ -482,7 +490,7 @@ fn check_normals(points: &[Vec3], normals: &[Vec3]) -> Result<(), StoreError> {
 }
 
 impl SparseStore for TileTree {
-    type Params = TileTreeParams;
+    type Params<'a> = TileTreeParams<'a>;
 
     fn name(&self) -> &'static str {
         NAME
@@ -527,7 +535,7 @@ impl SparseStore for TileTree {
         self.bytes_by_part().iter().sum()
     }
 
-    fn params(&self) -> TileTreeParams {
+    fn params(&self) -> TileTreeParams<'_> {
         TileTreeParams {
             nodes: self.nodes.address(),
             leaves: self.leaves.address(),
@@ -557,19 +565,18 @@ impl SparseStore for TileTree {
     ) -> Result<TimedLookup<'_>, StoreError> {
         check_normals(points, normals)?;
         let k = &self.kernels;
-        Ok(prepare_lookup(
-            k,
-            &k.tiletree_lookup,
-            points,
-            normals,
-            |a| LookupPush {
+        let groups = k.tiletree_lookup.groups_for(points.len() as u64);
+        let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
+        Ok(prepare_lookup(k, points, normals, move |rec, a| {
+            let push = LookupPush {
                 store: self.params(),
                 points: a.points,
                 normals: a.normals,
                 results: a.results,
-                n: points.len() as u32,
-                mode: (filter == Filter::Trilinear) as u32,
-            },
-        )?)
+                n,
+                mode,
+            };
+            rec.dispatch(&k.tiletree_lookup, groups, &[], &push)
+        })?)
     }
 }
