@@ -68,10 +68,12 @@ pub enum SceneStore {
 impl SceneStore {
     /// The record of the store's current buffers, read with `filter`.
     pub fn record(&self, filter: StoreFilter) -> GpuStoreRecord<'_> {
-        let mut r = GpuStoreRecord::default();
-        r.filter = match filter {
-            StoreFilter::Nearest => STORE_FILTER_NEAREST,
-            StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
+        let mut r = GpuStoreRecord {
+            filter: match filter {
+                StoreFilter::Nearest => STORE_FILTER_NEAREST,
+                StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
+            },
+            ..Default::default()
         };
         match self {
             SceneStore::Hash(s) => (r.kind, r.hash) = (STORE_KIND_HASH, s.params()),

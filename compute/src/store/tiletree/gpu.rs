@@ -284,11 +284,7 @@ impl TileTree {
             .collect();
         let t = Texels {
             tiles: GpuBuffer::from_slice(gpu, "tiletree tiles", &plan.tile_records())?,
-            triangles: GpuBuffer::from_slice(
-                gpu,
-                "tiletree tile triangles",
-                &plan.tile_triangles,
-            )?,
+            triangles: GpuBuffer::from_slice(gpu, "tiletree tile triangles", &plan.tile_triangles)?,
             positions: GpuBuffer::from_slice(gpu, "tiletree positions", &flat)?,
             indices: GpuBuffer::from_slice(
                 gpu,
