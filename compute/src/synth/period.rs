@@ -98,12 +98,16 @@ mod tests {
         // Two pixels off by the tolerance still count; one pixel further does not.
         assert!(spans_period(pack(14, 24), &around, s, w, h, reach));
         assert!(!spans_period(pack(15, 20), &around, s, w, h, reach));
-        // Coherent with the right-hand column only: extent 1, half a period at spacing 32.
+        // Coherent with the right-hand neighbour only: extent 1 along x, half a period at
+        // spacing 32 (the whole right-hand column would also have extent 2, a period, along y).
         let mut right = [pack(40, 40); 9];
-        for n in [2, 5, 8] {
-            right[n] = around[n];
-        }
+        right[5] = around[5];
         assert!(!spans_period(centre, &right, s, w, h, reach));
+        let mut column = right;
+        for n in [2, 8] {
+            column[n] = around[n];
+        }
+        assert!(spans_period(centre, &column, s, w, h, reach));
         // At spacing 64 one coherent neighbour is a whole period.
         assert!(spans_period(
             centre,
