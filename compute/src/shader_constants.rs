@@ -161,3 +161,7 @@ pub const STORE_KIND_OCTREE: u32 = 1;
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).
 pub const STORE_FILTER_TRILINEAR: u32 = 1;
+
+/// Coordinate tolerance, in exemplar pixels, of the synthesizer's period penalty
+/// (`synth/period.rs`): the period repetition measure's tolerance.
+pub const SYNTH_PERIOD_TOLERANCE: u32 = 4;

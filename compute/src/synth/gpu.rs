@@ -6,6 +6,7 @@ use super::cpu::CLASSES;
 use super::error::SynthResult;
 use super::neighbourhood::pack_i8_words;
 use super::params::SynthParams;
+use super::period::period_reach;
 use super::plan::{plan_regions, Region};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
@@ -44,6 +45,8 @@ crate::push_block! {
         exemplar: [u32; 2],
         spacing: u32,
         k: u32,
+        reach: [u32; 2],
+        penalty: u32,
     }
 }
 
@@ -181,6 +184,7 @@ impl GpuSynthesizer {
         let mut parent: Option<(Region, GpuBuffer<u32>)> = None;
         for (l, &region) in regions.iter().enumerate() {
             let lv = &self.levels[l];
+            let reach = period_reach(lv.spacing, self.width, self.height);
             let coords = GpuBuffer::<u32>::new(
                 &self.gpu,
                 format!("synth coords level {l}"),
@@ -227,6 +231,12 @@ impl GpuSynthesizer {
                             exemplar,
                             spacing: lv.spacing,
                             k: self.k,
+                            reach,
+                            penalty: if reach == [0, 0] {
+                                0
+                            } else {
+                                params.period_penalty
+                            },
                         };
                         let k = &self.correct;
                         rec.dispatch(k, k.groups_for(cx as u64 * cy as u64), &[], &push)?;
