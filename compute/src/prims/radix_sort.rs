@@ -10,7 +10,7 @@ use super::push::{RadixCountPush, RadixScatterPush};
 use super::scan::Scan;
 use super::scratch::grown;
 use super::{check_aligned, check_len};
-use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
+use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{DEFAULT_WORKGROUP_SIZE, RADIX_BITS, RADIX_BUCKETS};
 use bytemuck::Pod;
@@ -35,11 +35,10 @@ pub fn sort_pairs_cpu<K: Copy + Into<u64>, V: Copy>(
     )
 }
 
-/// GPU radix sort; keeps its scratch between calls.
+/// GPU radix sort; keeps its scratch between calls. Its kernels come from the device's kernel
+/// cache when it records.
 pub struct RadixSort {
     gpu: Gpu,
-    count: Kernel,
-    scatter: Kernel,
     scan: Scan,
     hist: Option<GpuBuffer<u32>>,
     keys32: Option<GpuBuffer<u32>>,
@@ -58,12 +57,10 @@ struct Job {
 }
 
 impl RadixSort {
-    /// Builds the kernels.
+    /// A sort for `gpu`, without scratch yet.
     pub fn new(gpu: &Gpu) -> GpuResult<RadixSort> {
         Ok(RadixSort {
             gpu: gpu.clone(),
-            count: Kernel::new(gpu, &prims::RADIX_COUNT)?,
-            scatter: Kernel::new(gpu, &prims::RADIX_SCATTER)?,
             scan: Scan::new(gpu)?,
             hist: None,
             keys32: None,
@@ -200,7 +197,9 @@ impl RadixSort {
         let bits = RADIX_BITS;
         let hist_len = (RADIX_BUCKETS * threads) as usize;
         let hist = grown(&mut self.hist, &self.gpu, "radix sort histogram", hist_len)?;
-        let groups = self.count.groups_for(threads as u64);
+        let count = self.gpu.kernel(&prims::RADIX_COUNT)?;
+        let scatter = self.gpu.kernel(&prims::RADIX_SCATTER)?;
+        let groups = count.groups_for(threads as u64);
         for pass in 0..job.key_bits.div_ceil(bits) {
             let (src, dst) = if pass % 2 == 0 {
                 job.keys
@@ -217,7 +216,7 @@ impl RadixSort {
             // The last pass may have fewer bits left than a full digit.
             let digit_mask = (1u32 << (job.key_bits - shift).min(bits)) - 1;
             rec.dispatch(
-                &self.count,
+                &count,
                 groups,
                 &[],
                 &RadixCountPush {
@@ -245,7 +244,7 @@ impl RadixSort {
                 digit_mask,
                 key64,
             };
-            rec.dispatch(&self.scatter, groups, &[], &push)?;
+            rec.dispatch(&scatter, groups, &[], &push)?;
         }
         Ok(())
     }

@@ -13,6 +13,7 @@ use crate::hash::{
     fastmod_multiplier, morton_decode, HashError, KeyLayout, RobinHoodConfig, RobinHoodTable,
     Universe,
 };
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -82,16 +83,8 @@ impl HashStore {
         check_keys(NAME, &keys.read()?, resolution)?;
         let gpu = kernels.gpu.clone();
         let n = keys.len;
-        let buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
-        fill_colours(
-            &gpu,
-            &kernels.fill_marble,
-            keys,
-            colours,
-            resolution,
-            &buffer,
-            0,
-        )?;
+        let mut buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
+        fill_colours(&gpu, keys, colours, resolution, &mut buffer, 0)?;
         let indices: Vec<u32> = (0..n as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         let table =
@@ -164,16 +157,11 @@ impl SparseStore for HashStore {
             ));
             grown = Some(bigger);
         }
-        let target = grown.as_ref().unwrap_or(&self.colours);
-        fill_colours(
-            &gpu,
-            &self.kernels.fill_marble,
-            keys,
-            colours,
-            self.resolution,
-            target,
-            old,
-        )?;
+        let target = match grown.as_mut() {
+            Some(bigger) => bigger,
+            None => &mut self.colours,
+        };
+        fill_colours(&gpu, keys, colours, self.resolution, target, old)?;
         let indices: Vec<u32> = (old as u32..(old + n) as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         match self.table.insert(&keys.keys, &payloads, n) {
@@ -221,7 +209,7 @@ impl SparseStore for HashStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        Ok(prepare_lookup(k, &k.hash_lookup, points, &[], |a| {
+        Ok(prepare_lookup(k, &store::HASH_LOOKUP, points, &[], |a| {
             LookupPush {
                 store: self.params(),
                 points: a.points,

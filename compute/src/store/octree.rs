@@ -12,7 +12,8 @@ use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::{GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
-use crate::prims::Scan;
+use crate::kernels::store;
+use crate::prims::{RadixSort, Scan};
 use crate::voxel::{VoxelGrid, VoxelKeys};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
@@ -194,7 +195,10 @@ pub struct OctreeStore {
     levels: Vec<Level>,
     len: u64,
     resolution: u32,
+    /// Scratch of the new-node scan and of the level sort, kept between levels and inserts.
     scan: Scan,
+    /// Boxed: its scratch buffers would make every store value large.
+    sort: Box<RadixSort>,
 }
 
 impl OctreeStore {
@@ -237,6 +241,7 @@ impl OctreeStore {
             len: 0,
             resolution,
             scan: Scan::new(&gpu)?,
+            sort: Box::new(RadixSort::new(&gpu)?),
         };
         let report = store.insert(keys, colours)?;
         Ok((store, report))
@@ -277,16 +282,8 @@ impl OctreeStore {
         source: &ColourSource<'_>,
     ) -> Result<GpuBuffer<u32>, StoreError> {
         let gpu = &self.kernels.gpu;
-        let buffer = GpuBuffer::<u32>::new(gpu, "octree new colours", keys.len)?;
-        fill_colours(
-            gpu,
-            &self.kernels.fill_marble,
-            keys,
-            source,
-            self.resolution,
-            &buffer,
-            0,
-        )?;
+        let mut buffer = GpuBuffer::<u32>::new(gpu, "octree new colours", keys.len)?;
+        fill_colours(gpu, keys, source, self.resolution, &mut buffer, 0)?;
         if let ColourSource::Fn(_) = source {
             let colours = buffer.read_range(0, keys.len)?;
             if let Some(i) = colours.iter().position(|c| c >> 24 < 2) {
@@ -333,8 +330,8 @@ impl OctreeStore {
             mode,
             ..self.parent_push(last)
         };
-        let k = &self.kernels.octree_link;
-        gpu.submit(|rec| rec.dispatch(k, k.groups_for(keys.len as u64), &[], &push))?;
+        let k = gpu.kernel(&store::OCTREE_LINK)?;
+        gpu.submit(|rec| rec.dispatch(&k, k.groups_for(keys.len as u64), &[], &push))?;
         let c = counter.read()?;
         Ok([c[0], c[1]])
     }
@@ -344,7 +341,7 @@ impl OctreeStore {
     fn add_level(&mut self, l: usize, keys: &VoxelKeys) -> Result<Option<String>, StoreError> {
         let gpu = self.kernels.gpu.clone();
         let n = keys.len;
-        let nodes_k = &self.kernels.octree_nodes;
+        let nodes_k = gpu.kernel(&store::OCTREE_NODES)?;
         // Candidate node keys: the nodes containing the voxels, sorted and unique.
         let tmp = GpuBuffer::<u64>::new(&gpu, "octree candidate nodes", n)?;
         let push = BuildPush {
@@ -355,7 +352,7 @@ impl OctreeStore {
             mode: 0,
             ..Default::default()
         };
-        gpu.submit(|rec| rec.dispatch(nodes_k, nodes_k.groups_for(n as u64), &[], &push))?;
+        gpu.submit(|rec| rec.dispatch(&nodes_k, nodes_k.groups_for(n as u64), &[], &push))?;
         let key_bits = self.key_bits();
         let cand =
             self.kernels
@@ -379,7 +376,7 @@ impl OctreeStore {
             ..Default::default()
         };
         gpu.submit(|rec| {
-            rec.dispatch(nodes_k, nodes_k.groups_for(m as u64), &[], &search)?;
+            rec.dispatch(&nodes_k, nodes_k.groups_for(m as u64), &[], &search)?;
             self.scan.record(rec, &flags, &flags, m, Some(&total))
         })?;
         let added = total.read()?[0] as usize;
@@ -429,13 +426,13 @@ impl OctreeStore {
             mode: 0,
             ..self.parent_push(l - 1)
         };
-        let link_k = &self.kernels.octree_link;
-        let mut sort = crate::prims::RadixSort::new(&gpu)?;
+        let link_k = gpu.kernel(&store::OCTREE_LINK)?;
+        let sort = &mut self.sort;
         gpu.submit(|rec: &mut Recorder<'_>| {
-            rec.dispatch(nodes_k, nodes_k.groups_for(m as u64), &[], &scatter)?;
+            rec.dispatch(&nodes_k, nodes_k.groups_for(m as u64), &[], &scatter)?;
             rec.copy(&level.keys, 0, &keys_out, 0, old)?;
             rec.copy(&level.addrs, 0, &addrs_out, 0, old)?;
-            rec.dispatch(link_k, link_k.groups_for(added as u64), &[], &link)?;
+            rec.dispatch(&link_k, link_k.groups_for(added as u64), &[], &link)?;
             sort.record_u64(rec, &keys_out, Some(&addrs_out), count, key_bits)
         })?;
         self.levels[l - 1] = Level {
@@ -449,7 +446,7 @@ impl OctreeStore {
 
     /// Recomputes every node's average colour, deepest level first.
     fn average(&self) -> GpuResult<()> {
-        let k = &self.kernels.octree_average;
+        let k = self.kernels.gpu.kernel(&store::OCTREE_AVERAGE)?;
         self.kernels.gpu.submit(|rec| {
             for l in (0..self.config.levels.len()).rev() {
                 let (addrs, n) = if l == 0 {
@@ -465,7 +462,7 @@ impl OctreeStore {
                     cells_per_axis: self.config.levels[l],
                     root: (l == 0) as u32,
                 };
-                rec.dispatch(k, k.groups_for(n as u64), &[], &push)?;
+                rec.dispatch(&k, k.groups_for(n as u64), &[], &push)?;
             }
             Ok(())
         })
@@ -589,7 +586,7 @@ impl OctreeStore {
     /// The lookup kernel in `mode` (0 nearest, 1 trilinear, 2 + depth MIP) at `points`.
     fn prepare(&self, points: &[Vec3], mode: u32) -> GpuResult<TimedLookup<'_>> {
         let k = &self.kernels;
-        prepare_lookup(k, &k.octree_lookup, points, &[], |a| LookupPush {
+        prepare_lookup(k, &store::OCTREE_LOOKUP, points, &[], |a| LookupPush {
             store: self.params(),
             points: a.points,
             results: a.results,

@@ -20,6 +20,7 @@ use crate::hash::perfect::{
     BlockedPerfectHash, PerfectAccess, PerfectBuilder, PerfectConfig, PerfectHashGpu, PerfectParams,
 };
 use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -110,16 +111,8 @@ impl PerfectStore {
         let host_keys = keys.read()?;
         check_keys(NAME, &host_keys, resolution)?;
         let gpu = kernels.gpu.clone();
-        let buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(
-            &gpu,
-            &kernels.fill_marble,
-            keys,
-            colours,
-            resolution,
-            &buffer,
-            0,
-        )?;
+        let mut buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        fill_colours(&gpu, keys, colours, resolution, &mut buffer, 0)?;
         let host_colours = buffer.read_range(0, keys.len)?;
         let mut store = PerfectStore {
             kernels: kernels.clone(),
@@ -232,16 +225,8 @@ impl SparseStore for PerfectStore {
         let new_keys = keys.read()?;
         check_keys(NAME, &new_keys, self.resolution)?;
         let gpu = self.kernels.gpu.clone();
-        let fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(
-            &gpu,
-            &self.kernels.fill_marble,
-            keys,
-            colours,
-            self.resolution,
-            &fresh,
-            0,
-        )?;
+        let mut fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        fill_colours(&gpu, keys, colours, self.resolution, &mut fresh, 0)?;
         let new_colours = fresh.read_range(0, keys.len)?;
         // Merge by key so the union stays sorted, as the voxelizer's sets are.
         let mut pairs: Vec<(u64, u32)> = self
@@ -313,14 +298,18 @@ impl SparseStore for PerfectStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        Ok(prepare_lookup(k, &k.perfect_lookup, points, &[], |a| {
-            LookupPush {
+        Ok(prepare_lookup(
+            k,
+            &store::PERFECT_LOOKUP,
+            points,
+            &[],
+            |a| LookupPush {
                 store: self.params(),
                 points: a.points,
                 results: a.results,
                 n: points.len() as u32,
                 mode: (filter == Filter::Trilinear) as u32,
-            }
-        })?)
+            },
+        )?)
     }
 }

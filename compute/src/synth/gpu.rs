@@ -11,6 +11,7 @@ use super::synthesis::{check_window, LevelCoords, Synthesis};
 use crate::gpu::{Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth;
 use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
 
 #[derive(Clone, Copy, Pod, Zeroable)]
 #[repr(C, packed(4))]
@@ -71,8 +72,8 @@ struct GpuLevel {
 /// An exemplar analysis on the GPU, ready to synthesize any number of windows.
 pub struct GpuSynthesizer {
     gpu: Gpu,
-    upsample: Kernel,
-    correct: Kernel,
+    upsample: Arc<Kernel>,
+    correct: Arc<Kernel>,
     levels: Vec<GpuLevel>,
     width: u32,
     height: u32,
@@ -125,8 +126,8 @@ impl GpuSynthesizer {
             .collect::<SynthResult<Vec<_>>>()?;
         Ok(GpuSynthesizer {
             gpu: gpu.clone(),
-            upsample: Kernel::new(gpu, &synth::UPSAMPLE_JITTER)?,
-            correct: Kernel::new(gpu, &synth::CORRECT)?,
+            upsample: gpu.kernel(&synth::UPSAMPLE_JITTER)?,
+            correct: gpu.kernel(&synth::CORRECT)?,
             levels,
             width: analysis.width,
             height: analysis.height,

@@ -14,6 +14,7 @@ use crate::kernels::voxel;
 use crate::prims::{Scan, MAX_ELEMENTS};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use std::sync::Arc;
 
 #[derive(Clone, Copy, Pod, Zeroable)]
 #[repr(C, packed(4))]
@@ -59,9 +60,9 @@ struct DilatePush {
 /// The GPU voxelizer; keeps its kernels and scratch between meshes.
 pub struct Voxelizer {
     gpu: Gpu,
-    columns: Kernel,
-    hits: Kernel,
-    dilate: Kernel,
+    columns: Arc<Kernel>,
+    hits: Arc<Kernel>,
+    dilate: Arc<Kernel>,
     scan: Scan,
     unique: SortUnique,
 }
@@ -71,9 +72,9 @@ impl Voxelizer {
     pub fn new(gpu: &Gpu) -> Result<Voxelizer, VoxelError> {
         Ok(Voxelizer {
             gpu: gpu.clone(),
-            columns: Kernel::new(gpu, &voxel::COLUMNS)?,
-            hits: Kernel::new(gpu, &voxel::HITS)?,
-            dilate: Kernel::new(gpu, &voxel::DILATE)?,
+            columns: gpu.kernel(&voxel::COLUMNS)?,
+            hits: gpu.kernel(&voxel::HITS)?,
+            dilate: gpu.kernel(&voxel::DILATE)?,
             scan: Scan::new(gpu)?,
             unique: SortUnique::new(gpu)?,
         })

@@ -4,6 +4,7 @@
 use super::plan::Plan;
 use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
 use crate::gpu::{GpuBuffer, GpuResult};
+use crate::kernels::store;
 use crate::store::colours::fill_colours;
 use crate::store::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use crate::store::{ColourSource, Filter, SparseStore, StoreError, StoreReport};
@@ -144,7 +145,7 @@ impl TileTree {
             keys: GpuBuffer::new(gpu, "tiletree texel voxels", n)?,
             len: n,
         };
-        let texel_colours = GpuBuffer::<u32>::new(gpu, "tiletree texel colours", n)?;
+        let mut texel_colours = GpuBuffer::<u32>::new(gpu, "tiletree texel colours", n)?;
         let filled_a = GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?;
         let filled_b = GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?;
         let push = FillPush {
@@ -163,20 +164,14 @@ impl TileTree {
             map_width: plan.stats.map_width,
             mode: 0,
         };
-        let k = &self.kernels;
-        let groups = k.tiletree_texels.groups_for(n as u64);
-        gpu.submit(|rec| rec.dispatch(&k.tiletree_texels, groups, &[], &push))?;
+        let texels = gpu.kernel(&store::TILETREE_TEXELS)?;
+        let dilate = gpu.kernel(&store::TILETREE_DILATE)?;
+        let scatter = gpu.kernel(&store::TILETREE_SCATTER)?;
+        let groups = texels.groups_for(n as u64);
+        gpu.submit(|rec| rec.dispatch(&texels, groups, &[], &push))?;
         // The colour source sees the texel voxels like any store's keys (not sorted: it maps
         // each key to its colour independently).
-        fill_colours(
-            gpu,
-            &k.fill_marble,
-            &keys,
-            colours,
-            plan.resolution,
-            &texel_colours,
-            0,
-        )?;
+        fill_colours(gpu, &keys, colours, plan.resolution, &mut texel_colours, 0)?;
         let rows = FillPush {
             filled_in: filled_a.address(),
             filled_out: filled_b.address(),
@@ -190,9 +185,9 @@ impl TileTree {
             ..push
         };
         gpu.submit(|rec| {
-            rec.dispatch(&k.tiletree_dilate, groups, &[], &rows)?;
-            rec.dispatch(&k.tiletree_dilate, groups, &[], &columns)?;
-            rec.dispatch(&k.tiletree_scatter, groups, &[], &push)
+            rec.dispatch(&dilate, groups, &[], &rows)?;
+            rec.dispatch(&dilate, groups, &[], &columns)?;
+            rec.dispatch(&scatter, groups, &[], &push)
         })?;
         Ok(())
     }
@@ -353,7 +348,7 @@ impl SparseStore for TileTree {
         let k = &self.kernels;
         Ok(prepare_lookup(
             k,
-            &k.tiletree_lookup,
+            &store::TILETREE_LOOKUP,
             points,
             normals,
             |a| LookupPush {
