@@ -14,6 +14,7 @@ pub mod accel;
 pub mod diff;
 pub mod mesh;
 pub mod output;
+mod push_registry;
 pub mod render;
 pub mod scene;
 pub mod shader_constants;
@@ -23,3 +24,5 @@ pub mod shading;
 pub mod kernels {
     include!(concat!(env!("OUT_DIR"), "/kernels.rs"));
 }
+
+pub use push_registry::push_registry;

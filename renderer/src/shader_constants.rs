@@ -20,6 +20,11 @@ pub const MATERIAL_DIELECTRIC: u32 = 3;
 /// See [`MATERIAL_LAMBERTIAN`].
 pub const MATERIAL_EMISSIVE: u32 = 4;
 
+/// Knots of a plastic coat's directional-albedo table in the GPU material: knot i holds the
+/// coat's reflectance at cos θ = (i / (knots − 1))², denser towards grazing where it changes
+/// fastest.
+pub const PLASTIC_COAT_KNOTS: u32 = 16;
+
 /// Solid texture kinds of a GPU material: none means the albedo is the material's colour.
 pub const TEXTURE_NONE: u32 = 0;
 /// See [`TEXTURE_NONE`].

@@ -5,16 +5,17 @@ use super::device::DeviceBvh;
 use super::gpu_types::{GpuRay, GpuRayHit};
 use crate::kernels::render::TRACE_RAYS;
 use crate::shader_constants::CWBVH_WORKGROUP_SIZE;
-use bytemuck::{Pod, Zeroable};
 use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use std::sync::Arc;
 
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct Push {
-    first: u32,
-    n: u32,
-    any_hit: u32,
+lazysolid_compute::push_block! {
+    /// Push block of `trace_rays.comp`.
+    #[derive(Clone, Copy)]
+    pub(crate) struct TraceRaysPush {
+        first: u32,
+        n: u32,
+        any_hit: u32,
+    }
 }
 
 /// Whether a query wants the closest hit or any hit (shadow rays).
@@ -69,7 +70,7 @@ impl RayQueries {
             ("Rays", rays.arg()),
             ("Hits", hits.arg()),
         ];
-        let push = Push {
+        let push = TraceRaysPush {
             first: 0,
             n,
             any_hit: (kind == QueryKind::Any) as u32,

@@ -7,20 +7,22 @@ use super::stores::{BakedStoreInfo, SceneStores};
 use crate::accel::{DeviceBvh, SceneBvh};
 use crate::kernels::render::PATH_TRACE;
 use crate::output::Film;
-use crate::scene::{Environment, RenderSettings, Scene};
+use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
 use crate::shader_constants::CWBVH_WORKGROUP_SIZE;
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
-use bytemuck::{Pod, Zeroable};
-use lazysolid_compute::gpu::{Gpu, GpuBuffer, Kernel};
+use bytemuck::Zeroable;
+use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct Push {
-    sample_index: u32,
-    first_pixel: u32,
-    pixel_count: u32,
+lazysolid_compute::push_block! {
+    /// Push block of `path_trace.comp`.
+    #[derive(Clone, Copy)]
+    pub(crate) struct PathTracePush {
+        sample_index: u32,
+        first_pixel: u32,
+        pixel_count: u32,
+    }
 }
 
 /// What one pass did.
@@ -56,9 +58,8 @@ pub struct PathTracer {
     frame_buf: GpuBuffer<GpuFrame>,
     materials: GpuBuffer<GpuMaterial>,
     lights: GpuBuffer<GpuLight>,
-    // Owns the buffers that the device addresses in `environment_params` point into.
-    _environment: GpuEnvironment,
-    environment_params: GpuBuffer<u8>,
+    /// The `Environment` record; it holds the environment's tables.
+    environment: DeviceRecords,
     stores: SceneStores,
     film: GpuBuffer<[f32; 4]>,
     aovs: GpuBuffer<[f32; 4]>,
@@ -107,12 +108,7 @@ impl PathTracer {
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
             materials: GpuBuffer::from_slice(gpu, "render materials", &materials)?,
             lights: GpuBuffer::from_slice(gpu, "render lights", &light_records)?,
-            environment_params: GpuBuffer::from_slice(
-                gpu,
-                "render environment",
-                bytemuck::bytes_of(&environment.params()),
-            )?,
-            _environment: environment,
+            environment: DeviceRecords::new(gpu, "render environment", &[environment.params()])?,
             film: GpuBuffer::zeroed(gpu, "render film", pixels)?,
             aovs: GpuBuffer::zeroed(gpu, "render aovs", 2 * pixels)?,
             ray_count: GpuBuffer::zeroed(gpu, "render ray count", 1)?,
@@ -139,7 +135,7 @@ impl PathTracer {
         let tiles =
             self.settings.width.div_ceil(8) as u64 * self.settings.height.div_ceil(8) as u64;
         let invocations = tiles * 64;
-        let push = Push {
+        let push = PathTracePush {
             sample_index: self.samples,
             first_pixel: 0,
             pixel_count: invocations as u32,
@@ -158,7 +154,7 @@ impl PathTracer {
             ("FrameBlock", self.frame_buf.arg()),
             ("Materials", self.materials.arg()),
             ("Lights", self.lights.arg()),
-            ("EnvironmentBlock", self.environment_params.arg()),
+            ("EnvironmentBlock", self.environment.arg()),
             ("Film", self.film.arg()),
             ("Aovs", self.aovs.arg()),
             ("RayCount", self.ray_count.arg()),
@@ -252,10 +248,16 @@ fn check_scene(scene: &Scene) -> Result<(), RenderError> {
     let file = scene.source.display();
     let bad = |problem: String| Err(RenderError::Settings(format!("{file}: {problem}")));
     let s = &scene.render;
-    if s.width == 0 || s.height == 0 || s.spp == 0 || s.max_depth == 0 {
+    if s.width == 0 || s.height == 0 || s.spp == 0 {
         return bad(format!(
-            "render settings {}x{}, {} spp, depth {} (each must be at least 1)",
-            s.width, s.height, s.spp, s.max_depth
+            "render settings {}x{}, {} spp (each must be at least 1)",
+            s.width, s.height, s.spp
+        ));
+    }
+    if s.max_depth > MAX_DEPTH {
+        return bad(format!(
+            "render max_depth {} is more than {MAX_DEPTH}",
+            s.max_depth
         ));
     }
     if s.width as u64 * s.height as u64 > 1 << 26 {
