@@ -108,8 +108,8 @@ fn device_lists_limits_and_marks_the_chosen_device() {
         "maxStorageBufferRange",
         "device heap",
         "subgroup size",
-        "64-bit buffer atomics",
-        "timestamps",
+        "shaderBufferInt64Atomics",
+        "timestamp queries on a compute queue",
         "<- used by lazysolid",
     ] {
         assert!(out.contains(needle), "missing {needle:?} in:\n{out}");

@@ -11,6 +11,7 @@ use super::plan::{plan_regions, Region};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth;
+use std::sync::Arc;
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -75,8 +76,8 @@ struct GpuLevel {
 /// An exemplar analysis on the GPU, ready to synthesize any number of windows.
 pub struct GpuSynthesizer {
     gpu: Gpu,
-    upsample: Kernel,
-    correct: Kernel,
+    upsample: Arc<Kernel>,
+    correct: Arc<Kernel>,
     levels: Vec<GpuLevel>,
     width: u32,
     height: u32,
@@ -129,8 +130,8 @@ impl GpuSynthesizer {
             .collect::<SynthResult<Vec<_>>>()?;
         Ok(GpuSynthesizer {
             gpu: gpu.clone(),
-            upsample: Kernel::new(gpu, &synth::UPSAMPLE_JITTER)?,
-            correct: Kernel::new(gpu, &synth::CORRECT)?,
+            upsample: gpu.kernel(&synth::UPSAMPLE_JITTER)?,
+            correct: gpu.kernel(&synth::CORRECT)?,
             levels,
             width: analysis.width,
             height: analysis.height,
