@@ -11,9 +11,9 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
-use lazysolid_compute::kernels::render::SHADING_TEST;
-use lazysolid_compute::shader_constants::*;
+use lazysolid_renderer::kernels::render::SHADING_TEST;
 use lazysolid_renderer::scene::{Environment, Light};
+use lazysolid_renderer::shader_constants::*;
 use lazysolid_renderer::shading::reference as cpu;
 use lazysolid_renderer::shading::{EnvironmentMap, GpuEnvironment, GpuLight, GpuMaterial};
 use lazysolid_tests::{rng, with_gpu, ShadingTestPush};
@@ -215,7 +215,7 @@ fn bsdfs_match_the_reference() {
         }
     }
     let out = with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &SHADING_TEST).unwrap();
+        let kernel = gpu.kernel(&SHADING_TEST).unwrap();
         run(gpu, &kernel, SHADING_TEST_BSDF, &cases, None)
     });
     for (ci, &(kind, roughness)) in CONFIGS.iter().enumerate() {
@@ -308,7 +308,7 @@ fn solid_textures_and_random_numbers_match_the_reference() {
         })
         .collect();
     let (tex_out, rng_out) = with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &SHADING_TEST).unwrap();
+        let kernel = gpu.kernel(&SHADING_TEST).unwrap();
         (
             run(gpu, &kernel, SHADING_TEST_TEXTURE, &textures, None),
             run(gpu, &kernel, SHADING_TEST_RNG, &rng_cases, None),
@@ -404,7 +404,7 @@ fn lights_match_the_reference() {
         }
     }
     let out = with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &SHADING_TEST).unwrap();
+        let kernel = gpu.kernel(&SHADING_TEST).unwrap();
         run(gpu, &kernel, SHADING_TEST_LIGHT, &cases, None)
     });
     let mut edges = 0;
@@ -492,7 +492,7 @@ fn environments_match_the_reference() {
         })
         .collect();
     let outs: Vec<Vec<Results>> = with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &SHADING_TEST).unwrap();
+        let kernel = gpu.kernel(&SHADING_TEST).unwrap();
         maps.iter()
             .map(|map| {
                 let env = GpuEnvironment::new(gpu, map).unwrap();

@@ -108,8 +108,8 @@ fn device_lists_limits_and_marks_the_chosen_device() {
         "maxStorageBufferRange",
         "device heap",
         "subgroup size",
-        "64-bit buffer atomics",
-        "timestamps",
+        "shaderBufferInt64Atomics",
+        "timestamp queries on a compute queue",
         "<- used by lazysolid",
     ] {
         assert!(out.contains(needle), "missing {needle:?} in:\n{out}");
@@ -545,24 +545,45 @@ fn synth_writes_texture_and_coordinate_map_with_metrics() {
         exemplar.display()
     );
     let dir = tempfile::tempdir().unwrap();
+    let cache = tempfile::tempdir().unwrap();
     let out = dir.path().join("terra.png");
     // The exemplar by its asset name, from a folder outside the repository.
-    let (ok, stdout, err) = run(lazysolid()
-        .current_dir(dir.path())
-        .arg("synth")
-        .arg("terra")
-        .args(["--res", "48x32", "--offset", "-70,5", "--seed", "4"])
-        .args(["--energy-samples", "64", "-o", "terra.png"])
-        .env("LAZYSOLID_VALIDATION", "1"));
-    assert!(ok, "{err}");
-    assert!(stdout.contains("terra.pat"), "{stdout}");
+    let synth = |extra: &[&str]| {
+        let (ok, stdout, err) = run(lazysolid()
+            .current_dir(dir.path())
+            .arg("synth")
+            .arg("terra")
+            .args(["--res", "48x32", "--offset", "-70,5", "--seed", "4"])
+            .args(["--energy-samples", "64"])
+            .args(extra)
+            .args(["-o", "terra.png"])
+            .env("LAZYSOLID_CACHE_DIR", cache.path())
+            .env("LAZYSOLID_VALIDATION", "1"));
+        assert!(ok, "{err}");
+        assert!(stdout.contains("terra.pat"), "{stdout}");
+        (stdout, std::fs::read(&out).unwrap())
+    };
+    // The first run analyses the exemplar and caches the analysis, the second reads it, and
+    // both write the same image; --no-cache neither reads nor writes the cache.
+    let (stdout, first) = synth(&[]);
     for needle in [
+        "cache miss",
         "synthesis (GPU)",
         "neighbourhood energy",
         "colour histogram distance",
     ] {
         assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
     }
+    let cached: Vec<_> = std::fs::read_dir(cache.path().join("synth-analysis"))
+        .unwrap()
+        .collect();
+    assert_eq!(cached.len(), 1);
+    let (stdout, second) = synth(&[]);
+    assert!(stdout.contains("cache hit"), "{stdout}");
+    assert_eq!(first, second);
+    let (stdout, third) = synth(&["--no-cache"]);
+    assert!(stdout.contains("cache off"), "{stdout}");
+    assert_eq!(first, third);
     let image = image::open(&out).unwrap();
     assert_eq!((image.width(), image.height()), (48, 32));
     let coords = image::open(dir.path().join("terra.coords.png")).unwrap();
@@ -584,6 +605,16 @@ fn synth_names_a_bad_exemplar_and_writes_nothing() {
         "{err}"
     );
     assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.exists());
+    // An empty cache folder variable is refused by name, before any work.
+    let terra = repo("assets/exemplars/terra.pat");
+    let (ok, _, err) = run(lazysolid()
+        .arg("synth")
+        .arg(&terra)
+        .arg("-o")
+        .arg(&out)
+        .env("LAZYSOLID_CACHE_DIR", ""));
+    assert!(!ok && err.contains("LAZYSOLID_CACHE_DIR"), "{err}");
     assert!(!out.exists());
 }
 
@@ -608,7 +639,8 @@ fn bench_synth_writes_its_tables_files_and_images() {
             "leather 64x64 analysis",
             "leather 64x64 -> 64x64",
             "lazysolid gpu passes (timestamps)",
-            "lazysolid end-to-end (wall)",
+            "lazysolid end-to-end cold (wall)",
+            "lazysolid end-to-end warm (wall)",
             "texture-synthesis 0.8.2 (2 threads)",
             "energy lazysolid",
             "mean of 2 seed(s)",
@@ -616,8 +648,8 @@ fn bench_synth_writes_its_tables_files_and_images() {
             "target leather 64x64 -> 64x64: >= 20x faster",
         ],
     );
-    // The analysis row and four rows of the one case.
-    assert_eq!(bench.csv().1.len(), 1 + 4);
+    // The analysis row and five rows of the one case.
+    assert_eq!(bench.csv().1.len(), 1 + 5);
     let json = bench.json();
     let derived = &json["derived"];
     for key in [

@@ -4,7 +4,8 @@
 use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
-use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Recorder};
+use crate::kernels::hash;
 
 /// What the check found: the largest key and the duplicates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,7 +70,7 @@ crate::push_block! {
 pub(crate) struct CheckCounters(GpuBuffer<u64>);
 
 impl CheckCounters {
-    pub(crate) fn new(gpu: &crate::gpu::Gpu) -> GpuResult<CheckCounters> {
+    pub(crate) fn new(gpu: &Gpu) -> GpuResult<CheckCounters> {
         Ok(CheckCounters(GpuBuffer::from_slice(
             gpu,
             "key check counters",
@@ -82,7 +83,7 @@ impl CheckCounters {
     pub(crate) fn record(
         &self,
         rec: &mut Recorder<'_>,
-        kernels: &HashKernels,
+        gpu: &Gpu,
         sorted: &GpuBuffer<u64>,
         n: usize,
         key_count: u64,
@@ -95,8 +96,8 @@ impl CheckCounters {
             n: n as u32,
             resolution,
         };
-        let k = &kernels.check_keys;
-        rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+        let k = gpu.kernel(&hash::CHECK_KEYS)?;
+        rec.dispatch(&k, k.groups_for(n as u64), &[], &push)
     }
 
     /// [duplicates, smallest duplicate, outside, largest outside, smallest outside].
@@ -128,7 +129,7 @@ pub(crate) fn validate_keys_gpu(
     gpu.submit(|rec| {
         rec.copy(keys, 0, &copy, 0, n)?;
         sort.record_u64(rec, &copy, None, n, universe.key_bits())?;
-        counters.record(rec, kernels, &copy, n, universe.key_count(), 0)
+        counters.record(rec, gpu, &copy, n, universe.key_count(), 0)
     })?;
     drop(sort);
     let [duplicates, first, outside, max_outside, _] = counters.read()?;

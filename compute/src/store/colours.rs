@@ -3,9 +3,9 @@
 //! (lazy synthesis), which stay there.
 
 use super::error::StoreError;
-use super::kernels::StoreKernels;
-use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -153,7 +153,7 @@ fn address<T: bytemuck::Pod>(buffer: Option<&GpuBuffer<T>>) -> DeviceAddress<'_>
 }
 
 impl ByKey<'_> {
-    pub(crate) fn record(&self, rec: &mut Recorder<'_>, kernels: &StoreKernels) -> GpuResult<()> {
+    pub(crate) fn record(&self, rec: &mut Recorder<'_>, gpu: &Gpu) -> GpuResult<()> {
         if self.n == 0 {
             return Ok(());
         }
@@ -169,14 +169,14 @@ impl ByKey<'_> {
             n_keys: self.table.len as u32,
             zero_missing: self.zero_missing as u32,
         };
-        let k = &kernels.colours_by_key;
-        rec.dispatch(k, k.groups_for(self.n as u64), &[], &push)
+        let k = gpu.kernel(&store::COLOURS_BY_KEY)?;
+        rec.dispatch(&k, k.groups_for(self.n as u64), &[], &push)
     }
 }
 
 /// Counters of required queries that a [`ByKey`] lookup did not find.
-pub(crate) fn missing_counters(kernels: &StoreKernels) -> GpuResult<GpuBuffer<u64>> {
-    GpuBuffer::from_slice(&kernels.gpu, "missing colour counters", &[0, u64::MAX])
+pub(crate) fn missing_counters(gpu: &Gpu) -> GpuResult<GpuBuffer<u64>> {
+    GpuBuffer::from_slice(gpu, "missing colour counters", &[0, u64::MAX])
 }
 
 /// [`StoreError::MissingColour`] when `counters` counted a missing voxel.
@@ -219,18 +219,17 @@ pub fn colours_by_key_cpu(
 /// Writes the colours of `keys` into `dst[offset..offset + keys.len]`. With `required`, a
 /// buffer source only needs (and only writes) the keys whose flag is set; the others get 0.
 pub(crate) fn fill_colours(
-    kernels: &StoreKernels,
+    gpu: &Gpu,
     store: &'static str,
     keys: &VoxelKeys,
     source: &ColourSource<'_>,
     resolution: u32,
-    (dst, offset): (&GpuBuffer<u32>, usize),
+    (dst, offset): (&mut GpuBuffer<u32>, usize),
     required: Option<&GpuBuffer<u32>>,
 ) -> Result<(), StoreError> {
-    let gpu = &kernels.gpu;
     match *source {
         ColourSource::Marble { seed } => {
-            let fill = &kernels.fill_marble;
+            let fill = gpu.kernel(&store::FILL_MARBLE)?;
             gpu.submit(|rec| {
                 let push = FillPush {
                     keys: keys.keys.address(),
@@ -239,7 +238,7 @@ pub(crate) fn fill_colours(
                     resolution,
                     seed,
                 };
-                rec.dispatch(fill, fill.groups_for(keys.len as u64), &[], &push)
+                rec.dispatch(&fill, fill.groups_for(keys.len as u64), &[], &push)
             })?;
         }
         ColourSource::Fn(f) => {
@@ -263,6 +262,7 @@ pub(crate) fn fill_colours(
                 return Ok(());
             }
             // The lookup writes from dst's start: go through a scratch buffer at an offset.
+            let dst: &GpuBuffer<u32> = dst;
             let scratch;
             let target = if offset == 0 {
                 dst
@@ -270,7 +270,7 @@ pub(crate) fn fill_colours(
                 scratch = GpuBuffer::<u32>::new(gpu, "store colours by key", keys.len)?;
                 &scratch
             };
-            let counters = missing_counters(kernels)?;
+            let counters = missing_counters(gpu)?;
             gpu.submit(|rec| {
                 ByKey {
                     queries: &keys.keys,
@@ -286,7 +286,7 @@ pub(crate) fn fill_colours(
                     counters: Some(&counters),
                     zero_missing: true,
                 }
-                .record(rec, kernels)?;
+                .record(rec, gpu)?;
                 if offset != 0 {
                     rec.copy(target, 0, dst, offset, keys.len)?;
                 }

@@ -14,6 +14,7 @@ use crate::hash::{
     fastmod_multiplier, morton_decode, HashError, KeyLayout, RobinHoodConfig, RobinHoodTable,
     Universe,
 };
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use glam::Vec3;
 use std::sync::Arc;
@@ -84,8 +85,16 @@ impl HashStore {
         check_keys(kernels, NAME, keys, resolution)?;
         let gpu = kernels.gpu.clone();
         let n = keys.len;
-        let buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
-        fill_colours(kernels, NAME, keys, colours, resolution, (&buffer, 0), None)?;
+        let mut buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
+        fill_colours(
+            &gpu,
+            NAME,
+            keys,
+            colours,
+            resolution,
+            (&mut buffer, 0),
+            None,
+        )?;
         let indices: Vec<u32> = (0..n as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         let table =
@@ -162,9 +171,12 @@ impl SparseStore for HashStore {
             ));
             grown = Some(bigger);
         }
-        let target = grown.as_ref().unwrap_or(&self.colours);
+        let target = match grown.as_mut() {
+            Some(bigger) => bigger,
+            None => &mut self.colours,
+        };
         fill_colours(
-            &self.kernels,
+            &gpu,
             NAME,
             keys,
             colours,
@@ -219,7 +231,8 @@ impl SparseStore for HashStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        let groups = k.hash_lookup.groups_for(points.len() as u64);
+        let kernel = k.gpu.kernel(&store::HASH_LOOKUP)?;
+        let groups = kernel.groups_for(points.len() as u64);
         let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
         Ok(prepare_lookup(k, points, &[], move |rec, a| {
             let push = LookupPush {
@@ -229,7 +242,7 @@ impl SparseStore for HashStore {
                 n,
                 mode,
             };
-            rec.dispatch(&k.hash_lookup, groups, &[], &push)
+            rec.dispatch(&kernel, groups, &[], &push)
         })?)
     }
 }

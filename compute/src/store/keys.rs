@@ -24,16 +24,7 @@ pub(crate) fn check_keys(
     }
     let gpu = &kernels.gpu;
     let counters = CheckCounters::new(gpu)?;
-    gpu.submit(|rec| {
-        counters.record(
-            rec,
-            &kernels.hash,
-            &keys.keys,
-            keys.len,
-            u64::MAX,
-            resolution,
-        )
-    })?;
+    gpu.submit(|rec| counters.record(rec, gpu, &keys.keys, keys.len, u64::MAX, resolution))?;
     let [_, _, outside, _, key] = counters.read()?;
     if outside > 0 {
         return Err(StoreError::KeyOutsideGrid {

@@ -24,6 +24,7 @@ use crate::hash::perfect::{
     PerfectParams,
 };
 use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use glam::Vec3;
 use std::collections::HashMap;
@@ -139,8 +140,16 @@ impl PerfectStore {
         check_keys(kernels, NAME, keys, resolution)?;
         let host_keys = keys.read()?;
         let gpu = kernels.gpu.clone();
-        let buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(kernels, NAME, keys, colours, resolution, (&buffer, 0), None)?;
+        let mut buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        fill_colours(
+            &gpu,
+            NAME,
+            keys,
+            colours,
+            resolution,
+            (&mut buffer, 0),
+            None,
+        )?;
         let host_colours = buffer.read_range(0, keys.len)?;
         let mut store = PerfectStore {
             kernels: kernels.clone(),
@@ -392,14 +401,14 @@ impl SparseStore for PerfectStore {
         check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let new_keys = keys.read()?;
         let gpu = self.kernels.gpu.clone();
-        let fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        let mut fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
         fill_colours(
-            &self.kernels,
+            &gpu,
             NAME,
             keys,
             colours,
             self.resolution,
-            (&fresh, 0),
+            (&mut fresh, 0),
             None,
         )?;
         let new_colours = fresh.read_range(0, keys.len)?;
@@ -474,7 +483,8 @@ impl SparseStore for PerfectStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        let groups = k.perfect_lookup.groups_for(points.len() as u64);
+        let kernel = k.gpu.kernel(&store::PERFECT_LOOKUP)?;
+        let groups = kernel.groups_for(points.len() as u64);
         let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
         Ok(prepare_lookup(k, points, &[], move |rec, a| {
             let push = LookupPush {
@@ -484,7 +494,7 @@ impl SparseStore for PerfectStore {
                 n,
                 mode,
             };
-            rec.dispatch(&k.perfect_lookup, groups, &[], &push)
+            rec.dispatch(&kernel, groups, &[], &push)
         })?)
     }
 }

@@ -8,8 +8,8 @@
 //! not reflect, whatever the table's error.
 
 use super::reference::{fresnel_dielectric, ggx_g1, ggx_g2, ggx_sample_vndf, GGX_MIN_ALPHA};
+use crate::shader_constants::PLASTIC_COAT_KNOTS;
 use glam::{Vec2, Vec3};
-use lazysolid_compute::shader_constants::PLASTIC_COAT_KNOTS;
 
 /// Knots of the coat table.
 pub const COAT_KNOTS: usize = PLASTIC_COAT_KNOTS as usize;

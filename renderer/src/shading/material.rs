@@ -2,11 +2,11 @@
 
 use super::coat::{coat_terms, COAT_KNOTS};
 use crate::scene::{Material, MaterialKind, SolidTextureKind};
-use bytemuck::{Pod, Zeroable};
-use lazysolid_compute::shader_constants::{
+use crate::shader_constants::{
     MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_EMISSIVE, MATERIAL_LAMBERTIAN,
     MATERIAL_PLASTIC, TEXTURE_CHECKER, TEXTURE_MARBLE, TEXTURE_NONE, TEXTURE_WOOD,
 };
+use bytemuck::{Pod, Zeroable};
 
 /// One material as the kernels read it: scalar layout, field for field the GLSL struct, so a
 /// `&[GpuMaterial]` uploads as is.

@@ -4,6 +4,7 @@
 use super::plan::Plan;
 use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
+use crate::kernels::store;
 use crate::store::colours::{fill_colours, ByKey, KeyedColours};
 use crate::store::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use crate::store::{ColourSource, Filter, InsertUnit, SparseStore, StoreError, StoreReport};
@@ -304,8 +305,8 @@ impl TileTree {
             map_width: plan.stats.map_width,
         };
         let push = t.push(0, &t.spare, &t.hits);
-        let k = &self.kernels.tiletree_texels;
-        gpu.submit(|rec| rec.dispatch(k, k.groups_for(n as u64), &[], &push))?;
+        let k = gpu.kernel(&store::TILETREE_TEXELS)?;
+        gpu.submit(|rec| rec.dispatch(&k, k.groups_for(n as u64), &[], &push))?;
         Ok(t)
     }
 
@@ -317,9 +318,9 @@ impl TileTree {
         let gather = t.push(2, &t.hits, &t.hits);
         let key_bits = 3 * self.plan.resolution.trailing_zeros() + 1;
         let mut sort = k.hash.sort.lock().unwrap();
+        let s = k.gpu.kernel(&store::TILETREE_SCATTER)?;
         k.gpu.submit(|rec| {
-            let s = &k.tiletree_scatter;
-            rec.dispatch(s, s.groups_for(n as u64), &[], &gather)?;
+            rec.dispatch(&s, s.groups_for(n as u64), &[], &gather)?;
             sort.record_u64(rec, &t.keys.keys, Some(&t.colours), n, key_bits)
         })?;
         drop(sort);
@@ -333,7 +334,7 @@ impl TileTree {
     /// Fills every texel: surface hits, colours (`kept` ones first, then `colours`), dilation,
     /// the map.
     fn fill(&self, colours: &ColourSource<'_>, kept: Option<&Kept>) -> Result<(), StoreError> {
-        let t = self.texels(&self.map)?;
+        let mut t = self.texels(&self.map)?;
         let k = &self.kernels;
         let gpu = &k.gpu;
         let n = t.keys.len;
@@ -352,19 +353,19 @@ impl TileTree {
                     counters: None,
                     zero_missing: false,
                 }
-                .record(rec, k)
+                .record(rec, gpu)
             })?;
             required = &t.spare;
         }
         // The colour source sees the texel voxels like any store's keys (not sorted: it maps
         // each key to its colour independently).
         fill_colours(
-            k,
+            gpu,
             NAME,
             &t.keys,
             colours,
             self.plan.resolution,
-            (&t.colours, 0),
+            (&mut t.colours, 0),
             Some(required),
         )?;
         if let Some(kept) = kept {
@@ -379,17 +380,19 @@ impl TileTree {
                     counters: None,
                     zero_missing: false,
                 }
-                .record(rec, k)
+                .record(rec, gpu)
             })?;
         }
         let rows = t.push(0, &t.hits, &t.spare);
         let columns = t.push(1, &t.spare, &t.hits);
         let scatter = t.push(0, &t.spare, &t.hits);
-        let groups = k.tiletree_dilate.groups_for(n as u64);
+        let dilate = gpu.kernel(&store::TILETREE_DILATE)?;
+        let scatter_k = gpu.kernel(&store::TILETREE_SCATTER)?;
+        let groups = dilate.groups_for(n as u64);
         gpu.submit(|rec| {
-            rec.dispatch(&k.tiletree_dilate, groups, &[], &rows)?;
-            rec.dispatch(&k.tiletree_dilate, groups, &[], &columns)?;
-            rec.dispatch(&k.tiletree_scatter, groups, &[], &scatter)
+            rec.dispatch(&dilate, groups, &[], &rows)?;
+            rec.dispatch(&dilate, groups, &[], &columns)?;
+            rec.dispatch(&scatter_k, groups, &[], &scatter)
         })?;
         Ok(())
     }
@@ -561,7 +564,8 @@ impl SparseStore for TileTree {
     ) -> Result<TimedLookup<'_>, StoreError> {
         check_normals(points, normals)?;
         let k = &self.kernels;
-        let groups = k.tiletree_lookup.groups_for(points.len() as u64);
+        let kernel = k.gpu.kernel(&store::TILETREE_LOOKUP)?;
+        let groups = kernel.groups_for(points.len() as u64);
         let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
         Ok(prepare_lookup(k, points, normals, move |rec, a| {
             let push = LookupPush {
@@ -572,7 +576,7 @@ impl SparseStore for TileTree {
                 n,
                 mode,
             };
-            rec.dispatch(&k.tiletree_lookup, groups, &[], &push)
+            rec.dispatch(&kernel, groups, &[], &push)
         })?)
     }
 }

@@ -5,11 +5,11 @@
 use super::fresnel::{fresnel_conductor, fresnel_dielectric};
 use super::microfacet::{ggx_d, ggx_g1, ggx_g2, ggx_sample_vndf, GGX_MIN_ALPHA};
 use super::sampling::{pdf_cosine_hemisphere, sample_cosine_hemisphere};
-use crate::shading::{coat_albedo_at, GpuMaterial};
-use glam::{Vec2, Vec3};
-use lazysolid_compute::shader_constants::{
+use crate::shader_constants::{
     MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_LAMBERTIAN, MATERIAL_PLASTIC,
 };
+use crate::shading::{coat_albedo_at, GpuMaterial};
+use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// A sampled direction.
