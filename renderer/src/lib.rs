@@ -5,6 +5,7 @@
 //! - [`accel`]: obvhs CWBVHs per mesh and over instances, uploaded for the GLSL traversal.
 //! - [`shading`]: the GPU records of materials, lights and environment, with a CPU reference
 //!   of the GLSL shading library.
+//! - [`glint`]: the infinite glint microstructure by example (point and range queries).
 //! - [`render`]: the path-tracing kernel's driver (progressive passes into a float film).
 //! - [`output`] and [`diff`]: EXR/PNG writing and FLIP image comparison.
 //! - [`kernels`] and [`shader_constants`]: the renderer's GLSL kernels (`glsl/render/`), compiled
@@ -12,6 +13,7 @@
 
 pub mod accel;
 pub mod diff;
+pub mod glint;
 pub mod mesh;
 pub mod output;
 mod push_registry;

@@ -68,3 +68,17 @@ pub const STORE_KIND_TILETREE: u32 = 3;
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).
 pub const STORE_FILTER_TRILINEAR: u32 = 1;
+
+/// Blending modes of the glint microstructure by example (`renderer::glint::BlendMode`):
+/// none takes each point from the nearest vertex's patch (flakes: constant normals, no seams
+/// visible); linear is Eq. 4 of the paper; variance-preserving Eq. 5; histogram-preserving
+/// Eq. 6.
+pub const GLINT_BLEND_NONE: u32 = 0;
+/// See [`GLINT_BLEND_NONE`].
+pub const GLINT_BLEND_LINEAR: u32 = 1;
+/// See [`GLINT_BLEND_NONE`].
+pub const GLINT_BLEND_VARIANCE: u32 = 2;
+/// See [`GLINT_BLEND_NONE`].
+pub const GLINT_BLEND_HISTOGRAM: u32 = 3;
+/// Knots of each Gaussianization table (G and G⁻¹ per normal component).
+pub const GLINT_TABLE_KNOTS: u32 = 256;

@@ -125,13 +125,32 @@ lazysolid_compute::push_block! {
     }
 }
 
+lazysolid_compute::push_block! {
+    /// Push block of `glsl/render/glint_test.comp`, the kernel that runs the glint point query
+    /// on test points.
+    #[derive(Clone, Copy)]
+    pub struct GlintTestPush<'a> {
+        /// The infinite normal map.
+        pub map: lazysolid_renderer::glint::GlintMapParams<'a>,
+        /// Target points (vec2).
+        pub points: DeviceAddress<'a>,
+        /// 10 floats per point.
+        pub results: DeviceAddress<'a>,
+        /// Number of points.
+        pub n: u32,
+    }
+}
+
 /// Every kernel of the workspace with the push block its dispatches use: the compute crate's,
-/// the renderer's and the shading test kernel.
+/// the renderer's and the shading and glint test kernels.
 pub fn push_registry() -> Vec<PushRegistration> {
     let mut all = lazysolid_compute::push_registry();
     all.extend(lazysolid_renderer::push_registry());
     all.push(PushRegistration::of::<ShadingTestPush>(
         &lazysolid_renderer::kernels::render::SHADING_TEST,
+    ));
+    all.push(PushRegistration::of::<GlintTestPush>(
+        &lazysolid_renderer::kernels::render::GLINT_TEST,
     ));
     all
 }

@@ -16,7 +16,7 @@ pub use environment::{env_eval, env_pdf, env_sample, EnvSample};
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
 pub use lights::{light_intersect, light_pdf, light_sample, LightHit, LightSample};
 pub use microfacet::{ggx_d, ggx_g1, ggx_g2, ggx_sample_vndf, ggx_vndf_pdf, GGX_MIN_ALPHA};
-pub use rng::{rng_init, rng_next, rng_next2};
+pub use rng::{rng_hash, rng_init, rng_next, rng_next2};
 pub use sampling::{
     make_frame, pdf_cosine_hemisphere, sample_concentric_disk, sample_cosine_hemisphere,
     sample_uniform_sphere,

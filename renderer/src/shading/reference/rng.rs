@@ -13,13 +13,14 @@ fn step(state: u32) -> u32 {
     state.wrapping_mul(LCG_MUL).wrapping_add(LCG_ADD)
 }
 
-fn hash(v: u32) -> u32 {
+/// A well-mixed 32-bit hash of one word (twin of `rng_hash`).
+pub fn rng_hash(v: u32) -> u32 {
     permute(step(v))
 }
 
 /// Initial state of the stream of `(pixel, sample_index)` under the render `seed`.
 pub fn rng_init(pixel: [u32; 2], sample_index: u32, seed: u32) -> u32 {
-    hash(pixel[0] ^ hash(pixel[1] ^ hash(sample_index ^ hash(seed))))
+    rng_hash(pixel[0] ^ rng_hash(pixel[1] ^ rng_hash(sample_index ^ rng_hash(seed))))
 }
 
 /// Next uniform float in [0, 1) (24 random bits).

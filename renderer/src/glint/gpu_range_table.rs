@@ -1,0 +1,65 @@
+//! The device build of the range table ([`super::range_table`]): bottom-up, one dispatch of
+//! `glsl/render/glint_range_level.comp` per level (not the paper's recursion, which recomputes
+//! every sub-square), each reading the level below.
+
+use super::example::NormalExample;
+use super::range_table::quantize_texels;
+use crate::kernels::render::GLINT_RANGE_LEVEL;
+use lazysolid_compute::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult};
+
+lazysolid_compute::push_block! {
+    /// Push block of `glsl/render/glint_range_level.comp`.
+    #[derive(Clone, Copy)]
+    pub struct GlintRangeLevelPush<'a> {
+        /// The level below (or the quantized texels for level 0).
+        pub src: DeviceAddress<'a>,
+        /// The level written.
+        pub dst: DeviceAddress<'a>,
+        /// Example edge.
+        pub size: u32,
+        /// Offset of the 4 entries read: 2^(k−1) (1 for level 0, which reads texels).
+        pub offset: u32,
+        /// Edge 2^k of the level's squares: starts with x + span > size − 1 stay empty.
+        pub span: u32,
+    }
+}
+
+/// Builds the range table of `example` with levels up to edge `patch` on the device: `levels`
+/// × size² packed entries, level by level (the layout of [`super::RangeTable::entries`]).
+///
+/// # Errors
+/// Allocation, upload and dispatch errors.
+pub fn build_range_table(
+    gpu: &Gpu,
+    example: &NormalExample,
+    patch: u32,
+) -> GpuResult<GpuBuffer<[u32; 2]>> {
+    let size = example.size();
+    let levels = patch.trailing_zeros() as usize + 1;
+    let area = size * size;
+    let texels = GpuBuffer::from_slice(gpu, "glint quantized texels", &quantize_texels(example))?;
+    let table = GpuBuffer::<[u32; 2]>::new(gpu, "glint range table", levels * area)?;
+    let kernel = gpu.kernel(&GLINT_RANGE_LEVEL)?;
+    gpu.submit(|rec| {
+        for k in 0..levels {
+            let src = if k == 0 {
+                texels.address()
+            } else {
+                table.address_at((k - 1) * area)?
+            };
+            let push = GlintRangeLevelPush {
+                src,
+                dst: table.address_at(k * area)?,
+                size: size as u32,
+                offset: if k == 0 { 1 } else { 1 << (k - 1) },
+                span: 1 << k,
+            };
+            if k > 0 {
+                rec.barrier();
+            }
+            rec.dispatch(&kernel, kernel.groups_for(area as u64), &[], &push)?;
+        }
+        Ok(())
+    })?;
+    Ok(table)
+}

@@ -1,0 +1,29 @@
+//! Glinting microstructure by example ("Example-Based Microstructure Rendering with Constant
+//! Storage"): an infinite, non-repeating normal map blended from a small example, with O(1)
+//! point queries (normal and Jacobian) and O(1) range min/max queries over power-of-two target
+//! squares. See `docs/glints.md` for what is built and what is not yet.
+//!
+//! - [`example`]: the example normal map (from normals or a height field), bilinearly read.
+//! - [`gaussianize`]: the Gaussianization tables of histogram-preserving blending.
+//! - [`by_example`]: the point query (CPU twin of `glsl/include/glint/by_example.glsl`).
+//! - [`range_table`]: the square-only sparse table over the example, 16-bit quantized.
+//! - [`gpu_range_table`]: its device build, one dispatch per level.
+//! - [`range_blend`]: conservative intervals of the blended map over a target square.
+//! - [`gpu_map`]: the device record of a map (example, tables, parameters).
+
+pub mod by_example;
+pub mod error;
+pub mod example;
+pub mod gaussianize;
+pub mod gpu_map;
+pub mod gpu_range_table;
+pub mod range_blend;
+pub mod range_table;
+
+pub use by_example::{BlendMode, ByExampleMap, PointQuery};
+pub use error::GlintError;
+pub use example::NormalExample;
+pub use gaussianize::GaussianTables;
+pub use gpu_map::{GlintMapParams, GpuGlintMap};
+pub use gpu_range_table::{build_range_table, GlintRangeLevelPush};
+pub use range_table::{NormalInterval, RangeTable};
