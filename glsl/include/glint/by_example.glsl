@@ -76,7 +76,7 @@ float glint_table(GlintMap m, uint which, float lo, float hi, float x, out float
 }
 
 // Component k of an input value in blend space, with its derivative.
-float glint_to_blend(GlintMap m, uint k, float v, out float d) {
+float glint_normal_to_blend(GlintMap m, uint k, float v, out float d) {
     d = 1.0;
     if (m.mode == GLINT_BLEND_VARIANCE) {
         return v - m.mean[k];
@@ -88,7 +88,7 @@ float glint_to_blend(GlintMap m, uint k, float v, out float d) {
 }
 
 // Component k of a blended value back in normal space, with its derivative.
-float glint_from_blend(GlintMap m, uint k, float s, out float d) {
+float glint_blend_to_normal(GlintMap m, uint k, float s, out float d) {
     d = 1.0;
     if (m.mode == GLINT_BLEND_VARIANCE) {
         return s + m.mean[k];
@@ -164,14 +164,14 @@ GlintPoint glint_point(GlintMap m, vec2 u) {
         vec2 grad_c = vec2(0.0);
         for (int i = 0; i < 4; i++) {
             float dy;
-            float y = glint_to_blend(m, k, value[i][k], dy);
+            float y = glint_normal_to_blend(m, k, value[i][k], dy);
             s += c[i] * y;
             // Row k of the input's Jacobian: (d n_k / dx, d n_k / dy).
             grad += c[i] * dy * vec2(jac[i][0][k], jac[i][1][k]);
             grad_c += y * dc[i];
         }
         float dn;
-        r.normal[k] = glint_from_blend(m, k, s, dn);
+        r.normal[k] = glint_blend_to_normal(m, k, s, dn);
         rows[k] = dn * grad;
         rows_exact[k] = dn * (grad + grad_c);
     }

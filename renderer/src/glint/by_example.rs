@@ -183,7 +183,7 @@ impl ByExampleMap {
     }
 
     /// Input value v of component k → blend space (value, derivative).
-    pub(crate) fn to_blend(&self, k: usize, v: f32) -> (f32, f32) {
+    pub(crate) fn normal_to_blend(&self, k: usize, v: f32) -> (f32, f32) {
         match self.mode {
             BlendMode::None | BlendMode::Linear => (v, 1.0),
             BlendMode::Variance => (v - self.mean[k], 1.0),
@@ -192,7 +192,7 @@ impl ByExampleMap {
     }
 
     /// Blend space → output value of component k (value, derivative).
-    pub(crate) fn from_blend(&self, k: usize, s: f32) -> (f32, f32) {
+    pub(crate) fn blend_to_normal(&self, k: usize, s: f32) -> (f32, f32) {
         match self.mode {
             BlendMode::None | BlendMode::Linear => (s, 1.0),
             BlendMode::Variance => (s + self.mean[k], 1.0),
@@ -251,12 +251,12 @@ impl ByExampleMap {
             let (mut s, mut grad, mut grad_w) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
             for i in 0..4 {
                 let (v, jac) = samples[i];
-                let (y, dy) = self.to_blend(k, v[k]);
+                let (y, dy) = self.normal_to_blend(k, v[k]);
                 s += c[i] * y;
                 grad += c[i] * dy * jac.row(k);
                 grad_w += y * dc[i];
             }
-            let (n, dn) = self.from_blend(k, s);
+            let (n, dn) = self.blend_to_normal(k, s);
             normal[k] = n;
             rows[k] = [dn * grad, dn * (grad + grad_w)];
         }

@@ -107,8 +107,8 @@ impl ByExampleMap {
             }
             let (c_lo, c_hi) = (w_lo / norm.1, w_hi / norm.0);
             for k in 0..2 {
-                let y_lo = self.to_blend(k, input.lo[k]).0;
-                let y_hi = self.to_blend(k, input.hi[k]).0;
+                let y_lo = self.normal_to_blend(k, input.lo[k]).0;
+                let y_hi = self.normal_to_blend(k, input.hi[k]).0;
                 lo[k] += (c_lo * y_lo).min(c_hi * y_lo);
                 hi[k] += (c_lo * y_hi).max(c_hi * y_hi);
             }
@@ -127,8 +127,8 @@ impl ByExampleMap {
             return Ok(NormalInterval { lo, hi });
         }
         for k in 0..2 {
-            lo[k] = self.from_blend(k, lo[k]).0;
-            hi[k] = self.from_blend(k, hi[k]).0;
+            lo[k] = self.blend_to_normal(k, lo[k]).0;
+            hi[k] = self.blend_to_normal(k, hi[k]).0;
         }
         Ok(NormalInterval { lo, hi })
     }
