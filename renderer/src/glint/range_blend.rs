@@ -105,7 +105,8 @@ impl ByExampleMap {
                 }
                 continue;
             }
-            let (c_lo, c_hi) = (w_lo / norm.1, w_hi / norm.0);
+            // c_i = w_i / ‖w‖₂ never exceeds 1 (‖w‖₂ ≥ w_i).
+            let (c_lo, c_hi) = (w_lo / norm.1, (w_hi / norm.0).min(1.0));
             for k in 0..2 {
                 let y_lo = self.normal_to_blend(k, input.lo[k]).0;
                 let y_hi = self.normal_to_blend(k, input.hi[k]).0;
