@@ -156,3 +156,12 @@ pub const STORE_KIND_OCTREE: u32 = 1;
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).
 pub const STORE_FILTER_TRILINEAR: u32 = 1;
+
+/// Largest S of solid-synthesis candidates: strips kept per other exemplar (the thesis' 65).
+pub const SOLID_MAX_S: u32 = 65;
+/// Triples kept per exemplar pixel after the crossbar ranking (the thesis' 100).
+pub const SOLID_KEPT: u32 = 100;
+/// Candidate triples per exemplar pixel after the coherence filter (the thesis' 12).
+pub const SOLID_MAX_CANDIDATES: u32 = 12;
+/// Longest crossbar strip.
+pub const SOLID_MAX_STRIP: u32 = 15;

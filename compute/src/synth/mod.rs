@@ -24,6 +24,7 @@ mod params;
 mod pat;
 mod plan;
 mod repetition;
+pub mod solid;
 mod stack;
 mod synthesis;
 

@@ -3,6 +3,7 @@
 pub mod device;
 pub mod diff;
 pub mod render;
+pub mod solid;
 pub mod synth;
 
 use lazysolid_compute::gpu::{Gpu, GpuOptions, ValidationLog};

@@ -83,7 +83,12 @@ fn coords_path(output: &Path) -> PathBuf {
 }
 
 /// Writes an RGB PNG through a temporary name in the same folder, then renames it.
-fn write_png(path: &Path, width: u32, height: u32, rgb: &[[u8; 3]]) -> anyhow::Result<()> {
+pub(crate) fn write_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    rgb: &[[u8; 3]],
+) -> anyhow::Result<()> {
     let name = path.file_name().unwrap_or_default().to_string_lossy();
     let tmp = path.with_file_name(format!(".{name}.partial"));
     let bytes: Vec<u8> = rgb.iter().flatten().copied().collect();

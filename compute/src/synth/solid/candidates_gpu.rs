@@ -1,0 +1,292 @@
+//! The candidate construction on the GPU: `strip_search.comp`, `triples.comp` and
+//! `coherence.comp` per level, driven by the same iteration loop as the CPU reference
+//! (`candidates.rs`), with which it agrees exactly.
+
+use super::analysis::{SolidAnalysis, SolidLevel};
+use super::candidates::{
+    filter_and_cut, image_key, others, search_key, CandidateParams, CandidateSets, LevelReport,
+    SearchKey, SolidCandidates,
+};
+use super::roles::{image_axis, shared_axis, ROLES};
+use crate::gpu::{Gpu, GpuBuffer, Kernel};
+use crate::kernels::synth_solid;
+use crate::synth::SynthResult;
+use bytemuck::{Pod, Zeroable};
+use std::collections::HashMap;
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct SearchPush {
+    query: u64,
+    target: u64,
+    pixels: u64,
+    distances: u64,
+    shift: u32,
+    query_axis: u32,
+    target_axis: u32,
+    strip: u32,
+    spacing: u32,
+    s: u32,
+}
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct TriplesPush {
+    colours1: u64,
+    colours2: u64,
+    m1_pixels: u64,
+    m1_distances: u64,
+    m2_pixels: u64,
+    m2_distances: u64,
+    triples: u64,
+    errors: u64,
+    counts: u64,
+    shift: u32,
+    axis1: u32,
+    axis2: u32,
+    strip: u32,
+    spacing: u32,
+    s: u32,
+    kept: u32,
+    role: u32,
+    role1: u32,
+    role2: u32,
+}
+
+#[derive(Clone, Copy, Pod, Zeroable)]
+#[repr(C, packed(4))]
+struct CoherencePush {
+    in_triples: u64,
+    in_errors: u64,
+    in_counts: u64,
+    out_triples: u64,
+    out_errors: u64,
+    out_counts: u64,
+    fallbacks: u64,
+    shift: u32,
+    spacing: u32,
+    slots: u32,
+    role1: u32,
+    role2: u32,
+}
+
+/// Strip matches on the GPU.
+struct Matches {
+    pixels: GpuBuffer<u32>,
+    distances: GpuBuffer<u32>,
+}
+
+/// The candidate kernels of one device.
+pub struct GpuCandidates {
+    gpu: Gpu,
+    search: Kernel,
+    triples: Kernel,
+    coherence: Kernel,
+}
+
+impl GpuCandidates {
+    /// Builds the kernels.
+    ///
+    /// # Errors
+    /// A GPU failure.
+    pub fn new(gpu: &Gpu) -> SynthResult<GpuCandidates> {
+        Ok(GpuCandidates {
+            gpu: gpu.clone(),
+            search: Kernel::new(gpu, &synth_solid::STRIP_SEARCH)?,
+            triples: Kernel::new(gpu, &synth_solid::TRIPLES)?,
+            coherence: Kernel::new(gpu, &synth_solid::COHERENCE)?,
+        })
+    }
+
+    /// The candidates of every level of `analysis`; `on_level` is called after each level.
+    ///
+    /// # Errors
+    /// Parameters out of range, or a GPU failure.
+    pub fn compute(
+        &self,
+        analysis: &SolidAnalysis,
+        params: &CandidateParams,
+        on_level: &mut dyn FnMut(u32),
+    ) -> SynthResult<SolidCandidates> {
+        params.check()?;
+        let m = analysis.side;
+        let shift = m.ilog2();
+        let pixels = (m * m) as usize;
+        let mut levels = Vec::new();
+        let mut reports = Vec::new();
+        for (l, level) in analysis.levels.iter().enumerate() {
+            let colours: Vec<GpuBuffer<u32>> = (0..ROLES)
+                .map(|r| {
+                    GpuBuffer::from_slice(
+                        &self.gpu,
+                        format!("solid colours level {l} role {r}"),
+                        &level.roles[r].colours,
+                    )
+                })
+                .collect::<Result<_, _>>()?;
+            let mut memo: HashMap<SearchKey, Matches> = HashMap::new();
+            for e in 0..ROLES {
+                for f in others(e) {
+                    let k = search_key(e, f);
+                    let id = image_key(analysis, k);
+                    if memo.contains_key(&id) {
+                        continue;
+                    }
+                    let found = self.search(level, &colours, k, shift, params)?;
+                    memo.insert(id, found);
+                }
+            }
+            let mut report = LevelReport::default();
+            let mut sets = Vec::with_capacity(ROLES);
+            for e in 0..ROLES {
+                let [f1, f2] = others(e);
+                let m1 = &memo[&image_key(analysis, search_key(e, f1))];
+                let m2 = &memo[&image_key(analysis, search_key(e, f2))];
+                let ranked = self.rank(level, &colours, e, m1, m2, shift, params)?;
+                let cut = filter_and_cut(ranked, params, &mut report, |s| {
+                    self.coherence_step(s, e, level.spacing, shift, pixels)
+                })?;
+                sets.push(cut);
+            }
+            levels.push(sets.try_into().expect("three roles"));
+            reports.push(report);
+            on_level(l as u32);
+        }
+        Ok(SolidCandidates { levels, reports })
+    }
+
+    fn search(
+        &self,
+        level: &SolidLevel,
+        colours: &[GpuBuffer<u32>],
+        k: SearchKey,
+        shift: u32,
+        params: &CandidateParams,
+    ) -> SynthResult<Matches> {
+        let pixels = 1usize << (2 * shift);
+        let n = pixels * params.s as usize;
+        let found = Matches {
+            pixels: GpuBuffer::new(&self.gpu, "solid strip matches", n)?,
+            distances: GpuBuffer::new(&self.gpu, "solid strip distances", n)?,
+        };
+        let push = SearchPush {
+            query: colours[k.query].address(),
+            target: colours[k.target].address(),
+            pixels: found.pixels.address(),
+            distances: found.distances.address(),
+            shift,
+            query_axis: k.query_axis as u32,
+            target_axis: k.target_axis as u32,
+            strip: params.strip,
+            spacing: level.spacing,
+            s: params.s,
+        };
+        self.gpu.submit(|rec| {
+            let kernel = &self.search;
+            rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)
+        })?;
+        Ok(found)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn rank(
+        &self,
+        level: &SolidLevel,
+        colours: &[GpuBuffer<u32>],
+        e: usize,
+        m1: &Matches,
+        m2: &Matches,
+        shift: u32,
+        params: &CandidateParams,
+    ) -> SynthResult<CandidateSets> {
+        let pixels = 1usize << (2 * shift);
+        let kept = params.kept();
+        let triples = GpuBuffer::<[u32; 3]>::new(&self.gpu, "solid triples", pixels * kept)?;
+        let errors = GpuBuffer::<u32>::new(&self.gpu, "solid crossbar errors", pixels * kept)?;
+        let counts = GpuBuffer::<u32>::new(&self.gpu, "solid candidate counts", pixels)?;
+        let [f1, f2] = others(e);
+        let a = shared_axis(f1, f2);
+        let push = TriplesPush {
+            colours1: colours[f1].address(),
+            colours2: colours[f2].address(),
+            m1_pixels: m1.pixels.address(),
+            m1_distances: m1.distances.address(),
+            m2_pixels: m2.pixels.address(),
+            m2_distances: m2.distances.address(),
+            triples: triples.address(),
+            errors: errors.address(),
+            counts: counts.address(),
+            shift,
+            axis1: image_axis(f1, a).unwrap() as u32,
+            axis2: image_axis(f2, a).unwrap() as u32,
+            strip: params.strip,
+            spacing: level.spacing,
+            s: params.s,
+            kept: kept as u32,
+            role: e as u32,
+            role1: f1 as u32,
+            role2: f2 as u32,
+        };
+        self.gpu.submit(|rec| {
+            let kernel = &self.triples;
+            rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)
+        })?;
+        Ok(CandidateSets {
+            slots: kept,
+            triples: triples.read()?,
+            errors: errors.read()?,
+            counts: counts.read()?,
+        })
+    }
+
+    fn coherence_step(
+        &self,
+        sets: &CandidateSets,
+        e: usize,
+        spacing: u32,
+        shift: u32,
+        pixels: usize,
+    ) -> SynthResult<(CandidateSets, u64)> {
+        let g = &self.gpu;
+        let input = (
+            GpuBuffer::from_slice(g, "solid coherence triples in", &sets.triples)?,
+            GpuBuffer::from_slice(g, "solid coherence errors in", &sets.errors)?,
+            GpuBuffer::from_slice(g, "solid coherence counts in", &sets.counts)?,
+        );
+        let output = (
+            GpuBuffer::<[u32; 3]>::zeroed(g, "solid coherence triples out", sets.triples.len())?,
+            GpuBuffer::<u32>::zeroed(g, "solid coherence errors out", sets.errors.len())?,
+            GpuBuffer::<u32>::new(g, "solid coherence counts out", pixels)?,
+        );
+        let fallbacks = GpuBuffer::<u32>::new(g, "solid coherence fallbacks", pixels)?;
+        let [f1, f2] = others(e);
+        let push = CoherencePush {
+            in_triples: input.0.address(),
+            in_errors: input.1.address(),
+            in_counts: input.2.address(),
+            out_triples: output.0.address(),
+            out_errors: output.1.address(),
+            out_counts: output.2.address(),
+            fallbacks: fallbacks.address(),
+            shift,
+            spacing,
+            slots: sets.slots as u32,
+            role1: f1 as u32,
+            role2: f2 as u32,
+        };
+        g.submit(|rec| {
+            let kernel = &self.coherence;
+            rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)
+        })?;
+        let fell_back = fallbacks.read()?.iter().map(|&f| f as u64).sum();
+        Ok((
+            CandidateSets {
+                slots: sets.slots,
+                triples: output.0.read()?,
+                errors: output.1.read()?,
+                counts: output.2.read()?,
+            },
+            fell_back,
+        ))
+    }
+}
