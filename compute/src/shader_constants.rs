@@ -163,5 +163,6 @@ pub const SOLID_MAX_S: u32 = 65;
 pub const SOLID_KEPT: u32 = 100;
 /// Candidate triples per exemplar pixel after the coherence filter (the thesis' 12).
 pub const SOLID_MAX_CANDIDATES: u32 = 12;
-/// Longest crossbar strip.
-pub const SOLID_MAX_STRIP: u32 = 15;
+/// Longest crossbar strip: the crossbar ranking loops over S² pairs of N samples, and llvmpipe
+/// stops an invocation after 65535 loop iterations in all (65² · (11 + 1) ≈ 51 k).
+pub const SOLID_MAX_STRIP: u32 = 11;

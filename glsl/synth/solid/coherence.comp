@@ -3,7 +3,10 @@
 // SOLID_MAX_CANDIDATES candidates keeps those whose two other coordinates each continue (one
 // step h along an image axis) a coordinate of some candidate of one of its 4 neighbours
 // (+-h in the image); if none would survive it keeps its SOLID_MAX_CANDIDATES first (best
-// crossbar) ones and is flagged. Smaller sets are copied. Order is preserved. CPU reference:
+// crossbar) ones and is flagged. Smaller sets are copied. Order is preserved. One dispatch
+// tests the candidates first .. first + chunk of every pixel and appends the survivors to those
+// of earlier dispatches (llvmpipe stops an invocation's loops after 65535 iterations in all,
+// and one candidate costs up to 800). CPU reference:
 // compute/src/synth/solid/candidates.rs (coherence_step_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
@@ -21,6 +24,8 @@ layout(push_constant, scalar) uniform Push {
     uint slots;
     uint role1;            // the two other roles
     uint role2;
+    uint first;            // first candidate this dispatch tests
+    uint chunk;            // candidates it tests
 } pc;
 
 bool unit_step(uint a, uint b) {
@@ -63,33 +68,42 @@ void main() {
         return;
     }
     uint count = U32Ptr(pc.in_counts).v[p];
-    uint fell_back = 0u;
-    uint kept = 0u;
     if (count <= SOLID_MAX_CANDIDATES) {
-        for (uint k = 0; k < count; k++) {
-            copy_slot(p, k, k);
-        }
-        kept = count;
-    } else {
-        int h = int(pc.spacing);
-        uint near[4] = uint[4](solid_along(p, 0u, -h, pc.shift), solid_along(p, 0u, h, pc.shift),
-                               solid_along(p, 1u, -h, pc.shift), solid_along(p, 1u, h, pc.shift));
-        for (uint k = 0; k < count; k++) {
-            uint slot = (p * pc.slots + k) * 3u;
-            if (continued(near, U32Ptr(pc.in_triples).v[slot + pc.role1], pc.role1)
-                && continued(near, U32Ptr(pc.in_triples).v[slot + pc.role2], pc.role2)) {
-                copy_slot(p, k, kept);
-                kept++;
-            }
-        }
-        if (kept == 0u) {
-            for (uint k = 0; k < SOLID_MAX_CANDIDATES; k++) {
+        if (pc.first == 0u) {
+            for (uint k = 0; k < count; k++) {
                 copy_slot(p, k, k);
             }
-            kept = SOLID_MAX_CANDIDATES;
-            fell_back = 1u;
+            U32Ptr(pc.out_counts).v[p] = count;
+            U32Ptr(pc.fallbacks).v[p] = 0u;
+        }
+        return;
+    }
+    if (pc.first >= count) {
+        return;
+    }
+    uint kept = pc.first == 0u ? 0u : U32Ptr(pc.out_counts).v[p];
+    int h = int(pc.spacing);
+    uint near[4] = uint[4](solid_along(p, 0u, -h, pc.shift), solid_along(p, 0u, h, pc.shift),
+                           solid_along(p, 1u, -h, pc.shift), solid_along(p, 1u, h, pc.shift));
+    uint last = min(pc.first + pc.chunk, count);
+    for (uint k = pc.first; k < last; k++) {
+        uint slot = (p * pc.slots + k) * 3u;
+        if (continued(near, U32Ptr(pc.in_triples).v[slot + pc.role1], pc.role1)
+            && continued(near, U32Ptr(pc.in_triples).v[slot + pc.role2], pc.role2)) {
+            copy_slot(p, k, kept);
+            kept++;
         }
     }
+    uint fell_back = 0u;
+    if (last == count && kept == 0u) {
+        for (uint k = 0; k < SOLID_MAX_CANDIDATES; k++) {
+            copy_slot(p, k, k);
+        }
+        kept = SOLID_MAX_CANDIDATES;
+        fell_back = 1u;
+    }
     U32Ptr(pc.out_counts).v[p] = kept;
-    U32Ptr(pc.fallbacks).v[p] = fell_back;
+    if (pc.first == 0u || fell_back == 1u) {
+        U32Ptr(pc.fallbacks).v[p] = fell_back;
+    }
 }

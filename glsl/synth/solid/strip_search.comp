@@ -1,7 +1,10 @@
 #version 460
 // Strip search of the solid candidates: for every pixel of the query image, the S pixels of
 // the target image whose strips (N samples, spacing h, along the given image axes) are
-// closest in RGB, ranked by (distance, pixel index). Brute force over every target pixel.
+// closest in RGB, ranked by (distance, pixel index). Brute force over the target pixels
+// first_target .. first_target + target_count, folding into the lists of earlier dispatches
+// (llvmpipe stops an invocation's loops after 65535 iterations in all, so the host splits the
+// targets).
 // CPU reference: compute/src/synth/solid/candidates.rs (search_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
@@ -17,6 +20,8 @@ layout(push_constant, scalar) uniform Push {
     uint strip;          // N (odd)
     uint spacing;
     uint s;
+    uint first_target;
+    uint target_count;
 } pc;
 
 void main() {
@@ -34,11 +39,11 @@ void main() {
     uint best_d[SOLID_MAX_S];
     uint best_p[SOLID_MAX_S];
     for (uint k = 0; k < pc.s; k++) {
-        best_d[k] = 0xffffffffu;
-        best_p[k] = 0xffffffffu;
+        best_d[k] = pc.first_target == 0u ? 0xffffffffu : U32Ptr(pc.distances).v[p * pc.s + k];
+        best_p[k] = pc.first_target == 0u ? 0xffffffffu : U32Ptr(pc.pixels).v[p * pc.s + k];
     }
-    uint worst = 0xffffffffu;
-    for (uint q = 0; q < n; q++) {
+    uint worst = best_d[pc.s - 1u];
+    for (uint q = pc.first_target; q < pc.first_target + pc.target_count; q++) {
         uint d = 0;
         // Partial sums only grow: stop once the strip cannot enter the list.
         for (uint i = 0; i < pc.strip && d < worst; i++) {

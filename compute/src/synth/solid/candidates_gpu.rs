@@ -27,7 +27,17 @@ struct SearchPush {
     strip: u32,
     spacing: u32,
     s: u32,
+    first_target: u32,
+    target_count: u32,
 }
+
+/// Target pixels one strip-search dispatch compares (llvmpipe stops an invocation's loops
+/// after 65535 iterations in all; a target costs up to 1 + N of them).
+const TARGETS_PER_DISPATCH: u32 = 4096;
+
+/// Candidates one coherence dispatch tests per pixel (each costs up to 2 · 4 · 100 loop
+/// iterations).
+const COHERENCE_CHUNK: u32 = 8;
 
 #[derive(Clone, Copy, Pod, Zeroable)]
 #[repr(C, packed(4))]
@@ -68,6 +78,8 @@ struct CoherencePush {
     slots: u32,
     role1: u32,
     role2: u32,
+    first: u32,
+    chunk: u32,
 }
 
 /// Strip matches on the GPU.
@@ -169,7 +181,7 @@ impl GpuCandidates {
             pixels: GpuBuffer::new(&self.gpu, "solid strip matches", n)?,
             distances: GpuBuffer::new(&self.gpu, "solid strip distances", n)?,
         };
-        let push = SearchPush {
+        let mut push = SearchPush {
             query: colours[k.query].address(),
             target: colours[k.target].address(),
             pixels: found.pixels.address(),
@@ -180,10 +192,17 @@ impl GpuCandidates {
             strip: params.strip,
             spacing: level.spacing,
             s: params.s,
+            first_target: 0,
+            target_count: 0,
         };
         self.gpu.submit(|rec| {
             let kernel = &self.search;
-            rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)
+            for first in (0..pixels as u32).step_by(TARGETS_PER_DISPATCH as usize) {
+                push.first_target = first;
+                push.target_count = TARGETS_PER_DISPATCH.min(pixels as u32 - first);
+                rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)?;
+            }
+            Ok(())
         })?;
         Ok(found)
     }
@@ -260,7 +279,7 @@ impl GpuCandidates {
         );
         let fallbacks = GpuBuffer::<u32>::new(g, "solid coherence fallbacks", pixels)?;
         let [f1, f2] = others(e);
-        let push = CoherencePush {
+        let mut push = CoherencePush {
             in_triples: input.0.address(),
             in_errors: input.1.address(),
             in_counts: input.2.address(),
@@ -273,10 +292,16 @@ impl GpuCandidates {
             slots: sets.slots as u32,
             role1: f1 as u32,
             role2: f2 as u32,
+            first: 0,
+            chunk: COHERENCE_CHUNK,
         };
         g.submit(|rec| {
             let kernel = &self.coherence;
-            rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)
+            for first in (0..sets.slots as u32).step_by(COHERENCE_CHUNK as usize) {
+                push.first = first;
+                rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)?;
+            }
+            Ok(())
         })?;
         let fell_back = fallbacks.read()?.iter().map(|&f| f as u64).sum();
         Ok((

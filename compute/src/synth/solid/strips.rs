@@ -31,7 +31,7 @@ pub fn sample_offset(i: u32, n: u32, h: u32) -> i32 {
 }
 
 /// Squared RGB distance between the strip of `a` at pixel `pa` along `axis_a` and the strip
-/// of `b` at `pb` along `axis_b` (exact; at most 15 · 3 · 255² < 2²² per strip).
+/// of `b` at `pb` along `axis_b` (exact; at most 11 · 3 · 255² < 2²² per strip).
 #[allow(clippy::too_many_arguments)]
 pub fn strip_distance(
     a: &[u32],
