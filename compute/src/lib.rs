@@ -7,6 +7,7 @@
 pub mod gpu;
 pub mod hash;
 pub mod prims;
+mod push_registry;
 pub mod shader_constants;
 pub mod store;
 pub mod synth;
@@ -19,3 +20,4 @@ pub mod kernels {
 
 pub use ash;
 pub use gpu_allocator;
+pub use push_registry::push_registry;

@@ -12,6 +12,9 @@ pub mod accel;
 pub mod diff;
 pub mod mesh;
 pub mod output;
+mod push_registry;
 pub mod render;
 pub mod scene;
 pub mod shading;
+
+pub use push_registry::push_registry;

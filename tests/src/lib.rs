@@ -4,7 +4,7 @@
 //! validation layer required. [`with_gpu`] fails the test on any validation error, including
 //! leaks, which the layer reports only when the device is destroyed.
 
-use lazysolid_compute::gpu::{Gpu, GpuOptions};
+use lazysolid_compute::gpu::{DeviceAddress, Gpu, GpuOptions, PushRegistration};
 use lazysolid_compute::hash::Universe;
 use rand::{Rng, SeedableRng};
 
@@ -105,4 +105,33 @@ pub fn point_on_triangle(g: &mut impl Rng, [p0, p1, p2]: [glam::Vec3; 3]) -> gla
         (a, b)
     };
     p0 + (p1 - p0) * a + (p2 - p0) * b
+}
+
+lazysolid_compute::push_block! {
+    /// Push block of `glsl/render/shading_test.comp`, the kernel that runs the GLSL shading
+    /// library on test cases.
+    #[derive(Clone, Copy)]
+    pub struct ShadingTestPush<'a> {
+        /// The cases.
+        pub cases: DeviceAddress<'a>,
+        /// One result row per case.
+        pub results: DeviceAddress<'a>,
+        /// The `Environment` record.
+        pub environment: DeviceAddress<'a>,
+        /// Which function the cases exercise.
+        pub mode: u32,
+        /// Number of cases.
+        pub n: u32,
+    }
+}
+
+/// Every kernel of the workspace with the push block its dispatches use: the compute crate's,
+/// the renderer's and the shading test kernel.
+pub fn push_registry() -> Vec<PushRegistration> {
+    let mut all = lazysolid_compute::push_registry();
+    all.extend(lazysolid_renderer::push_registry());
+    all.push(PushRegistration::of::<ShadingTestPush>(
+        &lazysolid_compute::kernels::render::SHADING_TEST,
+    ));
+    all
 }

@@ -1,8 +1,76 @@
 //! The Vulkan core on the real device: buffers, kernels, descriptor binding, limits, timing.
 
-use lazysolid_compute::gpu::{GpuBuffer, GpuError, Kernel};
+use lazysolid_compute::gpu::{DeviceAddress, GpuBuffer, GpuError, Kernel};
 use lazysolid_compute::kernels;
+use lazysolid_compute::prims::push::{CopyCountPush, CopyPush};
 use lazysolid_tests::{random_u32, with_gpu};
+
+lazysolid_compute::push_block! {
+    /// A count of the wrong width for `copy_words.comp`.
+    struct WideCount {
+        n: u64,
+    }
+}
+
+lazysolid_compute::push_block! {
+    /// `copy_vec4.comp`'s block with its addresses swapped.
+    struct SwappedCopy<'a> {
+        dst: DeviceAddress<'a>,
+        src: DeviceAddress<'a>,
+        n: u32,
+    }
+}
+
+#[test]
+fn a_push_block_that_differs_from_glsl_is_refused_at_dispatch() {
+    with_gpu(|gpu| {
+        let kernel = Kernel::new(gpu, &kernels::prims::COPY_VEC4).unwrap();
+        let a = GpuBuffer::<u32>::zeroed(gpu, "a", 16).unwrap();
+        let b = GpuBuffer::<u32>::zeroed(gpu, "b", 16).unwrap();
+        let push = SwappedCopy {
+            dst: b.address(),
+            src: a.address(),
+            n: 4,
+        };
+        let result = gpu.submit(|rec| rec.dispatch(&kernel, [1, 1, 1], &[], &push));
+        if cfg!(debug_assertions) {
+            let err = result.unwrap_err();
+            assert!(
+                matches!(err, GpuError::KernelInterface { .. })
+                    && err
+                        .to_string()
+                        .contains("`uint64_t dst` at byte 0 on the host"),
+                "{err}"
+            );
+        }
+    });
+}
+
+#[test]
+fn recorded_work_keeps_the_buffers_it_addresses_alive() {
+    with_gpu(|gpu| {
+        let kernel = Kernel::new(gpu, &kernels::prims::COPY_VEC4).unwrap();
+        let data = random_u32(1024, 7);
+        let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", data.len()).unwrap();
+        gpu.submit(|rec| {
+            // The source is dropped before the submission runs: the recorder holds its memory.
+            let src = GpuBuffer::from_slice(gpu, "short-lived src", &data)?;
+            let push = CopyPush {
+                src: src.address(),
+                dst: dst.address(),
+                n: data.len() as u32,
+            };
+            rec.dispatch(
+                &kernel,
+                kernel.groups_for(data.len() as u64 / 4),
+                &[],
+                &push,
+            )
+        })
+        .unwrap();
+        assert_eq!(dst.read().unwrap(), data);
+    });
+}
 
 #[test]
 fn buffer_round_trip_and_empty_buffers() {
@@ -33,7 +101,7 @@ fn descriptor_bound_copy_kernel() {
                     &kernel,
                     kernel.groups_for(n as u64),
                     &[("Src", src.arg()), ("Dst", dst.arg())],
-                    &(n as u32),
+                    &CopyCountPush { n: n as u32 },
                 )
             })
             .unwrap();
@@ -48,7 +116,14 @@ fn dispatch_interface_errors_name_the_kernel() {
         let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
         let a = GpuBuffer::<u32>::zeroed(gpu, "a", 16).unwrap();
         let missing = gpu
-            .submit(|rec| rec.dispatch(&kernel, [1, 1, 1], &[("Src", a.arg())], &16u32))
+            .submit(|rec| {
+                rec.dispatch(
+                    &kernel,
+                    [1, 1, 1],
+                    &[("Src", a.arg())],
+                    &CopyCountPush { n: 16 },
+                )
+            })
             .unwrap_err();
         assert!(
             matches!(missing, GpuError::KernelInterface { .. })
@@ -61,7 +136,7 @@ fn dispatch_interface_errors_name_the_kernel() {
                     &kernel,
                     [1, 1, 1],
                     &[("Src", a.arg()), ("Dst", a.arg()), ("Nope", a.arg())],
-                    &16u32,
+                    &CopyCountPush { n: 16 },
                 )
             })
             .unwrap_err();
@@ -72,7 +147,7 @@ fn dispatch_interface_errors_name_the_kernel() {
                     &kernel,
                     [1, 1, 1],
                     &[("Src", a.arg()), ("Dst", a.arg())],
-                    &16u64,
+                    &WideCount { n: 16 },
                 )
             })
             .unwrap_err();
@@ -127,7 +202,7 @@ fn over_limit_requests_are_refused_with_the_limit_named() {
                         &kernel,
                         [1, 1, 1],
                         &[("Src", big.arg()), ("Dst", small.arg())],
-                        &16u32,
+                        &CopyCountPush { n: 16 },
                     )
                 })
                 .unwrap_err();
@@ -163,7 +238,7 @@ fn timestamps_measure_elapsed_work() {
                     &kernel,
                     kernel.groups_for(n as u64),
                     &[("Src", src.arg()), ("Dst", dst.arg())],
-                    &(n as u32),
+                    &CopyCountPush { n: n as u32 },
                 )?;
                 rec.timestamp()
             })

@@ -427,3 +427,56 @@ fn blocked_trilinear_lookups_equal_a_dense_grid() {
         assert!(BlockedPerfectHash::build(&cells, r, texel, Some(5)).is_err());
     });
 }
+
+/// `PerfectConstruction`: `Cpu` is the CPU reference's table uploaded (the same words), `Gpu`
+/// the GPU construction's, both perfect on the keys and read alike through the GLSL include;
+/// `Auto` is `Cpu` on a CPU device (lavapipe) and `Gpu` on a GPU.
+#[test]
+fn each_construction_builds_where_it_says_and_auto_follows_the_device_type() {
+    with_gpu(|gpu| {
+        let kernels = PerfectKernels::new(gpu).unwrap();
+        let u = Universe::new_3d([64; 3], KeyLayout::Morton).unwrap();
+        let (keys, _) = random_keys(&u, 3000, 0, 11);
+        let payloads = payloads_for(&keys);
+        let config = PerfectConfig::default();
+        let key_buf = lazysolid_compute::gpu::GpuBuffer::from_slice(gpu, "keys", &keys).unwrap();
+        let payload_buf =
+            lazysolid_compute::gpu::GpuBuffer::from_slice(gpu, "payloads", &payloads).unwrap();
+        let build = |c: PerfectConstruction| {
+            c.build(&kernels, u, &key_buf, &payload_buf, keys.len(), config)
+                .unwrap()
+        };
+        let cpu = build(PerfectConstruction::Cpu);
+        let reference = build_perfect_cpu(u, &keys, &payloads, config).unwrap();
+        let cpu_host = cpu.to_host().unwrap();
+        assert_eq!(cpu_host.offsets, reference.offsets);
+        assert_eq!(cpu_host.data, reference.data);
+        let on_gpu = build(PerfectConstruction::Gpu);
+        let direct = PerfectBuilder::new(&kernels)
+            .build_from_slices(u, &keys, &payloads, config)
+            .unwrap()
+            .to_host()
+            .unwrap();
+        let gpu_host = on_gpu.to_host().unwrap();
+        assert_eq!(gpu_host.offsets, direct.offsets);
+        assert_eq!(gpu_host.data, direct.data);
+        for (table, what) in [(&cpu, "cpu"), (&on_gpu, "gpu")] {
+            check_table(&table.to_host().unwrap(), &keys, &payloads, &[], what);
+            assert_eq!(table.query(&keys).unwrap(), payloads, "{what}");
+        }
+        let expected = if gpu.info().device_type == "cpu" {
+            PerfectConstruction::Cpu
+        } else {
+            PerfectConstruction::Gpu
+        };
+        assert_eq!(PerfectConstruction::Auto.resolve(gpu), expected);
+        assert_eq!(
+            PerfectConstruction::Gpu.resolve(gpu),
+            PerfectConstruction::Gpu
+        );
+        assert_eq!(
+            PerfectConstruction::Cpu.resolve(gpu),
+            PerfectConstruction::Cpu
+        );
+    });
+}

@@ -10,13 +10,13 @@
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
-use lazysolid_compute::gpu::{Gpu, GpuBuffer, Kernel};
+use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
 use lazysolid_compute::kernels::render::SHADING_TEST;
 use lazysolid_compute::shader_constants::*;
 use lazysolid_renderer::scene::{Environment, Light};
 use lazysolid_renderer::shading::reference as cpu;
 use lazysolid_renderer::shading::{EnvironmentMap, GpuEnvironment, GpuLight, GpuMaterial};
-use lazysolid_tests::{rng, with_gpu};
+use lazysolid_tests::{rng, with_gpu, ShadingTestPush};
 use rand::Rng;
 use rayon::prelude::*;
 use std::path::Path;
@@ -49,16 +49,6 @@ struct Case {
     d: [f32; 4],
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct Push {
-    cases: u64,
-    results: u64,
-    environment: u64,
-    mode: u32,
-    n: u32,
-}
-
 type Results = [f32; RESULT_FLOATS];
 
 fn run(
@@ -71,8 +61,8 @@ fn run(
     let input = GpuBuffer::from_slice(gpu, "shading cases", cases).unwrap();
     let output = GpuBuffer::<Results>::new(gpu, "shading results", cases.len()).unwrap();
     let params = [env.map(|e| e.params()).unwrap_or_default()];
-    let params = GpuBuffer::from_slice(gpu, "environment params", &params).unwrap();
-    let push = Push {
+    let params = DeviceRecords::new(gpu, "environment params", &params).unwrap();
+    let push = ShadingTestPush {
         cases: input.address(),
         results: output.address(),
         environment: params.address(),

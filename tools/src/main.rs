@@ -4,11 +4,23 @@ mod bench;
 mod cli;
 
 use clap::{Parser, Subcommand};
+use cli::exit_status;
 
 /// GPU sparse texture structures, lazy solid texture synthesis and a path tracer, in explicit
 /// Vulkan compute.
+///
+/// The same words mean the same things in every subcommand: --res WxH is the pixels of an image
+/// (N alone is NxN), --voxel-res N the side of an N³ voxel grid, --mesh and --exemplar(s) take
+/// an asset name (armadillo, leather; found in the repository's assets/ from any folder, or in
+/// LAZYSOLID_ASSETS) or a path, -o/--output is a file to write and --out-dir a folder of
+/// results, --builder where a perfect hash is constructed.
 #[derive(Parser)]
-#[command(name = "lazysolid", version, about)]
+#[command(
+    name = "lazysolid",
+    version = concat!(env!("CARGO_PKG_VERSION"), " (revision ", env!("LAZYSOLID_REVISION"), ")"),
+    about,
+    after_help = exit_status::HELP
+)]
 struct Cli {
     /// Vulkan device: a case-insensitive part of its name, or its index from `lazysolid device`.
     /// Defaults to a real GPU when one is present, else lavapipe.
@@ -18,6 +30,11 @@ struct Cli {
     /// Print the chosen device and progress details.
     #[arg(long, short, global = true)]
     verbose: bool,
+
+    /// Load the Khronos validation layer, as LAZYSOLID_VALIDATION=1 does: every error is
+    /// printed at exit and makes the exit status 2.
+    #[arg(long, global = true)]
+    validation: bool,
 
     #[command(subcommand)]
     command: Command,
@@ -31,7 +48,7 @@ enum Command {
     #[command(subcommand)]
     Bench(bench::BenchCommand),
     /// Compare an image with a reference using FLIP: statistics, an optional error map, and
-    /// exit status 1 above an optional mean-error threshold.
+    /// exit status 3 above an optional mean-error threshold.
     Diff(cli::diff::DiffArgs),
     /// Path-trace a scene file (TOML) into a PNG and an HDR EXR.
     Render(cli::render::RenderArgs),
@@ -44,7 +61,18 @@ enum Command {
 }
 
 fn main() {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Usage errors exit with 1 like every other error (clap's own 2 is validation's).
+            let _ = e.print();
+            std::process::exit(if e.use_stderr() {
+                exit_status::ERROR
+            } else {
+                exit_status::SUCCESS
+            });
+        }
+    };
     env_logger::Builder::from_env(
         env_logger::Env::default().default_filter_or(if cli.verbose { "info" } else { "warn" }),
     )
@@ -52,6 +80,7 @@ fn main() {
     let global = cli::GlobalArgs {
         device: cli.device.clone(),
         verbose: cli.verbose,
+        validation: cli.validation,
         validation_logs: Default::default(),
     };
     let result = match cli.command {
@@ -65,10 +94,14 @@ fn main() {
     // Every device is dropped by now, so leak reports are in the logs.
     let validation_errors = global.report_validation();
     if let Err(e) = result {
+        if let Some(above) = e.downcast_ref::<cli::diff::AboveThreshold>() {
+            eprintln!("{above}");
+            std::process::exit(exit_status::ABOVE_THRESHOLD);
+        }
         eprintln!("error: {e:#}");
-        std::process::exit(1);
+        std::process::exit(exit_status::ERROR);
     }
     if validation_errors > 0 {
-        std::process::exit(2);
+        std::process::exit(exit_status::VALIDATION);
     }
 }

@@ -33,10 +33,10 @@ struct BenchRun {
 }
 
 impl BenchRun {
-    /// Runs `c` with `--out out` and the validation layer on; it must succeed and print every
-    /// one of `needles`.
+    /// Runs `c` with `--out-dir out` and the validation layer on; it must succeed and print
+    /// every one of `needles`.
     fn new(c: &mut Command, out: &std::path::Path, needles: &[&str]) -> BenchRun {
-        let (ok, stdout, err) = run(c.arg("--out").arg(out).env("LAZYSOLID_VALIDATION", "1"));
+        let (ok, stdout, err) = run(c.arg("--out-dir").arg(out).env("LAZYSOLID_VALIDATION", "1"));
         assert!(ok, "{err}");
         for needle in needles {
             assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
@@ -59,6 +59,28 @@ impl BenchRun {
     /// The JSON file, parsed.
     fn json(&self) -> serde_json::Value {
         serde_json::from_str(&std::fs::read_to_string(self.file("json")).unwrap()).unwrap()
+    }
+
+    /// The CSV file: its header and its records, each checked to have the header's length
+    /// (fields holding commas are quoted).
+    fn csv(&self) -> (csv::StringRecord, Vec<csv::StringRecord>) {
+        let mut reader = csv::Reader::from_path(self.file("csv")).unwrap();
+        let header = reader.headers().unwrap().clone();
+        let records: Vec<csv::StringRecord> = reader.records().map(|r| r.unwrap()).collect();
+        for r in &records {
+            assert_eq!(r.len(), header.len(), "{r:?} against {header:?}");
+        }
+        (header, records)
+    }
+
+    /// The values of column `name` in every record.
+    fn column(&self, name: &str) -> Vec<String> {
+        let (header, records) = self.csv();
+        let i = header
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("no column {name} in {header:?}"));
+        records.iter().map(|r| r[i].to_string()).collect()
     }
 
     /// The figures folder.
@@ -123,6 +145,16 @@ fn missing_validation_layer_is_a_clear_error() {
         "{err}"
     );
     assert!(!err.contains("panicked"), "{err}");
+    // --validation asks for the layer as LAZYSOLID_VALIDATION=1 does.
+    let (ok, _, err) = run(lazysolid()
+        .args(["--validation", "bench", "prims", "--quick"])
+        .env("VK_LAYER_PATH", empty.path())
+        .env("VK_ADD_LAYER_PATH", empty.path()));
+    assert!(
+        !ok && err.contains("VK_LAYER_KHRONOS_validation is not installed")
+            && err.contains("--validation is given"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -162,23 +194,34 @@ fn bench_prims_writes_its_table_and_files() {
     );
     let files = &bench.entries;
     assert_eq!(files.len(), 2, "no partial files left: {files:?}");
-    let csv = std::fs::read_to_string(bench.file("csv")).unwrap();
-    assert!(
-        csv.starts_with("# {")
-            && csv.contains("\"device\"")
-            && csv.contains("\"git_revision\"")
-            && csv.contains("\"date_utc\""),
-        "{csv}"
-    );
-    assert_eq!(
-        csv.lines().filter(|l| !l.starts_with('#')).count(),
-        1 + 14,
-        "header + 14 rows:\n{csv}"
-    );
+    let (header, records) = bench.csv();
+    for column in [
+        "suite", "date_utc", "revision", "device", "case", "builder", "ratio",
+    ] {
+        assert!(header.iter().any(|h| h == column), "{column}: {header:?}");
+    }
+    assert_eq!(records.len(), 14);
     let json = bench.json();
     assert!(json["run"]["driver"]
         .as_str()
         .is_some_and(|d| !d.is_empty()));
+    // One timestamp for the run: in the JSON, every CSV row and both file names.
+    let date = json["run"]["date_utc"].as_str().unwrap().to_string();
+    assert!(
+        bench.column("date_utc").iter().all(|d| *d == date),
+        "{date}"
+    );
+    let stamp: String = date.chars().filter(char::is_ascii_digit).collect();
+    let (day, time) = stamp.split_at(8);
+    for ext in ["csv", "json"] {
+        let name = bench
+            .file(ext)
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        assert_eq!(name, format!("bench-prims-{day}-{time}.{ext}"));
+    }
     assert_eq!(json["rows"].as_array().unwrap().len(), 14);
     assert!(
         json["rows"][0]["stats"]["samples_ms"]
@@ -211,9 +254,9 @@ fn bench_hash_writes_tables_files_and_figures() {
             .args([
                 "bench",
                 "hash",
-                "--image-size",
-                "256",
-                "--voxel-resolution",
+                "--image-res",
+                "256x256",
+                "--voxel-res",
                 "32",
                 "--random-keys",
                 "4096",
@@ -238,7 +281,19 @@ fn bench_hash_writes_tables_files_and_figures() {
             "target: image lf 0.85 sorted queries coherent / random",
         ],
     );
-    bench.file("csv");
+    // A name with commas ("hashbrown (cpu, 2 threads)") is one quoted field: every record has
+    // the header's length (checked by csv()) and the name reads back whole.
+    let implementations = bench.column("implementation");
+    assert!(
+        implementations
+            .iter()
+            .any(|i| i == "hashbrown (cpu, 2 threads)"),
+        "{implementations:?}"
+    );
+    assert!(bench
+        .column("ratio")
+        .iter()
+        .any(|r| r.parse::<f64>().is_ok()));
     bench.file("json");
     let names = bench.figure_names();
     for f in [
@@ -268,12 +323,20 @@ fn bench_hash_refuses_bad_load_factors_and_missing_meshes() {
     );
     let (ok, _, err) = run(lazysolid().args(["bench", "hash", "--datasets", "image,fish"]));
     assert!(
-        !ok && err.contains("--datasets: unknown dataset \"fish\""),
+        !ok && err.contains("'fish'")
+            && err.contains("--datasets")
+            && err.contains("[possible values: random-2d, image, voxels]"),
         "{err}"
     );
     let (ok, _, err) = run(lazysolid().args(["bench", "hash", "--schemes", "linear"]));
     assert!(
-        !ok && err.contains("--schemes: unknown scheme \"linear\""),
+        !ok && err.contains("'linear'")
+            && err.contains("[possible values: coherent, random, cuckoo]"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid().args(["bench", "hash", "--image-res", "256x128"]));
+    assert!(
+        !ok && err.contains("--image-res 256x128") && err.contains("square"),
         "{err}"
     );
 }
@@ -353,7 +416,8 @@ fn diff_max_mean_sets_the_exit_status() {
         .args(["--max-mean", "0.0001"])
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(1));
+    // Its own status: 3, apart from errors (1) and validation errors (2).
+    assert_eq!(out.status.code(), Some(3));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("is above --max-mean 0.0001") && err.contains("test.png"),
@@ -362,12 +426,28 @@ fn diff_max_mean_sets_the_exit_status() {
     // The statistics are still printed before the verdict.
     assert!(String::from_utf8_lossy(&out.stdout).contains("FLIP mean"));
 
-    let (ok, _, err) = run(lazysolid()
+    let out = lazysolid()
         .arg("diff")
         .arg(&r)
         .arg(&t)
-        .args(["--max-mean", "-1"]));
-    assert!(!ok && err.contains("outside 0..1"), "{err}");
+        .args(["--max-mean", "-1"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("outside 0..1"), "{err}");
+    assert_eq!(out.status.code(), Some(1), "a bad argument is an error");
+    // A missing image is an error too, not a failed comparison.
+    let out = lazysolid()
+        .arg("diff")
+        .arg(&r)
+        .arg(r.with_file_name("nowhere.png"))
+        .args(["--max-mean", "0.5"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    // `--help` documents the statuses.
+    let (ok, help, _) = run(lazysolid().arg("--help"));
+    assert!(ok && help.contains("Exit status:") && help.contains("3 `diff --max-mean`"));
 }
 
 #[test]
@@ -444,7 +524,10 @@ fn render_refuses_bad_scenes_and_arguments() {
         .arg("-o")
         .arg(&png)
         .args(["--res", "40by30"]));
-    assert!(!ok && err.contains("WIDTHxHEIGHT"), "{err}");
+    assert!(
+        !ok && err.contains("WxH") && err.contains("40by30"),
+        "{err}"
+    );
     let (ok, _, err) = run(lazysolid()
         .arg("render")
         .arg(dir.path().join("missing.toml"))
@@ -463,14 +546,16 @@ fn synth_writes_texture_and_coordinate_map_with_metrics() {
     );
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("terra.png");
+    // The exemplar by its asset name, from a folder outside the repository.
     let (ok, stdout, err) = run(lazysolid()
+        .current_dir(dir.path())
         .arg("synth")
-        .arg(&exemplar)
-        .args(["--size", "48x32", "--offset", "-70,5", "--seed", "4"])
-        .args(["--energy-samples", "64", "-o"])
-        .arg(&out)
+        .arg("terra")
+        .args(["--res", "48x32", "--offset", "-70,5", "--seed", "4"])
+        .args(["--energy-samples", "64", "-o", "terra.png"])
         .env("LAZYSOLID_VALIDATION", "1"));
     assert!(ok, "{err}");
+    assert!(stdout.contains("terra.pat"), "{stdout}");
     for needle in [
         "synthesis (GPU)",
         "neighbourhood energy",
@@ -513,7 +598,7 @@ fn bench_synth_writes_its_tables_files_and_images() {
     let out = tempfile::tempdir().unwrap();
     let bench = BenchRun::new(
         lazysolid()
-            .args(["bench", "synth", "--exemplars", "leather", "--sizes", "64"])
+            .args(["bench", "synth", "--exemplars", "leather", "--res", "64x64"])
             .args(["--energy-samples", "256", "--runs", "1", "--warmup", "0"])
             .args(["--quality-seeds", "2"])
             .arg("--exemplar-dir")
@@ -531,14 +616,8 @@ fn bench_synth_writes_its_tables_files_and_images() {
             "target leather 64x64 -> 64x64: >= 20x faster",
         ],
     );
-    // Header comment, column names, the analysis row and four rows of the one case.
-    assert_eq!(
-        std::fs::read_to_string(bench.file("csv"))
-            .unwrap()
-            .lines()
-            .count(),
-        2 + 1 + 4
-    );
+    // The analysis row and four rows of the one case.
+    assert_eq!(bench.csv().1.len(), 1 + 4);
     let json = bench.json();
     let derived = &json["derived"];
     for key in [
@@ -581,9 +660,14 @@ fn bench_synth_writes_its_tables_files_and_images() {
 
 #[test]
 fn bench_synth_refuses_missing_exemplars_and_bad_sizes() {
-    let (ok, _, err) = run(lazysolid().args(["bench", "synth", "--sizes", "4"]));
+    let (ok, _, err) = run(lazysolid().args(["bench", "synth", "--res", "4"]));
     assert!(
-        !ok && err.contains("--sizes 4 is out of range (7..=2048)"),
+        !ok && err.contains("--res 4x4 is out of range (7..=2048 per side)"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid().args(["bench", "synth", "--res", "64x32"]));
+    assert!(
+        !ok && err.contains("--res 64x32") && err.contains("square"),
         "{err}"
     );
     let (ok, _, err) = run(lazysolid().args(["bench", "synth", "--quality-seeds", "0"]));
@@ -610,7 +694,7 @@ fn bench_textures_writes_the_table_pictures_and_files() {
     let out = tempfile::tempdir().unwrap();
     let bench = BenchRun::new(
         lazysolid()
-            .args(["bench", "textures", "--res", "64", "--view", "64"])
+            .args(["bench", "textures", "--voxel-res", "64", "--res", "64x64"])
             .args(["--runs", "1", "--warmup", "0", "--mesh"])
             .arg(repo("assets/meshes/bunny00.off")),
         out.path(),
@@ -626,6 +710,24 @@ fn bench_textures_writes_the_table_pictures_and_files() {
         ],
     );
     let json = bench.json();
+    // --builder auto: the perfect hash (texel layout) is built on the host on a CPU device,
+    // on the GPU otherwise; the blocked layout always on the host; other rows name none.
+    let auto = if json["run"]["device_type"] == "cpu" {
+        "cpu"
+    } else {
+        "gpu"
+    };
+    for row in json["rows"].as_array().unwrap() {
+        let implementation = row["implementation"].as_str().unwrap();
+        let expected = if implementation.starts_with("perfect hash blocked") {
+            Some("cpu")
+        } else if implementation.starts_with("perfect hash") {
+            Some(auto)
+        } else {
+            None
+        };
+        assert_eq!(row["builder"].as_str(), expected, "{implementation}");
+    }
     let derived = json["derived"].as_object().unwrap();
     let seen = derived["viewpoint surface points"].as_f64().unwrap();
     assert!(seen > 500.0, "{seen}");
@@ -689,20 +791,26 @@ fn bench_textures_writes_the_table_pictures_and_files() {
 
 #[test]
 fn bench_textures_refuses_bad_resolutions_views_and_meshes() {
-    let (ok, _, err) = run(lazysolid().args(["bench", "textures", "--view", "8"]));
+    let (ok, _, err) = run(lazysolid().args(["bench", "textures", "--res", "8x8"]));
     assert!(
-        !ok && err.contains("--view 8 is out of range (16..=4096)"),
+        !ok && err.contains("--res 8x8 is out of range (16..=4096 per side)"),
         "{err}"
     );
     let (ok, _, err) = run(lazysolid().args(["bench", "textures", "--mesh", "/no/such/mesh.off"]));
     assert!(!ok && err.contains("/no/such/mesh.off"), "{err}");
     let (ok, _, err) = run(lazysolid()
-        .args(["bench", "textures", "--res", "100000", "--mesh"])
+        .args(["bench", "textures", "--voxel-res", "100000", "--mesh"])
         .arg(repo("assets/meshes/cube.off")));
     assert!(!ok && err.contains("100000"), "{err}");
     let (ok, _, err) = run(lazysolid()
         .args([
-            "bench", "textures", "--res", "64", "--octree", "8.4", "--mesh",
+            "bench",
+            "textures",
+            "--voxel-res",
+            "64",
+            "--octree",
+            "8.4",
+            "--mesh",
         ])
         .arg(repo("assets/meshes/cube.off")));
     assert!(!ok && err.contains("--octree \"8.4\""), "{err}");
@@ -715,8 +823,7 @@ fn bench_psh_writes_its_table_files_and_figures() {
     let bench = BenchRun::new(
         lazysolid()
             .args(["bench", "psh", "--quick", "--runs", "1", "--warmup", "0"])
-            .arg("--mesh")
-            .arg(repo("assets/meshes/armadillo.off")),
+            .args(["--builder", "gpu", "--mesh", "armadillo"]),
         out.path(),
         &[
             "random-2d build",
@@ -729,6 +836,17 @@ fn bench_psh_writes_its_table_files_and_figures() {
         ],
     );
     let json = bench.json();
+    // Each build row names its construction; the perfect hash's queries read the table of
+    // --builder gpu; the other structures name none.
+    for row in json["rows"].as_array().unwrap() {
+        let expected = match row["implementation"].as_str().unwrap() {
+            "cpu reference (1 thread)" => Some("cpu"),
+            "gpu construction" | "perfect hash (gpu)" => Some("gpu"),
+            _ => None,
+        };
+        assert_eq!(row["builder"].as_str(), expected, "{row}");
+    }
+    assert!(bench.column("builder").iter().any(|b| b == "gpu"));
     let derived = &json["derived"];
     // The GPU construction ends at the CPU reference's sizes on every dataset.
     for set in ["random-2d", "image", "voxels-128"] {
@@ -753,6 +871,321 @@ fn bench_psh_writes_its_table_files_and_figures() {
     ] {
         assert!(figures.join(f).exists(), "missing {f}");
     }
+}
+
+/// The revision `lazysolid --version` reports: the one its result files record.
+fn version_revision() -> String {
+    let (ok, version, err) = run(lazysolid().arg("--version"));
+    assert!(ok, "{err}");
+    version
+        .split("(revision ")
+        .nth(1)
+        .and_then(|r| r.trim().strip_suffix(')'))
+        .unwrap_or_else(|| panic!("no revision in {version:?}"))
+        .to_string()
+}
+
+#[test]
+fn the_version_is_the_build_revision_of_the_checkout() {
+    let revision = version_revision();
+    let head = Command::new("git")
+        .args(["rev-parse", "--short=12", "HEAD"])
+        .current_dir(repo("."))
+        .output();
+    match head {
+        Ok(out) if out.status.success() => {
+            let head = String::from_utf8_lossy(&out.stdout).trim().to_string();
+            assert!(
+                revision == head || revision == format!("{head}-dirty"),
+                "{revision} against HEAD {head}"
+            );
+        }
+        // Not a git checkout: the build says so rather than guessing.
+        _ => assert_eq!(revision, "unknown"),
+    }
+}
+
+#[test]
+fn bench_results_record_the_revision_once_per_row() {
+    let out = tempfile::tempdir().unwrap();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args(["bench", "prims", "--quick", "--scan-elements", "4096"])
+            .args(["--sort-elements", "1024", "--runs", "1", "--warmup", "0"]),
+        out.path(),
+        &[],
+    );
+    let revision = version_revision();
+    assert_eq!(bench.json()["run"]["revision"], revision.as_str());
+    let column = bench.column("revision");
+    assert!(
+        !column.is_empty() && column.iter().all(|r| *r == revision),
+        "{column:?}"
+    );
+    assert!(bench.stdout.contains(&format!("revision {revision}")));
+}
+
+/// The help of the tool and of every subcommand.
+fn every_help() -> Vec<(String, String)> {
+    let commands: [&[&str]; 11] = [
+        &[],
+        &["device"],
+        &["diff"],
+        &["render"],
+        &["synth"],
+        &["bench", "prims"],
+        &["bench", "hash"],
+        &["bench", "psh"],
+        &["bench", "trace"],
+        &["bench", "synth"],
+        &["bench", "textures"],
+    ];
+    commands
+        .iter()
+        .map(|c| {
+            let (ok, help, err) = run(lazysolid().args(*c).arg("--help"));
+            assert!(ok, "{c:?}: {err}");
+            (c.join(" "), help)
+        })
+        .collect()
+}
+
+#[test]
+fn every_help_uses_one_word_and_one_value_form_per_thing() {
+    // Flag → value name, over every subcommand: one form per flag.
+    let mut forms: std::collections::BTreeMap<String, std::collections::BTreeSet<String>> =
+        Default::default();
+    for (command, help) in every_help() {
+        for line in help.lines() {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            for (i, w) in words.iter().enumerate() {
+                let flag = w.trim_end_matches(',');
+                if flag.starts_with("--") && flag.len() > 2 {
+                    let value = words
+                        .get(i + 1)
+                        .filter(|v| v.starts_with('<'))
+                        .map_or("(switch)", |v| v);
+                    forms
+                        .entry(flag.to_string())
+                        .or_default()
+                        .insert(value.to_string());
+                }
+            }
+        }
+        for old in [
+            "--view",
+            "--size ",
+            "--sizes",
+            "--voxel-resolution",
+            "--image-size",
+            "--blocked-resolution",
+            "--out <",
+        ] {
+            assert!(!help.contains(old), "`{command}` still says {old}:\n{help}");
+        }
+    }
+    for (flag, values) in &forms {
+        assert_eq!(values.len(), 1, "{flag} is written {values:?}");
+    }
+    let form = |flag: &str| forms[flag].iter().next().unwrap().clone();
+    assert_eq!(form("--res"), "<WxH>");
+    assert_eq!(form("--image-res"), "<WxH>");
+    assert_eq!(form("--voxel-res"), "<N>");
+    assert_eq!(form("--mesh"), "<NAME|PATH>");
+    assert_eq!(form("--exemplars"), "<NAME|PATH>");
+    assert_eq!(form("--out-dir"), "<DIR>");
+    assert_eq!(form("--builder"), "<BUILDER>");
+    assert_eq!(form("--validation"), "(switch)");
+}
+
+#[test]
+fn renamed_flags_are_refused_by_name() {
+    for (args, old) in [
+        (&["bench", "textures", "--view", "64"][..], "--view"),
+        (
+            &["bench", "hash", "--voxel-resolution", "32"],
+            "--voxel-resolution",
+        ),
+        (&["bench", "hash", "--image-size", "256"], "--image-size"),
+        (
+            &["bench", "psh", "--voxel-resolutions", "64"],
+            "--voxel-resolutions",
+        ),
+        (
+            &["bench", "psh", "--blocked-resolution", "64"],
+            "--blocked-resolution",
+        ),
+        (&["bench", "synth", "--sizes", "64"], "--sizes"),
+        (&["bench", "prims", "--out", "results"], "--out"),
+        (&["synth", "terra", "-o", "x.png", "--size", "64"], "--size"),
+    ] {
+        let out = lazysolid().args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains(&format!("unexpected argument '{old}'")),
+            "{args:?}: {err}"
+        );
+    }
+}
+
+#[test]
+fn meshes_are_found_by_name_from_any_folder() {
+    let elsewhere = tempfile::tempdir().unwrap();
+    let out = elsewhere.path().join("results");
+    let bench = BenchRun::new(
+        lazysolid()
+            .current_dir(elsewhere.path())
+            .args(["bench", "trace", "--mesh", "cube", "--res", "16x16"])
+            .args(["--runs", "1", "--warmup", "0"]),
+        &out,
+        &["primary rays", "gpu cwbvh two-level"],
+    );
+    // The cube of the assets: its 12 triangles.
+    let faces: f64 = std::fs::read_to_string(repo("assets/meshes/cube.off"))
+        .unwrap()
+        .lines()
+        .nth(1)
+        .and_then(|l| l.split_whitespace().nth(1)?.parse().ok())
+        .unwrap();
+    assert_eq!(bench.json()["derived"]["triangles"], faces);
+
+    // An unknown name lists the known ones and where it looked.
+    let (ok, _, err) = run(lazysolid()
+        .current_dir(elsewhere.path())
+        .args(["bench", "trace", "--mesh", "dragon"]));
+    assert!(
+        !ok && err.contains("--mesh dragon: no mesh named \"dragon\"")
+            && err.contains("armadillo")
+            && err.contains("bunny00"),
+        "{err}"
+    );
+
+    // LAZYSOLID_ASSETS comes first: a folder holding only `tiny` knows no cube.
+    let assets = elsewhere.path().join("my-assets");
+    std::fs::create_dir_all(assets.join("meshes")).unwrap();
+    std::fs::copy(
+        repo("assets/meshes/cube.off"),
+        assets.join("meshes/tiny.off"),
+    )
+    .unwrap();
+    let (ok, _, err) = run(lazysolid()
+        .env("LAZYSOLID_ASSETS", &assets)
+        .args(["bench", "trace", "--mesh", "cube"]));
+    assert!(
+        !ok && err.contains("known: tiny") && err.contains("my-assets"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid()
+        .env("LAZYSOLID_ASSETS", elsewhere.path().join("nowhere"))
+        .args(["bench", "trace", "--mesh", "cube"]));
+    assert!(
+        !ok && err.contains("LAZYSOLID_ASSETS=") && err.contains("nowhere"),
+        "{err}"
+    );
+}
+
+/// Runs `c` with `-v` (which announces the device as soon as one is created); it must fail
+/// within seconds, before any device exists, with an error that names every one of `needles`.
+fn fails_before_any_device(c: &mut Command, needles: &[&str]) {
+    let start = std::time::Instant::now();
+    let out = c
+        .arg("-v")
+        .env("LAZYSOLID_VALIDATION", "1")
+        .output()
+        .unwrap();
+    let seconds = start.elapsed().as_secs_f64();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    for needle in needles {
+        assert!(err.contains(needle), "missing {needle:?} in {err}");
+    }
+    assert!(!err.contains("device "), "a device was created: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(seconds < 10.0, "{seconds} s");
+}
+
+#[test]
+fn unwritable_outputs_fail_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = repo("scenes/test/interior.toml");
+    let missing = dir.path().join("no-such-folder").join("out.png");
+    let missing_text = missing.display().to_string();
+    fails_before_any_device(
+        lazysolid()
+            .arg("render")
+            .arg(&scene)
+            .arg("-o")
+            .arg(&missing),
+        &[&missing_text, "does not exist"],
+    );
+    // The EXR beside a writable PNG is checked too.
+    let exr = dir.path().join("no-such-folder").join("out.exr");
+    fails_before_any_device(
+        lazysolid()
+            .arg("render")
+            .arg(&scene)
+            .arg("-o")
+            .arg(dir.path().join("out.png"))
+            .arg("--exr")
+            .arg(&exr),
+        &["--exr", &exr.display().to_string()],
+    );
+    // A folder is not a file.
+    fails_before_any_device(
+        lazysolid()
+            .arg("render")
+            .arg(&scene)
+            .arg("-o")
+            .arg(dir.path()),
+        &["is a folder"],
+    );
+    fails_before_any_device(
+        lazysolid()
+            .arg("synth")
+            .arg("terra")
+            .arg("-o")
+            .arg(&missing),
+        &[&missing_text],
+    );
+    // A results folder below a file.
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "").unwrap();
+    fails_before_any_device(
+        lazysolid()
+            .args(["bench", "prims", "--quick", "--out-dir"])
+            .arg(file.join("results")),
+        &["--out-dir", "a-file", "is not a folder"],
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "nothing written"
+    );
+}
+
+#[test]
+fn bench_textures_refuses_store_and_filter_choices_that_measure_nothing() {
+    let (ok, _, err) = run(lazysolid().args([
+        "bench",
+        "textures",
+        "--stores",
+        "perfect-blocked",
+        "--filters",
+        "nearest",
+    ]));
+    assert!(!ok && err.contains("trilinear"), "{err}");
+    let (ok, _, err) = run(lazysolid().args(["bench", "textures", "--stores", "kd-tree"]));
+    assert!(
+        !ok && err.contains("'kd-tree'")
+            && err.contains("octree, hash, perfect, perfect-blocked, tiletree"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid().args(["bench", "psh", "--builder", "fpga"]));
+    assert!(
+        !ok && err.contains("'fpga'") && err.contains("auto, cpu, gpu"),
+        "{err}"
+    );
 }
 
 /// A `side`² PNG cut from the top-left of GIMP's terra pattern, in `dir`.

@@ -1,4 +1,5 @@
-//! Typed GPU buffers: one owner per `VkBuffer`, freed in `Drop`.
+//! Typed GPU buffers: one owner per `VkBuffer`, whose memory is freed once neither the buffer
+//! nor work recorded with it nor records pointing into it hold it.
 
 use super::context::{Gpu, GpuInner};
 use super::error::{GpuError, GpuResult, VkContext};
@@ -15,9 +16,7 @@ use std::sync::Arc;
 /// Uploads and readbacks are mapped copies when the memory is host-visible and coherent (always
 /// on lavapipe, whose one heap is host memory) and go through a staging buffer otherwise.
 pub struct GpuBuffer<T: Pod> {
-    gpu: Arc<GpuInner>,
-    raw: vk::Buffer,
-    allocation: Option<Allocation>,
+    memory: Arc<BufferMemory>,
     len: usize,
     physical_bytes: u64,
     address: u64,
@@ -25,9 +24,28 @@ pub struct GpuBuffer<T: Pod> {
     _element: PhantomData<T>,
 }
 
+/// The `VkBuffer` and memory of a [`GpuBuffer`], freed when the last holder lets go: the
+/// buffer itself, a [`Recorder`](super::Recorder) whose recorded work uses it, or a
+/// [`DeviceRecords`](super::DeviceRecords) that points into it.
+pub(crate) struct BufferMemory {
+    gpu: Arc<GpuInner>,
+    raw: vk::Buffer,
+    allocation: Option<Allocation>,
+}
+
+impl Drop for BufferMemory {
+    fn drop(&mut self) {
+        if let Some(a) = self.allocation.take() {
+            let _ = self.gpu.allocator.lock().unwrap().free(a);
+        }
+        unsafe { self.gpu.device.destroy_buffer(self.raw, None) };
+    }
+}
+
 /// A buffer as seen by a dispatch: handle, size and name, with the element type erased.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy)]
 pub struct BufferArg<'a> {
+    pub(crate) memory: &'a Arc<BufferMemory>,
     pub(crate) raw: vk::Buffer,
     pub(crate) offset: u64,
     pub(crate) bytes: u64,
@@ -120,9 +138,11 @@ impl<T: Pod> GpuBuffer<T> {
         };
         inner.set_name(raw, &name);
         Ok(GpuBuffer {
-            gpu: inner,
-            raw,
-            allocation: Some(allocation),
+            memory: Arc::new(BufferMemory {
+                gpu: inner,
+                raw,
+                allocation: Some(allocation),
+            }),
             len,
             physical_bytes: bytes,
             address,
@@ -142,7 +162,7 @@ impl<T: Pod> GpuBuffer<T> {
     pub fn zeroed(gpu: &Gpu, name: impl Into<String>, len: usize) -> GpuResult<Self> {
         let buffer = Self::new(gpu, name, len)?;
         let g = Gpu {
-            inner: buffer.gpu.clone(),
+            inner: buffer.memory.gpu.clone(),
         };
         g.submit(|rec| {
             rec.fill(&buffer, 0);
@@ -166,9 +186,9 @@ impl<T: Pod> GpuBuffer<T> {
         (self.len * size_of::<T>()) as u64
     }
 
-    /// Device address of the first element, for kernels that address memory through
-    /// `GL_EXT_buffer_reference` (no 128 MiB binding limit applies there).
-    pub fn address(&self) -> u64 {
+    /// The number behind [`GpuBuffer::address`]; only `DeviceAddress` hands it out, with a
+    /// borrow of the buffer.
+    pub(super) fn raw_address(&self) -> u64 {
         self.address
     }
 
@@ -179,13 +199,19 @@ impl<T: Pod> GpuBuffer<T> {
 
     /// The raw handle, for calls the core does not wrap.
     pub fn raw(&self) -> vk::Buffer {
-        self.raw
+        self.memory.raw
+    }
+
+    /// The shared memory, for holders that must keep it alive (recorded work, records).
+    pub(crate) fn memory(&self) -> &Arc<BufferMemory> {
+        &self.memory
     }
 
     /// This buffer as a dispatch argument.
     pub fn arg(&self) -> BufferArg<'_> {
         BufferArg {
-            raw: self.raw,
+            memory: &self.memory,
+            raw: self.memory.raw,
             offset: 0,
             bytes: self
                 .bytes()
@@ -210,7 +236,12 @@ impl<T: Pod> GpuBuffer<T> {
             )));
         }
         let offset = (first * size_of::<T>()) as u64;
-        let align = self.gpu.info.min_storage_buffer_offset_alignment.max(1);
+        let align = self
+            .memory
+            .gpu
+            .info
+            .min_storage_buffer_offset_alignment
+            .max(1);
         if offset % align != 0 {
             return Err(GpuError::InvalidArgument(format!(
                 "buffer {:?}: binding offset {offset} bytes is not a multiple of minStorageBufferOffsetAlignment = {align}",
@@ -221,7 +252,8 @@ impl<T: Pod> GpuBuffer<T> {
             .next_multiple_of(16)
             .min(self.physical_bytes - offset);
         Ok(BufferArg {
-            raw: self.raw,
+            memory: &self.memory,
+            raw: self.memory.raw,
             offset,
             bytes,
             name: &self.name,
@@ -229,7 +261,7 @@ impl<T: Pod> GpuBuffer<T> {
     }
 
     fn mapped(&self) -> Option<*mut u8> {
-        let a = self.allocation.as_ref()?;
+        let a = self.memory.allocation.as_ref()?;
         let coherent = a
             .memory_properties()
             .contains(vk::MemoryPropertyFlags::HOST_COHERENT);
@@ -269,7 +301,7 @@ impl<T: Pod> GpuBuffer<T> {
             return Ok(());
         }
         let gpu = Gpu {
-            inner: self.gpu.clone(),
+            inner: self.memory.gpu.clone(),
         };
         let staging = Staging::new(
             &gpu,
@@ -281,7 +313,7 @@ impl<T: Pod> GpuBuffer<T> {
             .slice_mut()
             .copy_from_slice(bytemuck::cast_slice(data));
         gpu.submit(|rec| {
-            rec.copy_raw(staging.raw, 0, self.raw, byte_offset, staging.bytes);
+            rec.copy_raw(staging.raw, 0, self.memory.raw, byte_offset, staging.bytes);
             Ok(())
         })
     }
@@ -311,7 +343,7 @@ impl<T: Pod> GpuBuffer<T> {
             return Ok(out);
         }
         let gpu = Gpu {
-            inner: self.gpu.clone(),
+            inner: self.memory.gpu.clone(),
         };
         let staging = Staging::new(
             &gpu,
@@ -320,20 +352,11 @@ impl<T: Pod> GpuBuffer<T> {
             MemoryLocation::GpuToCpu,
         )?;
         gpu.submit(|rec| {
-            rec.copy_raw(self.raw, byte_offset, staging.raw, 0, staging.bytes);
+            rec.copy_raw(self.memory.raw, byte_offset, staging.raw, 0, staging.bytes);
             Ok(())
         })?;
         dst.copy_from_slice(staging.slice_mut());
         Ok(out)
-    }
-}
-
-impl<T: Pod> Drop for GpuBuffer<T> {
-    fn drop(&mut self) {
-        if let Some(a) = self.allocation.take() {
-            let _ = self.gpu.allocator.lock().unwrap().free(a);
-        }
-        unsafe { self.gpu.device.destroy_buffer(self.raw, None) };
     }
 }
 

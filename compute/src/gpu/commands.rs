@@ -4,7 +4,11 @@
 use super::buffer::{BufferArg, GpuBuffer};
 use super::context::{Gpu, GpuInner};
 use super::error::{GpuError, GpuResult, VkContext};
+use super::keep_alive::KeepAlive;
 use super::kernel::{BindingKind, Kernel};
+#[cfg(debug_assertions)]
+use super::push::check_push_block;
+use super::push::{push_bytes, PushBlock};
 use ash::vk;
 use bytemuck::Pod;
 
@@ -12,13 +16,16 @@ use bytemuck::Pod;
 pub const MAX_TIMESTAMPS: u32 = 256;
 
 /// Records commands into one command buffer. Every command that follows a write is preceded
-/// by a memory barrier, so consecutive dispatches always see each other's results.
+/// by a memory barrier, so consecutive dispatches always see each other's results. The
+/// recorder holds the memory of every buffer its commands use (bound, addressed from a push
+/// block, filled or copied) until the submission has completed.
 pub struct Recorder<'g> {
     gpu: &'g GpuInner,
     cmd: vk::CommandBuffer,
     pending_write: bool,
     queries: vk::QueryPool,
     timestamps: u32,
+    used: KeepAlive,
 }
 
 impl Gpu {
@@ -70,6 +77,7 @@ impl Gpu {
             pending_write: false,
             queries: vk::QueryPool::null(),
             timestamps: 0,
+            used: KeepAlive::default(),
         };
         let result = record(&mut rec);
         guard.queries = rec.queries;
@@ -195,10 +203,12 @@ impl Recorder<'_> {
     /// and push constants `push`.
     ///
     /// # Errors
-    /// [`GpuError::KernelInterface`] when a binding is missing, unknown or repeated, or when
-    /// `P`'s size differs from the GLSL push-constant block; [`GpuError::OverLimit`] when a
-    /// buffer is larger than `maxStorageBufferRange` (large data goes through device addresses).
-    pub fn dispatch<P: Pod>(
+    /// [`GpuError::KernelInterface`] when a binding is missing, unknown or repeated, when
+    /// `P`'s size differs from the GLSL push-constant block, or (in debug builds) when a field
+    /// of `P` differs from its GLSL member in name, offset or type; [`GpuError::OverLimit`]
+    /// when a buffer is larger than `maxStorageBufferRange` (large data goes through device
+    /// addresses).
+    pub fn dispatch<P: PushBlock>(
         &mut self,
         kernel: &Kernel,
         groups: [u32; 3],
@@ -206,7 +216,7 @@ impl Recorder<'_> {
         push: &P,
     ) -> GpuResult<()> {
         let def = kernel.def;
-        let push_bytes: &[u8] = bytemuck::bytes_of(push);
+        let push_bytes = push_bytes(push);
         if push_bytes.len() as u32 != def.push_constant_bytes {
             return Err(GpuError::KernelInterface {
                 kernel: def.name,
@@ -217,6 +227,11 @@ impl Recorder<'_> {
                 ),
             });
         }
+        #[cfg(debug_assertions)]
+        check_push_block::<P>(def).map_err(|problem| GpuError::KernelInterface {
+            kernel: def.name,
+            problem,
+        })?;
         let range_limit = self.gpu.info.max_storage_buffer_range;
         let mut infos = Vec::with_capacity(def.bindings.len());
         for (name, _) in bindings {
@@ -279,6 +294,10 @@ impl Recorder<'_> {
         if groups.contains(&0) {
             return Ok(());
         }
+        push.keep_alive(&mut self.used);
+        for (_, arg) in bindings {
+            self.used.hold(arg.memory);
+        }
         self.settle();
         let d = &self.gpu.device;
         unsafe {
@@ -298,7 +317,7 @@ impl Recorder<'_> {
                     kernel.pipeline_layout,
                     vk::ShaderStageFlags::COMPUTE,
                     0,
-                    push_bytes,
+                    &push_bytes,
                 );
             }
             d.cmd_dispatch(self.cmd, groups[0], groups[1], groups[2]);
@@ -309,6 +328,7 @@ impl Recorder<'_> {
 
     /// Fills the whole buffer with copies of the 32-bit `word`.
     pub fn fill<T: Pod>(&mut self, buffer: &GpuBuffer<T>, word: u32) {
+        self.used.hold(buffer.memory());
         self.fill_raw(buffer.raw(), 0, buffer.bytes() & !3, word);
     }
 
@@ -344,6 +364,8 @@ impl Recorder<'_> {
             )));
         }
         let e = size_of::<T>() as u64;
+        self.used.hold(src.memory());
+        self.used.hold(dst.memory());
         self.copy_raw(
             src.raw(),
             src_offset as u64 * e,
@@ -352,6 +374,19 @@ impl Recorder<'_> {
             count as u64 * e,
         );
         Ok(())
+    }
+
+    /// Copies the first `bytes` bytes of `src` to the start of `dst`, whatever their element
+    /// types.
+    pub(crate) fn copy_bytes<A: Pod, B: Pod>(
+        &mut self,
+        src: &GpuBuffer<A>,
+        dst: &GpuBuffer<B>,
+        bytes: u64,
+    ) {
+        self.used.hold(src.memory());
+        self.used.hold(dst.memory());
+        self.copy_raw(src.raw(), 0, dst.raw(), 0, bytes);
     }
 
     pub(crate) fn copy_raw(

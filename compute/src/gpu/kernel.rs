@@ -38,6 +38,9 @@ pub struct KernelDef {
     pub bindings: &'static [BindingDef],
     /// Size of the push-constant block in bytes (0 when there is none).
     pub push_constant_bytes: u32,
+    /// Leaf members of the push-constant block in declaration order (nested structs
+    /// flattened into dotted names), which host blocks are checked against.
+    pub push_fields: &'static [super::PushFieldDef],
 }
 
 /// Specialization constant id that every kernel uses for its workgroup width

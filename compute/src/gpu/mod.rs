@@ -8,18 +8,29 @@
 //! # Ok::<(), lazysolid_compute::gpu::GpuError>(())
 //! ```
 
+mod address;
 mod buffer;
 mod commands;
 mod context;
 mod device_info;
 mod error;
+mod keep_alive;
 mod kernel;
+mod push;
+mod records;
 mod validation;
 
+pub use address::DeviceAddress;
 pub use buffer::{BufferArg, GpuBuffer};
 pub use commands::{Recorder, MAX_TIMESTAMPS};
 pub use context::{Gpu, GpuOptions, Validation, WeakGpu, DEVICE_ENV, VALIDATION_ENV};
 pub use device_info::DeviceInfo;
 pub use error::{GpuError, GpuResult};
+pub use keep_alive::KeepAlive;
 pub use kernel::{BindingDef, BindingKind, Kernel, KernelDef, WORKGROUP_SIZE_ID};
+pub use push::{
+    align_up, check_fields, check_push_block, host_fields, push_bytes, HostField, PushBlock,
+    PushFieldDef, PushRegistration, PushValue,
+};
+pub use records::DeviceRecords;
 pub use validation::{ValidationLog, VALIDATION_LAYER};

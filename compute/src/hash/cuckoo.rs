@@ -8,9 +8,8 @@ use super::kernels::HashKernels;
 use super::keys::Universe;
 use super::robin_hood::table_size_for;
 use super::validate::validate_entries;
-use crate::gpu::{GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 use crate::shader_constants::HASH_NOT_FOUND;
-use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
 
 /// How a cuckoo table is built.
@@ -43,30 +42,32 @@ pub fn max_iterations(n: usize) -> u32 {
     (7 * (usize::BITS - n.max(1).leading_zeros())).max(32)
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct InsertPush {
-    cells: u64,
-    keys: u64,
-    payloads: u64,
-    counters: u64,
-    a: [u32; 4],
-    b: [u32; 4],
-    n: u32,
-    table_size: u32,
-    max_iterations: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct InsertPush<'a> {
+        cells: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        payloads: DeviceAddress<'a>,
+        counters: DeviceAddress<'a>,
+        a: [u32; 4],
+        b: [u32; 4],
+        n: u32,
+        table_size: u32,
+        max_iterations: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct QueryPush {
-    cells: u64,
-    keys: u64,
-    results: u64,
-    a: [u32; 4],
-    b: [u32; 4],
-    n: u32,
-    table_size: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct QueryPush<'a> {
+        cells: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        a: [u32; 4],
+        b: [u32; 4],
+        n: u32,
+        table_size: u32,
+    }
 }
 
 /// A cuckoo hash table on the GPU. Keys must be below 2³² − 1.

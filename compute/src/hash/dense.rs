@@ -4,27 +4,28 @@
 use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
-use crate::gpu::{GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 use crate::shader_constants::HASH_NOT_FOUND;
-use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct ScatterPush {
-    dense: u64,
-    keys: u64,
-    payloads: u64,
-    n: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ScatterPush<'a> {
+        dense: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        payloads: DeviceAddress<'a>,
+        n: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct QueryPush {
-    dense: u64,
-    keys: u64,
-    results: u64,
-    n: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct QueryPush<'a> {
+        dense: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+    }
 }
 
 /// A dense array over a universe.

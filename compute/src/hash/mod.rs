@@ -13,18 +13,18 @@
 //! table and the limits are described in `docs/hashing.md`.
 
 mod cell;
-mod cuckoo;
+pub(crate) mod cuckoo;
 mod cuckoo_cpu;
-mod dense;
+pub(crate) mod dense;
 mod error;
 mod kernels;
 mod keys;
-mod open_addressing;
+pub(crate) mod open_addressing;
 pub mod perfect;
 mod probe;
-mod robin_hood;
+pub(crate) mod robin_hood;
 mod robin_hood_cpu;
-mod validate;
+pub(crate) mod validate;
 
 pub use cell::{CellFormat, CellWidth};
 pub use cuckoo::{max_iterations as cuckoo_max_iterations, CuckooConfig, CuckooTable};

@@ -4,20 +4,20 @@
 
 use super::kernels::HashKernels;
 use super::probe::Probe;
-use crate::gpu::{GpuBuffer, GpuResult};
-use bytemuck::{Pod, Zeroable};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct AgesPush {
-    cells: u64,
-    fastmod_m: u64,
-    keys: u64,
-    ages: u64,
-    n: u32,
-    table_size: u32,
-    probe: u32,
-    max_age: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct AgesPush<'a> {
+        cells: DeviceAddress<'a>,
+        fastmod_m: u64,
+        keys: DeviceAddress<'a>,
+        ages: DeviceAddress<'a>,
+        n: u32,
+        table_size: u32,
+        probe: u32,
+        max_age: u32,
+    }
 }
 
 /// Inserts `keys` into `table_size` empty cells without Robin Hood and returns each key's age

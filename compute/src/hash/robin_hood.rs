@@ -7,10 +7,9 @@ use super::kernels::HashKernels;
 use super::keys::Universe;
 use super::probe::{fastmod_multiplier, Probe};
 use super::validate::{validate_entries, validate_keys_gpu};
-use crate::gpu::{Gpu, GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::prims::ReduceOp;
 use crate::shader_constants::HASH_MAX_AGE;
-use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
 
 /// How a Robin Hood table is built and grown.
@@ -85,7 +84,7 @@ impl CellBuffer {
         })
     }
 
-    fn address(&self) -> u64 {
+    fn address(&self) -> DeviceAddress<'_> {
         match self {
             CellBuffer::Wide(b) => b.address(),
             CellBuffer::Compact(b) => b.address(),
@@ -122,54 +121,58 @@ impl CellBuffer {
     }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct InsertPush {
-    cells: u64,
-    fastmod_m: u64,
-    keys: u64,
-    payloads: u64,
-    counters: u64,
-    n: u32,
-    table_size: u32,
-    key_bits: u32,
-    probe: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct InsertPush<'a> {
+        cells: DeviceAddress<'a>,
+        fastmod_m: u64,
+        keys: DeviceAddress<'a>,
+        payloads: DeviceAddress<'a>,
+        counters: DeviceAddress<'a>,
+        n: u32,
+        table_size: u32,
+        key_bits: u32,
+        probe: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct MaxAgePush {
-    cells: u64,
-    fastmod_m: u64,
-    mat: u64,
-    histogram: u64,
-    table_size: u32,
-    key_bits: u32,
-    probe: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct MaxAgePush<'a> {
+        cells: DeviceAddress<'a>,
+        fastmod_m: u64,
+        mat: DeviceAddress<'a>,
+        histogram: DeviceAddress<'a>,
+        table_size: u32,
+        key_bits: u32,
+        probe: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct SetAgesPush {
-    cells: u64,
-    fastmod_m: u64,
-    mat: u64,
-    table_size: u32,
-    key_bits: u32,
-    probe: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct SetAgesPush<'a> {
+        cells: DeviceAddress<'a>,
+        fastmod_m: u64,
+        mat: DeviceAddress<'a>,
+        table_size: u32,
+        key_bits: u32,
+        probe: u32,
+        mode: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct QueryPush {
-    cells: u64,
-    fastmod_m: u64,
-    keys: u64,
-    results: u64,
-    n: u32,
-    table_size: u32,
-    key_bits: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct QueryPush<'a> {
+        cells: DeviceAddress<'a>,
+        fastmod_m: u64,
+        keys: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        table_size: u32,
+        key_bits: u32,
+    }
 }
 
 /// Cells for `keys` at `load_factor`: the smallest odd count with keys / cells ≤ load_factor.
@@ -367,7 +370,7 @@ impl RobinHoodTable {
             cells: self.cells.address(),
             fastmod_m: fastmod_multiplier(self.table_size),
             mat: mat.address(),
-            histogram: histogram.map_or(0, |h| h.address()),
+            histogram: histogram.map_or(DeviceAddress::NULL, GpuBuffer::address),
             table_size: self.table_size,
             key_bits: self.format.key_bits,
             probe: self.config.probe.id(),
@@ -613,7 +616,7 @@ impl RobinHoodTable {
     }
 
     /// Device address of the cells, for kernels that include `hash/robin_hood_lookup.glsl`.
-    pub fn cells_address(&self) -> u64 {
+    pub fn cells_address(&self) -> DeviceAddress<'_> {
         self.cells.address()
     }
 

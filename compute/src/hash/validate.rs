@@ -4,8 +4,7 @@
 use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
-use crate::gpu::{GpuBuffer, GpuResult};
-use bytemuck::{Pod, Zeroable};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
 
 /// What the check found: the largest key and the duplicates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,13 +53,14 @@ pub fn validate_keys_cpu(keys: &[u64]) -> KeyCheck {
     }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct CheckPush {
-    sorted: u64,
-    counters: u64,
-    key_count: u64,
-    n: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct CheckPush<'a> {
+        sorted: DeviceAddress<'a>,
+        counters: DeviceAddress<'a>,
+        key_count: u64,
+        n: u32,
+    }
 }
 
 /// Checks `keys[..n]` on the GPU: sorts a copy by the universe's key bits, then visits every

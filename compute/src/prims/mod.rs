@@ -13,7 +13,7 @@ mod radix_sort;
 mod reduce;
 mod scan;
 mod scratch;
-mod segments;
+pub(crate) mod segments;
 
 pub use compact::{compact_cpu, CompactOutput, Compactor, Keep, KeepCpu};
 pub use radix_sort::{sort_pairs_cpu, RadixSort};

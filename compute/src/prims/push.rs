@@ -1,70 +1,84 @@
-//! Push-constant blocks of the primitive kernels. Layouts follow GLSL's scalar layout: 64-bit
-//! fields first, so `packed(4)` reproduces the GLSL offsets; sizes are checked against the
-//! reflected blocks at every dispatch.
+//! Push-constant blocks of the primitive kernels (declared with `push_block!`, so their
+//! fields are checked against the reflected GLSL blocks).
 
-use bytemuck::{Pod, Zeroable};
+use crate::gpu::DeviceAddress;
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C)]
-pub(crate) struct CompactCountPush {
-    pub n: u32,
-    pub seg_len: u32,
-    pub first_segment: u32,
-    pub mode: u32,
-    pub sentinel: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct CompactCountPush {
+        pub n: u32,
+        pub seg_len: u32,
+        pub first_segment: u32,
+        pub mode: u32,
+        pub sentinel: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub(crate) struct CompactWritePush {
-    pub dst: u64,
-    pub trash: u64,
-    pub n: u32,
-    pub seg_len: u32,
-    pub first_segment: u32,
-    pub first_index: u32,
-    pub mode: u32,
-    pub sentinel: u32,
-    pub write_indices: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct CompactWritePush<'a> {
+        pub dst: DeviceAddress<'a>,
+        pub trash: DeviceAddress<'a>,
+        pub n: u32,
+        pub seg_len: u32,
+        pub first_segment: u32,
+        pub first_index: u32,
+        pub mode: u32,
+        pub sentinel: u32,
+        pub write_indices: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub(crate) struct RadixCountPush {
-    pub keys: u64,
-    pub hist: u64,
-    pub n: u32,
-    pub seg_len: u32,
-    pub threads: u32,
-    pub shift: u32,
-    pub digit_mask: u32,
-    pub key64: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct RadixCountPush<'a> {
+        pub keys: DeviceAddress<'a>,
+        pub hist: DeviceAddress<'a>,
+        pub n: u32,
+        pub seg_len: u32,
+        pub threads: u32,
+        pub shift: u32,
+        pub digit_mask: u32,
+        pub key64: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub(crate) struct RadixScatterPush {
-    pub keys_in: u64,
-    pub keys_out: u64,
-    pub vals_in: u64,
-    pub vals_out: u64,
-    pub hist: u64,
-    pub n: u32,
-    pub seg_len: u32,
-    pub threads: u32,
-    pub shift: u32,
-    pub digit_mask: u32,
-    pub key64: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct RadixScatterPush<'a> {
+        pub keys_in: DeviceAddress<'a>,
+        pub keys_out: DeviceAddress<'a>,
+        pub vals_in: DeviceAddress<'a>,
+        pub vals_out: DeviceAddress<'a>,
+        pub hist: DeviceAddress<'a>,
+        pub n: u32,
+        pub seg_len: u32,
+        pub threads: u32,
+        pub shift: u32,
+        pub digit_mask: u32,
+        pub key64: u32,
+    }
 }
 
-/// Push block of `copy_vec4.comp`, public for the bandwidth reference in `bench prims`.
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub struct CopyPush {
-    /// Source device address.
-    pub src: u64,
-    /// Destination device address.
-    pub dst: u64,
-    /// Words to copy.
-    pub n: u32,
+crate::push_block! {
+    /// Push block of `copy_vec4.comp`, public for the bandwidth reference in `bench prims`.
+    #[derive(Clone, Copy)]
+    pub struct CopyPush<'a> {
+        /// Source device address.
+        pub src: DeviceAddress<'a>,
+        /// Destination device address.
+        pub dst: DeviceAddress<'a>,
+        /// Words to copy.
+        pub n: u32,
+    }
+}
+
+crate::push_block! {
+    /// Push block of `copy_words.comp` and `copy_quads.comp` (the descriptor-bound copies),
+    /// public for `bench prims` and the core tests.
+    #[derive(Clone, Copy)]
+    pub struct CopyCountPush {
+        /// Elements to copy.
+        pub n: u32,
+    }
 }

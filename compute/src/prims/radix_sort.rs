@@ -10,7 +10,7 @@ use super::push::{RadixCountPush, RadixScatterPush};
 use super::scan::Scan;
 use super::scratch::grown;
 use super::{check_aligned, check_len};
-use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{DEFAULT_WORKGROUP_SIZE, RADIX_BITS, RADIX_BUCKETS};
 use bytemuck::Pod;
@@ -49,12 +49,13 @@ pub struct RadixSort {
     pub max_threads: u32,
 }
 
-struct Job {
-    keys: (u64, u64),
-    values: Option<(u64, u64)>,
+struct Job<'a> {
+    keys: (DeviceAddress<'a>, DeviceAddress<'a>),
+    values: Option<(DeviceAddress<'a>, DeviceAddress<'a>)>,
     n: u32,
     key64: bool,
     key_bits: u32,
+    threads: u32,
 }
 
 impl RadixSort {
@@ -126,7 +127,7 @@ impl RadixSort {
             )));
         }
         check_len(&format!("radix sort of {:?}", keys.name()), n, keys.len())?;
-        check_aligned(keys.name(), keys.address())?;
+        check_aligned(keys.name(), keys.address().raw())?;
         if let Some(v) = values {
             check_len(&format!("radix sort values {:?}", v.name()), n, v.len())?;
         }
@@ -134,55 +135,63 @@ impl RadixSort {
             return Ok(());
         }
         let key64 = width == 64;
-        let scratch_keys = if key64 {
+        if key64 {
             grown(
                 &mut self.keys64,
                 &self.gpu,
                 "radix sort scratch keys (u64)",
                 n,
-            )?
-            .address()
+            )?;
         } else {
             grown(
                 &mut self.keys32,
                 &self.gpu,
                 "radix sort scratch keys (u32)",
                 n,
-            )?
-            .address()
-        };
-        let scratch_values = match values {
-            Some(v) => Some((
-                v.address(),
-                grown(&mut self.values, &self.gpu, "radix sort scratch values", n)?.address(),
-            )),
-            None => None,
-        };
-        let passes = key_bits.div_ceil(RADIX_BITS);
+            )?;
+        }
+        if values.is_some() {
+            grown(&mut self.values, &self.gpu, "radix sort scratch values", n)?;
+        }
+        let threads = self.threads_for(n as u32);
+        let hist_len = (RADIX_BUCKETS * threads) as usize;
+        grown(&mut self.hist, &self.gpu, "radix sort histogram", hist_len)?;
+        let scratch_keys = if key64 {
+            self.keys64.as_ref().map(GpuBuffer::address)
+        } else {
+            self.keys32.as_ref().map(GpuBuffer::address)
+        }
+        .expect("grown above");
+        let scratch_values = self.values.as_ref().filter(|_| values.is_some());
         let job = Job {
             keys: (keys.address(), scratch_keys),
-            values: scratch_values,
+            values: values
+                .zip(scratch_values)
+                .map(|(v, s)| (v.address(), s.address())),
             n: n as u32,
             key64,
             key_bits,
+            threads,
         };
-        self.record_passes(rec, &job)?;
+        let passes = key_bits.div_ceil(RADIX_BITS);
+        let hist = self.hist.as_ref().expect("grown above");
+        record_passes(
+            rec,
+            [&self.count, &self.scatter],
+            &mut self.scan,
+            hist,
+            &job,
+        )?;
         if passes % 2 == 1 {
             // The result sits in the scratch buffers: copy it home.
-            let scratch = if key64 {
-                self.keys64.as_ref().unwrap().raw()
+            let bytes = keys.bytes().min((n * size_of::<K>()) as u64);
+            if key64 {
+                rec.copy_bytes(self.keys64.as_ref().expect("grown above"), keys, bytes);
             } else {
-                self.keys32.as_ref().unwrap().raw()
-            };
-            rec.copy_raw(
-                scratch,
-                0,
-                keys.raw(),
-                0,
-                keys.bytes().min((n * size_of::<K>()) as u64),
-            );
-            if let Some(v) = values {
-                rec.copy(self.values.as_ref().unwrap(), 0, v, 0, n)?;
+                rec.copy_bytes(self.keys32.as_ref().expect("grown above"), keys, bytes);
+            }
+            if let (Some(v), Some(s)) = (values, scratch_values) {
+                rec.copy(s, 0, v, 0, n)?;
             }
         }
         Ok(())
@@ -192,62 +201,6 @@ impl RadixSort {
         let wg = DEFAULT_WORKGROUP_SIZE;
         let wanted = n.div_ceil(2048).div_ceil(wg) * wg;
         wanted.clamp(wg, self.max_threads.max(wg))
-    }
-
-    fn record_passes(&mut self, rec: &mut Recorder<'_>, job: &Job) -> GpuResult<()> {
-        let threads = self.threads_for(job.n);
-        let seg_len = job.n.div_ceil(threads).next_multiple_of(4);
-        let bits = RADIX_BITS;
-        let hist_len = (RADIX_BUCKETS * threads) as usize;
-        let hist = grown(&mut self.hist, &self.gpu, "radix sort histogram", hist_len)?;
-        let groups = self.count.groups_for(threads as u64);
-        for pass in 0..job.key_bits.div_ceil(bits) {
-            let (src, dst) = if pass % 2 == 0 {
-                job.keys
-            } else {
-                (job.keys.1, job.keys.0)
-            };
-            let (vsrc, vdst) = match job.values {
-                Some((a, b)) if pass % 2 == 0 => (a, b),
-                Some((a, b)) => (b, a),
-                None => (0, 0),
-            };
-            let shift = pass * bits;
-            let key64 = job.key64 as u32;
-            // The last pass may have fewer bits left than a full digit.
-            let digit_mask = (1u32 << (job.key_bits - shift).min(bits)) - 1;
-            rec.dispatch(
-                &self.count,
-                groups,
-                &[],
-                &RadixCountPush {
-                    keys: src,
-                    hist: hist.address(),
-                    n: job.n,
-                    seg_len,
-                    threads,
-                    shift,
-                    digit_mask,
-                    key64,
-                },
-            )?;
-            self.scan.record(rec, hist, hist, hist_len, None)?;
-            let push = RadixScatterPush {
-                keys_in: src,
-                keys_out: dst,
-                vals_in: vsrc,
-                vals_out: vdst,
-                hist: hist.address(),
-                n: job.n,
-                seg_len,
-                threads,
-                shift,
-                digit_mask,
-                key64,
-            };
-            rec.dispatch(&self.scatter, groups, &[], &push)?;
-        }
-        Ok(())
     }
 
     /// Sorts `keys` on the GPU and reads them back.
@@ -271,4 +224,66 @@ impl RadixSort {
         gpu.submit(|rec| self.record_u64(rec, &k, Some(&v), keys.len(), key_bits))?;
         Ok((k.read()?, v.read()?))
     }
+}
+
+/// Records every pass of `job`: count, scan of the histogram, scatter.
+fn record_passes(
+    rec: &mut Recorder<'_>,
+    [count, scatter]: [&Kernel; 2],
+    scan: &mut Scan,
+    hist: &GpuBuffer<u32>,
+    job: &Job<'_>,
+) -> GpuResult<()> {
+    let threads = job.threads;
+    let seg_len = job.n.div_ceil(threads).next_multiple_of(4);
+    let bits = RADIX_BITS;
+    let hist_len = (RADIX_BUCKETS * threads) as usize;
+    let groups = count.groups_for(threads as u64);
+    for pass in 0..job.key_bits.div_ceil(bits) {
+        let (src, dst) = if pass % 2 == 0 {
+            job.keys
+        } else {
+            (job.keys.1, job.keys.0)
+        };
+        let (vals_in, vals_out) = match job.values {
+            Some((a, b)) if pass % 2 == 0 => (a, b),
+            Some((a, b)) => (b, a),
+            None => (DeviceAddress::NULL, DeviceAddress::NULL),
+        };
+        let shift = pass * bits;
+        let key64 = job.key64 as u32;
+        // The last pass may have fewer bits left than a full digit.
+        let digit_mask = (1u32 << (job.key_bits - shift).min(bits)) - 1;
+        rec.dispatch(
+            count,
+            groups,
+            &[],
+            &RadixCountPush {
+                keys: src,
+                hist: hist.address(),
+                n: job.n,
+                seg_len,
+                threads,
+                shift,
+                digit_mask,
+                key64,
+            },
+        )?;
+        scan.record(rec, hist, hist, hist_len, None)?;
+        let push = RadixScatterPush {
+            keys_in: src,
+            keys_out: dst,
+            vals_in,
+            vals_out,
+            hist: hist.address(),
+            n: job.n,
+            seg_len,
+            threads,
+            shift,
+            digit_mask,
+            key64,
+        };
+        rec.dispatch(scatter, groups, &[], &push)?;
+    }
+    Ok(())
 }

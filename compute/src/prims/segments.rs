@@ -3,26 +3,27 @@
 
 use crate::gpu::{DeviceInfo, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::shader_constants::DEFAULT_WORKGROUP_SIZE;
-use bytemuck::{Pod, Zeroable};
 
-/// Push block of `reduce_segments.comp`.
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C)]
-pub(crate) struct ReducePush {
-    pub n: u32,
-    pub seg_len: u32,
-    pub first_segment: u32,
+crate::push_block! {
+    /// Push block of `reduce_segments.comp`.
+    #[derive(Clone, Copy)]
+    pub(crate) struct ReducePush {
+        pub n: u32,
+        pub seg_len: u32,
+        pub first_segment: u32,
+    }
 }
 
-/// Push block of `scan_segments.comp`.
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C)]
-pub(crate) struct ScanPush {
-    pub n: u32,
-    pub seg_len: u32,
-    pub first_segment: u32,
-    pub has_carries: u32,
-    pub write_total: u32,
+crate::push_block! {
+    /// Push block of `scan_segments.comp`.
+    #[derive(Clone, Copy)]
+    pub(crate) struct ScanPush {
+        pub n: u32,
+        pub seg_len: u32,
+        pub first_segment: u32,
+        pub has_carries: u32,
+        pub write_total: u32,
+    }
 }
 
 /// The split of `n` words: segment length (a multiple of 4), number of segments and words per

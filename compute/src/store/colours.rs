@@ -2,10 +2,9 @@
 //! the voxel evaluated on the CPU.
 
 use super::error::StoreError;
-use crate::gpu::{Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::hash::morton_decode;
 use crate::voxel::VoxelKeys;
-use bytemuck::{Pod, Zeroable};
 
 /// The colour (RGBA8, red in the low byte) of each voxel a store is built from or extended by.
 #[derive(Clone, Copy)]
@@ -29,14 +28,15 @@ impl ColourSource<'_> {
     }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct FillPush {
-    keys: u64,
-    dst: u64,
-    n: u32,
-    resolution: u32,
-    seed: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct FillPush<'a> {
+        keys: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        n: u32,
+        resolution: u32,
+        seed: u32,
+    }
 }
 
 /// Writes the colours of `keys` into `dst[offset..offset + keys.len]`.
@@ -54,7 +54,7 @@ pub(crate) fn fill_colours(
             gpu.submit(|rec| {
                 let push = FillPush {
                     keys: keys.keys.address(),
-                    dst: dst.address() + 4 * offset as u64,
+                    dst: dst.address_at(offset)?,
                     n: keys.len as u32,
                     resolution,
                     seed: *seed,

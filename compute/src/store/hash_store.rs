@@ -8,44 +8,45 @@ use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
-use crate::gpu::GpuBuffer;
+use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::{
     fastmod_multiplier, morton_decode, HashError, KeyLayout, RobinHoodConfig, RobinHoodTable,
     Universe,
 };
 use crate::voxel::VoxelKeys;
-use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use std::sync::Arc;
 
-/// What `store/hash.glsl` receives: the `HashStoreParams` struct, field for field.
-#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Eq)]
-#[repr(C)]
-pub struct HashStoreParams {
-    /// Device address of the table's 64-bit cells.
-    pub cells: u64,
-    /// Device address of the RGBA8 colours.
-    pub colours: u64,
-    /// The table size's reciprocal for the branch-free modulo.
-    pub fastmod_m: u64,
-    /// Cells.
-    pub table_size: u32,
-    /// Bits of key + 1 in a cell.
-    pub key_bits: u32,
-    /// Probe sequence id.
-    pub probe: u32,
-    /// R.
-    pub resolution: u32,
+crate::push_block! {
+    /// What `store/hash.glsl` receives: the `HashStoreParams` struct, field for field.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct HashStoreParams<'a> {
+        /// Device address of the table's 64-bit cells.
+        pub cells: DeviceAddress<'a>,
+        /// Device address of the RGBA8 colours.
+        pub colours: DeviceAddress<'a>,
+        /// The table size's reciprocal for the branch-free modulo.
+        pub fastmod_m: u64,
+        /// Cells.
+        pub table_size: u32,
+        /// Bits of key + 1 in a cell.
+        pub key_bits: u32,
+        /// Probe sequence id.
+        pub probe: u32,
+        /// R.
+        pub resolution: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct LookupPush {
-    store: HashStoreParams,
-    points: u64,
-    results: u64,
-    n: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LookupPush<'a> {
+        store: HashStoreParams<'a>,
+        points: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        mode: u32,
+    }
 }
 
 /// The coherent-hash store.
@@ -125,7 +126,7 @@ fn universe(resolution: u32) -> Result<Universe, StoreError> {
 }
 
 impl SparseStore for HashStore {
-    type Params = HashStoreParams;
+    type Params<'a> = HashStoreParams<'a>;
 
     fn name(&self) -> &'static str {
         NAME
@@ -202,7 +203,7 @@ impl SparseStore for HashStore {
         self.table.bytes() + self.colours.bytes()
     }
 
-    fn params(&self) -> HashStoreParams {
+    fn params(&self) -> HashStoreParams<'_> {
         HashStoreParams {
             cells: self.table.cells_address(),
             colours: self.colours.address(),
@@ -221,14 +222,17 @@ impl SparseStore for HashStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        Ok(prepare_lookup(k, &k.hash_lookup, points, &[], |a| {
-            LookupPush {
+        let groups = k.hash_lookup.groups_for(points.len() as u64);
+        let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
+        Ok(prepare_lookup(k, points, &[], move |rec, a| {
+            let push = LookupPush {
                 store: self.params(),
                 points: a.points,
                 results: a.results,
-                n: points.len() as u32,
-                mode: (filter == Filter::Trilinear) as u32,
-            }
+                n,
+                mode,
+            };
+            rec.dispatch(&k.hash_lookup, groups, &[], &push)
         })?)
     }
 }

@@ -1,12 +1,11 @@
 //! The kernels of every store, built once per device and shared (lavapipe compiles a pipeline
 //! at its first dispatch, so stores must not rebuild them).
 
-use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use crate::hash::perfect::PerfectKernels;
 use crate::hash::HashKernels;
 use crate::kernels::store;
 use crate::voxel::SortUnique;
-use bytemuck::Pod;
 use glam::{Vec3, Vec4};
 use std::sync::{Arc, Mutex};
 
@@ -57,26 +56,35 @@ impl StoreKernels {
     }
 }
 
-/// Records one lookup dispatch.
-type RecordFn<'a> = Box<dyn Fn(&mut Recorder<'_>) -> GpuResult<()> + 'a>;
+/// Records one lookup dispatch, given the addresses of its points, normals and results.
+type RecordFn<'a> =
+    Box<dyn for<'b> Fn(&mut Recorder<'_>, LookupAddresses<'b>) -> GpuResult<()> + 'a>;
 
 /// A lookup whose points are already on the device, run as often as a benchmark needs: each
 /// [`TimedLookup::run`] is one dispatch between two GPU timestamps, so uploads and read-backs
 /// stay out of the measured time.
 pub struct TimedLookup<'a> {
     gpu: Gpu,
+    points: GpuBuffer<f32>,
+    normals: Option<GpuBuffer<f32>>,
     results: GpuBuffer<[f32; 4]>,
-    // Keeps the points (and normals) alive for as long as the recorded dispatches read them.
-    _inputs: Vec<GpuBuffer<f32>>,
     record: RecordFn<'a>,
 }
 
 impl TimedLookup<'_> {
     /// One lookup of every point; returns its GPU time in milliseconds.
     pub fn run(&self) -> GpuResult<f64> {
+        let addresses = LookupAddresses {
+            points: self.points.address(),
+            normals: self
+                .normals
+                .as_ref()
+                .map_or(DeviceAddress::NULL, GpuBuffer::address),
+            results: self.results.address(),
+        };
         let ((), t) = self.gpu.submit_timed(|rec| {
             rec.timestamp()?;
-            (self.record)(rec)?;
+            (self.record)(rec, addresses)?;
             rec.timestamp()
         })?;
         Ok((t[1] - t[0]) * 1e-6)
@@ -95,47 +103,38 @@ impl TimedLookup<'_> {
 
 /// Device addresses a lookup kernel's push block takes.
 #[derive(Clone, Copy)]
-pub(crate) struct LookupAddresses {
-    pub points: u64,
-    /// 0 when no normals were given.
-    pub normals: u64,
-    pub results: u64,
+pub(crate) struct LookupAddresses<'a> {
+    pub points: DeviceAddress<'a>,
+    /// Null when no normals were given.
+    pub normals: DeviceAddress<'a>,
+    pub results: DeviceAddress<'a>,
 }
 
-/// Uploads `points` (and `normals` when given) and prepares `kernel` with `make(addresses)`
-/// as push block: every store's lookup, timed or not, goes through here.
-pub(crate) fn prepare_lookup<'a, P: Pod>(
+/// Uploads `points` (and `normals` when given) and prepares `dispatch`, which records the
+/// store's lookup kernel with the uploaded buffers' addresses: every store's lookup, timed or
+/// not, goes through here.
+pub(crate) fn prepare_lookup<'a>(
     kernels: &'a StoreKernels,
-    kernel: &'a Kernel,
     points: &[Vec3],
     normals: &[Vec3],
-    push: impl FnOnce(LookupAddresses) -> P,
+    dispatch: impl for<'b> Fn(&mut Recorder<'_>, LookupAddresses<'b>) -> GpuResult<()> + 'a,
 ) -> GpuResult<TimedLookup<'a>> {
     let gpu = &kernels.gpu;
     let flat = |v: &[Vec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f32>>();
-    let mut inputs = vec![GpuBuffer::from_slice(
-        gpu,
-        "store lookup points",
-        &flat(points),
-    )?];
-    if !normals.is_empty() {
-        inputs.push(GpuBuffer::from_slice(
+    let normals = if normals.is_empty() {
+        None
+    } else {
+        Some(GpuBuffer::from_slice(
             gpu,
             "store lookup normals",
             &flat(normals),
-        )?);
-    }
-    let results = GpuBuffer::<[f32; 4]>::zeroed(gpu, "store lookup results", points.len())?;
-    let p = push(LookupAddresses {
-        points: inputs[0].address(),
-        normals: inputs.get(1).map_or(0, GpuBuffer::address),
-        results: results.address(),
-    });
-    let groups = kernel.groups_for(points.len() as u64);
+        )?)
+    };
     Ok(TimedLookup {
         gpu: gpu.clone(),
-        results,
-        _inputs: inputs,
-        record: Box::new(move |rec| rec.dispatch(kernel, groups, &[], &p)),
+        points: GpuBuffer::from_slice(gpu, "store lookup points", &flat(points))?,
+        normals,
+        results: GpuBuffer::zeroed(gpu, "store lookup results", points.len())?,
+        record: Box::new(dispatch),
     })
 }

@@ -2,8 +2,8 @@
 //! of lazysolid's synthesized matter. Every store implements [`SparseStore`]: built from a
 //! voxel key set ([`VoxelKeys`], Morton keys as the voxelizer returns them) and a
 //! [`ColourSource`], extended by further voxels as cuts appear, measured in exact GPU bytes,
-//! and read from any kernel through a small Pod record of device addresses (the store's
-//! `Params`) and a GLSL include `glsl/include/store/<name>.glsl` with
+//! and read from any kernel through a small record of device addresses (the store's
+//! `Params`, which borrows the store) and a GLSL include `glsl/include/store/<name>.glsl` with
 //! `vec4 store_<name>_nearest(Params, vec3 pos)` and `vec4 store_<name>_trilinear(...)`,
 //! `pos` in [0, 1]³ object space. A voxel that is not stored reads as (0, 0, 0, 0).
 //! Layouts, byte counts and timings: `docs/stores.md`.
@@ -15,15 +15,15 @@
 //!   (Lefebvre and Dachsbacher 2007), built from the mesh itself; its lookup needs the surface
 //!   normal ([`SparseStore::lookup_with_normals`]).
 
-mod colours;
+pub(crate) mod colours;
 mod error;
-mod hash_store;
+pub(crate) mod hash_store;
 mod kernels;
 mod lookup_cpu;
 mod marble;
-mod octree;
+pub(crate) mod octree;
 mod octree_cpu;
-mod perfect_store;
+pub(crate) mod perfect_store;
 pub mod tiletree;
 
 pub use colours::ColourSource;
@@ -39,8 +39,8 @@ pub use octree_cpu::OctreeCpu;
 pub use perfect_store::{PerfectStore, PerfectStoreParams};
 pub use tiletree::{TileTree, TileTreeConfig, TileTreeParams, TileTreeStats};
 
+use crate::gpu::PushValue;
 use crate::voxel::VoxelKeys;
-use bytemuck::Pod;
 use glam::{Vec3, Vec4};
 
 /// How a lookup filters.
@@ -67,8 +67,11 @@ pub struct StoreReport {
 /// A sparse RGBA8 texture over the voxels of an R³ grid.
 pub trait SparseStore {
     /// The record a kernel receives (device addresses and sizes), laid out as the GLSL struct
-    /// of the store's include file.
-    type Params: Pod;
+    /// of the store's include file. It borrows the store, whose buffers its addresses point
+    /// into, so an insert (which may reallocate them) cannot happen while one is alive.
+    type Params<'a>: PushValue
+    where
+        Self: 'a;
 
     /// Short name: the include is `store/<name>.glsl`, the GLSL functions `store_<name>_*`.
     fn name(&self) -> &'static str;
@@ -95,8 +98,8 @@ pub trait SparseStore {
     /// Exact GPU bytes the store keeps allocated.
     fn bytes(&self) -> u64;
 
-    /// The kernel-side description; valid until the next insert (which may reallocate).
-    fn params(&self) -> Self::Params;
+    /// The kernel-side description, borrowing the store (see [`SparseStore::Params`]).
+    fn params(&self) -> Self::Params<'_>;
 
     /// Runs the store's GLSL lookup at `points` on the GPU (tests and benchmarks).
     fn lookup(&self, points: &[Vec3], filter: Filter) -> Result<Vec<Vec4>, StoreError> {

@@ -10,11 +10,10 @@ use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
-use crate::gpu::{GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
 use crate::prims::Scan;
 use crate::voxel::{VoxelGrid, VoxelKeys};
-use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 use std::sync::Arc;
 
@@ -121,60 +120,64 @@ impl OctreeConfig {
     }
 }
 
-/// What `store/octree.glsl` receives: the `OctreeParams` struct, field for field.
-#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Eq)]
-#[repr(C)]
-pub struct OctreeParams {
-    /// Device address of the node pool.
-    pub pool: u64,
-    /// R.
-    pub resolution: u32,
-    /// Levels in use.
-    pub levels: u32,
-    /// N of each level (unused entries 0).
-    pub n: [u32; MAX_OCTREE_LEVELS],
-    /// Voxels per cell of each level.
-    pub span: [u32; MAX_OCTREE_LEVELS],
+crate::push_block! {
+    /// What `store/octree.glsl` receives: the `OctreeParams` struct, field for field.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct OctreeParams<'a> {
+        /// Device address of the node pool.
+        pub pool: DeviceAddress<'a>,
+        /// R.
+        pub resolution: u32,
+        /// Levels in use.
+        pub levels: u32,
+        /// N of each level (unused entries 0).
+        pub n: [u32; MAX_OCTREE_LEVELS],
+        /// Voxels per cell of each level.
+        pub span: [u32; MAX_OCTREE_LEVELS],
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct LookupPush {
-    store: OctreeParams,
-    points: u64,
-    results: u64,
-    n: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LookupPush<'a> {
+        store: OctreeParams<'a>,
+        points: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        mode: u32,
+    }
 }
 
-#[derive(Clone, Copy, Default, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct BuildPush {
-    src: u64,
-    dst: u64,
-    aux: u64,
-    dst_addrs: u64,
-    search_keys: u64,
-    search_addrs: u64,
-    pool: u64,
-    counter: u64,
-    n: u32,
-    search_count: u32,
-    span: u32,
-    mode: u32,
-    base: u32,
-    stride: u32,
-    root_parent: u32,
+crate::push_block! {
+    #[derive(Clone, Copy, Default)]
+    pub(crate) struct BuildPush<'a> {
+        src: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        aux: DeviceAddress<'a>,
+        dst_addrs: DeviceAddress<'a>,
+        search_keys: DeviceAddress<'a>,
+        search_addrs: DeviceAddress<'a>,
+        pool: DeviceAddress<'a>,
+        counter: DeviceAddress<'a>,
+        n: u32,
+        search_count: u32,
+        span: u32,
+        mode: u32,
+        base: u32,
+        stride: u32,
+        root_parent: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct AveragePush {
-    pool: u64,
-    addrs: u64,
-    n: u32,
-    cells_per_axis: u32,
-    root: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct AveragePush<'a> {
+        pool: DeviceAddress<'a>,
+        addrs: DeviceAddress<'a>,
+        n: u32,
+        cells_per_axis: u32,
+        root: u32,
+    }
 }
 
 /// The sorted node keys of one level below the root, with their addresses.
@@ -304,7 +307,7 @@ impl OctreeStore {
     }
 
     /// A push block whose parent level is `level` (searching its keys, or the root).
-    fn parent_push(&self, level: usize) -> BuildPush {
+    fn parent_push(&self, level: usize) -> BuildPush<'_> {
         let mut p = BuildPush {
             pool: self.pool.address(),
             span: self.config.levels[level],
@@ -415,16 +418,16 @@ impl OctreeStore {
         let keys_out = GpuBuffer::<u64>::new(&gpu, "octree level keys", count)?;
         let addrs_out = GpuBuffer::<u32>::new(&gpu, "octree level addresses", count)?;
         let scatter = BuildPush {
-            dst: keys_out.address() + 8 * old as u64,
-            dst_addrs: addrs_out.address() + 4 * old as u64,
+            dst: keys_out.address_at(old)?,
+            dst_addrs: addrs_out.address_at(old)?,
             base: self.top,
             stride,
             mode: 2,
             ..search
         };
         let link = BuildPush {
-            src: keys_out.address() + 8 * old as u64,
-            aux: addrs_out.address() + 4 * old as u64,
+            src: keys_out.address_at(old)?,
+            aux: addrs_out.address_at(old)?,
             n: added as u32,
             mode: 0,
             ..self.parent_push(l - 1)
@@ -453,7 +456,7 @@ impl OctreeStore {
         self.kernels.gpu.submit(|rec| {
             for l in (0..self.config.levels.len()).rev() {
                 let (addrs, n) = if l == 0 {
-                    (0, 1)
+                    (DeviceAddress::NULL, 1)
                 } else {
                     let level = &self.levels[l - 1];
                     (level.addrs.address(), level.count)
@@ -499,7 +502,7 @@ impl OctreeStore {
 }
 
 impl SparseStore for OctreeStore {
-    type Params = OctreeParams;
+    type Params<'a> = OctreeParams<'a>;
 
     fn name(&self) -> &'static str {
         NAME
@@ -553,7 +556,7 @@ impl SparseStore for OctreeStore {
                 .sum::<u64>()
     }
 
-    fn params(&self) -> OctreeParams {
+    fn params(&self) -> OctreeParams<'_> {
         let mut p = OctreeParams {
             pool: self.pool.address(),
             resolution: self.resolution,
@@ -589,12 +592,17 @@ impl OctreeStore {
     /// The lookup kernel in `mode` (0 nearest, 1 trilinear, 2 + depth MIP) at `points`.
     fn prepare(&self, points: &[Vec3], mode: u32) -> GpuResult<TimedLookup<'_>> {
         let k = &self.kernels;
-        prepare_lookup(k, &k.octree_lookup, points, &[], |a| LookupPush {
-            store: self.params(),
-            points: a.points,
-            results: a.results,
-            n: points.len() as u32,
-            mode,
+        let groups = k.octree_lookup.groups_for(points.len() as u64);
+        let n = points.len() as u32;
+        prepare_lookup(k, points, &[], move |rec, a| {
+            let push = LookupPush {
+                store: self.params(),
+                points: a.points,
+                results: a.results,
+                n,
+                mode,
+            };
+            rec.dispatch(&k.octree_lookup, groups, &[], &push)
         })
     }
 }

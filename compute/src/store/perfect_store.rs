@@ -1,7 +1,7 @@
 //! The perfect-hash store (Lefebvre and Hoppe 2006, thesis §4.2.2): a perfect spatial hash of
-//! the voxels' grid points, built on the GPU, whose payload is the texel's RGBA8 colour itself
-//! — two reads per texel and about 4 bits of offset table per texel beside the colours. Two
-//! layouts, as in thesis Table 4.1:
+//! the voxels' grid points, built where it is faster on the device (`PerfectConstruction`),
+//! whose payload is the texel's RGBA8 colour itself — two reads per texel and about 4 bits of
+//! offset table per texel beside the colours. Two layouts, as in thesis Table 4.1:
 //!
 //! - texel layout ([`PerfectStore::build`]): one texel per key; nearest = one lookup, trilinear = 8 lookups
 //!   over the interpolation voxels;
@@ -15,40 +15,42 @@ use super::colours::{check_keys, fill_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
-use crate::gpu::GpuBuffer;
+use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::perfect::{
-    BlockedPerfectHash, PerfectAccess, PerfectBuilder, PerfectConfig, PerfectHashGpu, PerfectParams,
+    BlockedPerfectHash, PerfectAccess, PerfectConfig, PerfectConstruction, PerfectHashGpu,
+    PerfectParams,
 };
 use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
 use crate::voxel::VoxelKeys;
-use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use std::sync::Arc;
 
-/// What `store/perfect.glsl` receives: the `PerfectStoreParams` struct, field for field.
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub struct PerfectStoreParams {
-    /// The hash table.
-    pub table: PerfectParams,
-    /// R.
-    pub resolution: u32,
-    /// b of the blocked layout, 0 for the texel layout.
-    pub block: u32,
-    /// 1 when absent voxels are detected (tags stored).
-    pub unconstrained: u32,
-    /// Padding.
-    pub pad: u32,
+crate::push_block! {
+    /// What `store/perfect.glsl` receives: the `PerfectStoreParams` struct, field for field.
+    #[derive(Clone, Copy, Debug, Default)]
+    pub struct PerfectStoreParams<'a> {
+        /// The hash table.
+        pub table: PerfectParams<'a>,
+        /// R.
+        pub resolution: u32,
+        /// b of the blocked layout, 0 for the texel layout.
+        pub block: u32,
+        /// 1 when absent voxels are detected (tags stored).
+        pub unconstrained: u32,
+        /// Padding.
+        pub pad: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct LookupPush {
-    store: PerfectStoreParams,
-    points: u64,
-    results: u64,
-    n: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LookupPush<'a> {
+        store: PerfectStoreParams<'a>,
+        points: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        mode: u32,
+    }
 }
 
 /// The perfect-hash store.
@@ -56,6 +58,8 @@ pub struct PerfectStore {
     kernels: Arc<StoreKernels>,
     table: PerfectHashGpu,
     access: PerfectAccess,
+    /// Where the texel layout is built, and rebuilt on insert.
+    construction: PerfectConstruction,
     block: u32,
     resolution: u32,
     /// Host copies of the keys and colours (texel layout), for rebuilds on insert.
@@ -91,7 +95,8 @@ fn duplicate(e: HashError) -> StoreError {
 }
 
 impl PerfectStore {
-    /// Builds the texel layout over the voxels `keys` of the `resolution`³ grid on the GPU.
+    /// Builds the texel layout over the voxels `keys` of the `resolution`³ grid, with the
+    /// construction that is faster on the device ([`PerfectConstruction::Auto`]).
     /// Unconstrained access stores a tag per slot so that unstored voxels read (0, 0, 0, 0);
     /// constrained access (the texturing case of the thesis) stores none, and reading an
     /// unstored voxel returns some stored texel.
@@ -106,6 +111,23 @@ impl PerfectStore {
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
         access: PerfectAccess,
+    ) -> Result<PerfectStore, StoreError> {
+        let auto = PerfectConstruction::Auto;
+        Self::build_with(kernels, resolution, keys, colours, access, auto)
+    }
+
+    /// As [`build`](Self::build), constructed where `construction` says (inserts rebuild there
+    /// too).
+    ///
+    /// # Errors
+    /// As [`build`](Self::build).
+    pub fn build_with(
+        kernels: &Arc<StoreKernels>,
+        resolution: u32,
+        keys: &VoxelKeys,
+        colours: &ColourSource<'_>,
+        access: PerfectAccess,
+        construction: PerfectConstruction,
     ) -> Result<PerfectStore, StoreError> {
         let host_keys = keys.read()?;
         check_keys(NAME, &host_keys, resolution)?;
@@ -123,8 +145,9 @@ impl PerfectStore {
         let host_colours = buffer.read_range(0, keys.len)?;
         let mut store = PerfectStore {
             kernels: kernels.clone(),
-            table: Self::hash(kernels, resolution, keys, &buffer, access)?,
+            table: Self::hash(kernels, resolution, keys, &buffer, access, construction)?,
             access,
+            construction,
             block: 0,
             resolution,
             keys: host_keys,
@@ -141,13 +164,22 @@ impl PerfectStore {
         keys: &VoxelKeys,
         colours: &GpuBuffer<u32>,
         access: PerfectAccess,
+        construction: PerfectConstruction,
     ) -> Result<PerfectHashGpu, StoreError> {
         let config = PerfectConfig {
             access,
             ..PerfectConfig::default()
         };
-        PerfectBuilder::new(&kernels.perfect)
-            .build(universe(resolution)?, &keys.keys, colours, keys.len, config)
+        let universe = universe(resolution)?;
+        construction
+            .build(
+                &kernels.perfect,
+                universe,
+                &keys.keys,
+                colours,
+                keys.len,
+                config,
+            )
             .map_err(duplicate)
     }
 
@@ -180,6 +212,7 @@ impl PerfectStore {
             kernels: kernels.clone(),
             table,
             access: PerfectAccess::Constrained,
+            construction: PerfectConstruction::Cpu,
             block: blocked.layout.block,
             resolution,
             keys: Vec::new(),
@@ -193,6 +226,12 @@ impl PerfectStore {
         &self.table
     }
 
+    /// Where the table was built: `Cpu` or `Gpu` (`Auto` resolved on the device; the blocked
+    /// layout is always built on the host).
+    pub fn construction(&self) -> PerfectConstruction {
+        self.construction.resolve(&self.kernels.gpu)
+    }
+
     /// b of the blocked layout, `None` for the texel layout.
     pub fn block(&self) -> Option<u32> {
         (self.block != 0).then_some(self.block)
@@ -200,7 +239,7 @@ impl PerfectStore {
 }
 
 impl SparseStore for PerfectStore {
-    type Params = PerfectStoreParams;
+    type Params<'a> = PerfectStoreParams<'a>;
 
     fn name(&self) -> &'static str {
         NAME
@@ -269,6 +308,7 @@ impl SparseStore for PerfectStore {
             &key_buffer,
             &colour_buffer,
             self.access,
+            self.construction,
         )?;
         let after = *table.sizes();
         let reallocations = vec![format!(
@@ -296,7 +336,7 @@ impl SparseStore for PerfectStore {
         self.table.bytes()
     }
 
-    fn params(&self) -> PerfectStoreParams {
+    fn params(&self) -> PerfectStoreParams<'_> {
         PerfectStoreParams {
             table: self.table.params(),
             resolution: self.resolution,
@@ -313,14 +353,17 @@ impl SparseStore for PerfectStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        Ok(prepare_lookup(k, &k.perfect_lookup, points, &[], |a| {
-            LookupPush {
+        let groups = k.perfect_lookup.groups_for(points.len() as u64);
+        let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
+        Ok(prepare_lookup(k, points, &[], move |rec, a| {
+            let push = LookupPush {
                 store: self.params(),
                 points: a.points,
                 results: a.results,
-                n: points.len() as u32,
-                mode: (filter == Filter::Trilinear) as u32,
-            }
+                n,
+                mode,
+            };
+            rec.dispatch(&k.perfect_lookup, groups, &[], &push)
         })?)
     }
 }

@@ -12,9 +12,8 @@
 
 use super::error::{SynthError, SynthResult};
 use super::exemplar::Exemplar;
-use crate::gpu::{Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth;
-use bytemuck::{Pod, Zeroable};
 
 /// Radius of the compared neighbourhoods (7×7).
 pub const ENERGY_RADIUS: u32 = 3;
@@ -136,18 +135,19 @@ pub fn energy_cpu(
         .collect())
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct EnergyPush {
-    exemplar: u64,
-    image: u64,
-    positions: u64,
-    energies: u64,
-    exemplar_size: [u32; 2],
-    image_width: u32,
-    samples: u32,
-    first: u32,
-    end: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct EnergyPush<'a> {
+        exemplar: DeviceAddress<'a>,
+        image: DeviceAddress<'a>,
+        positions: DeviceAddress<'a>,
+        energies: DeviceAddress<'a>,
+        exemplar_size: [u32; 2],
+        image_width: u32,
+        samples: u32,
+        first: u32,
+        end: u32,
+    }
 }
 
 /// Exemplar pixels one energy dispatch searches: with the 49-step inner loop this keeps every

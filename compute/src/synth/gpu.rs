@@ -8,42 +8,43 @@ use super::neighbourhood::pack_i8_words;
 use super::params::SynthParams;
 use super::plan::{plan_regions, Region};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
-use crate::gpu::{Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth;
-use bytemuck::{Pod, Zeroable};
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct UpsamplePush {
-    parent: u64,
-    coords: u64,
-    origin: [i32; 2],
-    size: [u32; 2],
-    parent_origin: [i32; 2],
-    parent_size: [u32; 2],
-    origin_mod: [u32; 2],
-    exemplar: [u32; 2],
-    spacing: u32,
-    level: u32,
-    seed: u32,
-    strength: u32,
-    has_parent: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct UpsamplePush<'a> {
+        parent: DeviceAddress<'a>,
+        coords: DeviceAddress<'a>,
+        origin: [i32; 2],
+        size: [u32; 2],
+        parent_origin: [i32; 2],
+        parent_size: [u32; 2],
+        origin_mod: [u32; 2],
+        exemplar: [u32; 2],
+        spacing: u32,
+        level: u32,
+        seed: u32,
+        strength: u32,
+        has_parent: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct CorrectPush {
-    coords: u64,
-    appearance: u64,
-    neighbourhoods: u64,
-    coherence: u64,
-    origin: [i32; 2],
-    size: [u32; 2],
-    first: [u32; 2],
-    count: [u32; 2],
-    exemplar: [u32; 2],
-    spacing: u32,
-    k: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct CorrectPush<'a> {
+        coords: DeviceAddress<'a>,
+        appearance: DeviceAddress<'a>,
+        neighbourhoods: DeviceAddress<'a>,
+        coherence: DeviceAddress<'a>,
+        origin: [i32; 2],
+        size: [u32; 2],
+        first: [u32; 2],
+        count: [u32; 2],
+        exemplar: [u32; 2],
+        spacing: u32,
+        k: u32,
+    }
 }
 
 /// Device time of one level's kernels, from GPU timestamps: what a profile of the synthesis

@@ -9,51 +9,53 @@ use super::error::VoxelError;
 use super::grid::VoxelGrid;
 use super::keys::{SortUnique, VoxelKeys};
 use super::surface_cpu::check_triangles;
-use crate::gpu::{Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::voxel;
 use crate::prims::{Scan, MAX_ELEMENTS};
-use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct ColumnsPush {
-    positions: u64,
-    triangles: u64,
-    counts: u64,
-    total: u64,
-    n_triangles: u32,
-    extent: u32,
-    r: f32,
-    shift: f32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ColumnsPush<'a> {
+        positions: DeviceAddress<'a>,
+        triangles: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        total: DeviceAddress<'a>,
+        n_triangles: u32,
+        extent: u32,
+        r: f32,
+        shift: f32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct HitsPush {
-    positions: u64,
-    triangles: u64,
-    column_offsets: u64,
-    counts: u64,
-    keys: u64,
-    total: u64,
-    n_triangles: u32,
-    n_columns: u32,
-    extent: u32,
-    r: f32,
-    shift: f32,
-    center_offset: f32,
-    half_size: f32,
-    write: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct HitsPush<'a> {
+        positions: DeviceAddress<'a>,
+        triangles: DeviceAddress<'a>,
+        column_offsets: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        total: DeviceAddress<'a>,
+        n_triangles: u32,
+        n_columns: u32,
+        extent: u32,
+        r: f32,
+        shift: f32,
+        center_offset: f32,
+        half_size: f32,
+        write: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct DilatePush {
-    cells: u64,
-    dst: u64,
-    n: u32,
-    resolution: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct DilatePush<'a> {
+        cells: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        n: u32,
+        resolution: u32,
+    }
 }
 
 /// The GPU voxelizer; keeps its kernels and scratch between meshes.
@@ -219,7 +221,7 @@ impl Voxelizer {
             triangles: tris.address(),
             column_offsets: column_offsets.address(),
             counts: counts.address(),
-            keys: 0,
+            keys: DeviceAddress::NULL,
             total: total.address(),
             n_triangles: nt as u32,
             n_columns: n_columns as u32,

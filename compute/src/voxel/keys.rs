@@ -1,10 +1,9 @@
 //! Sorted unique `u64` keys on the GPU: what the voxelizers return and the stores build from,
 //! and the sort + unique step that produces them.
 
-use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult, Kernel};
 use crate::kernels::voxel;
 use crate::prims::{RadixSort, Scan};
-use bytemuck::{Pod, Zeroable};
 
 /// Keys `keys[..len]`, sorted ascending and unique (the buffer may be longer).
 pub struct VoxelKeys {
@@ -49,14 +48,15 @@ impl VoxelKeys {
     }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct UniquePush {
-    keys: u64,
-    flags: u64,
-    dst: u64,
-    n: u32,
-    write: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct UniquePush<'a> {
+        keys: DeviceAddress<'a>,
+        flags: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        n: u32,
+        write: u32,
+    }
 }
 
 /// Sort + unique of `u64` keys with the radix sort and the scan.
@@ -95,7 +95,7 @@ impl SortUnique {
             let push = UniquePush {
                 keys: keys.address(),
                 flags: flags.address(),
-                dst: 0,
+                dst: DeviceAddress::NULL,
                 n: n as u32,
                 write: 0,
             };

@@ -11,9 +11,9 @@
 //! the same voxelizer finds them.
 
 mod error;
-mod gpu;
+pub(crate) mod gpu;
 mod grid;
-mod keys;
+pub(crate) mod keys;
 mod surface_cpu;
 mod triangle_box;
 

@@ -12,7 +12,7 @@ mod device;
 mod gpu_types;
 mod mesh_bvh;
 mod normals;
-mod ray_queries;
+pub(crate) mod ray_queries;
 mod scene_bvh;
 
 pub use device::DeviceBvh;

@@ -3,17 +3,18 @@
 
 use super::device::DeviceBvh;
 use super::gpu_types::{GpuRay, GpuRayHit};
-use bytemuck::{Pod, Zeroable};
 use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
 use lazysolid_compute::kernels::render::TRACE_RAYS;
 use lazysolid_compute::shader_constants::CWBVH_WORKGROUP_SIZE;
 
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct Push {
-    first: u32,
-    n: u32,
-    any_hit: u32,
+lazysolid_compute::push_block! {
+    /// Push block of `trace_rays.comp`.
+    #[derive(Clone, Copy)]
+    pub(crate) struct TraceRaysPush {
+        first: u32,
+        n: u32,
+        any_hit: u32,
+    }
 }
 
 /// Whether a query wants the closest hit or any hit (shadow rays).
@@ -68,7 +69,7 @@ impl RayQueries {
             ("Rays", rays.arg()),
             ("Hits", hits.arg()),
         ];
-        let push = Push {
+        let push = TraceRaysPush {
             first: 0,
             n,
             any_hit: (kind == QueryKind::Any) as u32,

@@ -3,7 +3,7 @@
 
 mod error;
 mod frame;
-mod path_tracer;
+pub(crate) mod path_tracer;
 mod stores;
 
 pub use error::RenderError;

@@ -8,18 +8,20 @@ use crate::accel::{DeviceBvh, SceneBvh};
 use crate::output::Film;
 use crate::scene::{Environment, RenderSettings, Scene};
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
-use bytemuck::{Pod, Zeroable};
-use lazysolid_compute::gpu::{Gpu, GpuBuffer, Kernel};
+use bytemuck::Zeroable;
+use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
 use lazysolid_compute::kernels::render::PATH_TRACE;
 use lazysolid_compute::shader_constants::CWBVH_WORKGROUP_SIZE;
 use std::time::{Duration, Instant};
 
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct Push {
-    sample_index: u32,
-    first_pixel: u32,
-    pixel_count: u32,
+lazysolid_compute::push_block! {
+    /// Push block of `path_trace.comp`.
+    #[derive(Clone, Copy)]
+    pub(crate) struct PathTracePush {
+        sample_index: u32,
+        first_pixel: u32,
+        pixel_count: u32,
+    }
 }
 
 /// What one pass did.
@@ -55,9 +57,8 @@ pub struct PathTracer {
     frame_buf: GpuBuffer<GpuFrame>,
     materials: GpuBuffer<GpuMaterial>,
     lights: GpuBuffer<GpuLight>,
-    // Owns the buffers that the device addresses in `environment_params` point into.
-    _environment: GpuEnvironment,
-    environment_params: GpuBuffer<u8>,
+    /// The `Environment` record; it holds the environment's tables.
+    environment: DeviceRecords,
     stores: SceneStores,
     film: GpuBuffer<[f32; 4]>,
     aovs: GpuBuffer<[f32; 4]>,
@@ -106,12 +107,7 @@ impl PathTracer {
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
             materials: GpuBuffer::from_slice(gpu, "render materials", &materials)?,
             lights: GpuBuffer::from_slice(gpu, "render lights", &light_records)?,
-            environment_params: GpuBuffer::from_slice(
-                gpu,
-                "render environment",
-                bytemuck::bytes_of(&environment.params()),
-            )?,
-            _environment: environment,
+            environment: DeviceRecords::new(gpu, "render environment", &[environment.params()])?,
             film: GpuBuffer::zeroed(gpu, "render film", pixels)?,
             aovs: GpuBuffer::zeroed(gpu, "render aovs", 2 * pixels)?,
             ray_count: GpuBuffer::zeroed(gpu, "render ray count", 1)?,
@@ -138,7 +134,7 @@ impl PathTracer {
         let tiles =
             self.settings.width.div_ceil(8) as u64 * self.settings.height.div_ceil(8) as u64;
         let invocations = tiles * 64;
-        let push = Push {
+        let push = PathTracePush {
             sample_index: self.samples,
             first_pixel: 0,
             pixel_count: invocations as u32,
@@ -156,7 +152,7 @@ impl PathTracer {
             ("FrameBlock", self.frame_buf.arg()),
             ("Materials", self.materials.arg()),
             ("Lights", self.lights.arg()),
-            ("EnvironmentBlock", self.environment_params.arg()),
+            ("EnvironmentBlock", self.environment.arg()),
             ("Film", self.film.arg()),
             ("Aovs", self.aovs.arg()),
             ("RayCount", self.ray_count.arg()),

@@ -9,9 +9,8 @@ use crate::output::encode8;
 use crate::scene::{Scene, StoreFilter, StoreKind};
 use crate::shading::reference::solid_texture_albedo;
 use crate::shading::GpuMaterial;
-use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use lazysolid_compute::gpu::{BufferArg, Gpu, GpuBuffer};
+use lazysolid_compute::gpu::{BufferArg, DeviceRecords, Gpu, GpuBuffer};
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::shader_constants::{
     STORE_FILTER_NEAREST, STORE_FILTER_TRILINEAR, STORE_KIND_HASH, STORE_KIND_OCTREE,
@@ -24,29 +23,24 @@ use lazysolid_compute::voxel::Voxelizer;
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
-/// One store as the kernel sees it (`StoreRecord` in `glsl/render/path_trace.comp`).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct GpuStoreRecord {
-    /// `STORE_KIND_*`.
-    pub kind: u32,
-    /// `STORE_FILTER_*`.
-    pub filter: u32,
-    /// The hash store's params (zero for an octree).
-    pub hash: HashStoreParams,
-    /// The octree's params (zero for a hash).
-    pub octree: OctreeParams,
+lazysolid_compute::push_block! {
+    /// One store as the kernel sees it (`StoreRecord` in `glsl/render/path_trace.comp`),
+    /// borrowing the store.
+    #[derive(Clone, Copy, Debug, Default)]
+    pub struct GpuStoreRecord<'a> {
+        /// `STORE_KIND_*`.
+        pub kind: u32,
+        /// `STORE_FILTER_*`.
+        pub filter: u32,
+        /// The hash store's params (default for an octree).
+        pub hash: HashStoreParams<'a>,
+        /// The octree's params (default for a hash).
+        pub octree: OctreeParams<'a>,
+    }
 }
-
-const _: () = assert!(std::mem::size_of::<GpuStoreRecord>() == 152);
 
 /// Marks an instance whose albedo is not read from a store.
 pub const NO_STORE: u32 = u32::MAX;
-
-enum Baked {
-    Hash(HashStore),
-    Octree(OctreeStore),
-}
 
 /// Facts about one baked store, for messages.
 #[derive(Clone, Debug)]
@@ -67,10 +61,15 @@ pub struct BakedStoreInfo {
     pub build_time: Duration,
 }
 
-/// Every store of a scene and the per-instance store slots.
+enum Baked {
+    Hash(HashStore),
+    Octree(OctreeStore),
+}
+
+/// The records of every store of a scene (which hold the stores' buffers) and the
+/// per-instance store slots.
 pub struct SceneStores {
-    _stores: Vec<Baked>,
-    records: GpuBuffer<GpuStoreRecord>,
+    records: DeviceRecords,
     instance_slots: GpuBuffer<u32>,
     info: Vec<BakedStoreInfo>,
 }
@@ -89,7 +88,6 @@ impl SceneStores {
     /// Voxelization or store failures (a mesh outside the unit cube, device limits).
     pub fn build(gpu: &Gpu, scene: &Scene) -> Result<SceneStores, RenderError> {
         let mut stores = Vec::new();
-        let mut records = Vec::new();
         let mut info = Vec::new();
         let mut slot_of: HashMap<(usize, usize), u32> = HashMap::new();
         let mut slots = vec![NO_STORE; scene.instances.len()];
@@ -141,35 +139,21 @@ impl SceneStores {
                 StoreFilter::Nearest => STORE_FILTER_NEAREST,
                 StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
             };
-            let (baked, record, kind) = match spec.kind {
-                StoreKind::CoherentHash => {
-                    let s =
-                        HashStore::build(kernels, r, &keys, &source, RobinHoodConfig::default())
-                            .map_err(store_error)?;
-                    let record = GpuStoreRecord {
-                        kind: STORE_KIND_HASH,
-                        filter,
-                        hash: s.params(),
-                        octree: OctreeParams::zeroed(),
-                    };
-                    (Baked::Hash(s), record, "coherent_hash")
-                }
+            let baked = match spec.kind {
+                StoreKind::CoherentHash => Baked::Hash(
+                    HashStore::build(kernels, r, &keys, &source, RobinHoodConfig::default())
+                        .map_err(store_error)?,
+                ),
                 StoreKind::Octree => {
                     let config = OctreeConfig::for_resolution(r).map_err(store_error)?;
                     let (s, _) = OctreeStore::build(kernels, r, &keys, &source, config)
                         .map_err(store_error)?;
-                    let record = GpuStoreRecord {
-                        kind: STORE_KIND_OCTREE,
-                        filter,
-                        hash: HashStoreParams::zeroed(),
-                        octree: s.params(),
-                    };
-                    (Baked::Octree(s), record, "octree")
+                    Baked::Octree(s)
                 }
             };
-            let (texels, bytes) = match &baked {
-                Baked::Hash(s) => (s.len(), s.bytes()),
-                Baked::Octree(s) => (s.len(), s.bytes()),
+            let (kind, texels, bytes) = match &baked {
+                Baked::Hash(s) => ("coherent_hash", s.len(), s.bytes()),
+                Baked::Octree(s) => ("octree", s.len(), s.bytes()),
             };
             info.push(BakedStoreInfo {
                 mesh: mesh.name.clone(),
@@ -180,19 +164,36 @@ impl SceneStores {
                 bytes,
                 build_time: start.elapsed(),
             });
-            let slot = records.len() as u32;
-            records.push(record);
-            stores.push(baked);
+            let slot = stores.len() as u32;
+            stores.push((baked, filter));
             slot_of.insert((inst.mesh, inst.material), slot);
             slots[i] = slot;
         }
+        let mut records: Vec<GpuStoreRecord<'_>> = stores
+            .iter()
+            .map(|(baked, filter)| match baked {
+                Baked::Hash(s) => GpuStoreRecord {
+                    kind: STORE_KIND_HASH,
+                    filter: *filter,
+                    hash: s.params(),
+                    ..Default::default()
+                },
+                Baked::Octree(s) => GpuStoreRecord {
+                    kind: STORE_KIND_OCTREE,
+                    filter: *filter,
+                    octree: s.params(),
+                    ..Default::default()
+                },
+            })
+            .collect();
         if records.is_empty() {
             // Bindings cannot be empty.
-            records.push(GpuStoreRecord::zeroed());
+            records.push(GpuStoreRecord::default());
         }
+        // The records hold the buffers of the stores they point into, so the stores
+        // themselves need not outlive this function.
         Ok(SceneStores {
-            _stores: stores,
-            records: GpuBuffer::from_slice(gpu, "render store records", &records)?,
+            records: DeviceRecords::new(gpu, "render store records", &records)?,
             instance_slots: GpuBuffer::from_slice(gpu, "render instance stores", &slots)?,
             info,
         })

@@ -4,15 +4,13 @@
 use super::environment_map::EnvironmentMap;
 use super::error::ShadingError;
 use crate::scene::Environment;
-use bytemuck::{Pod, Zeroable};
-use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuResult};
+use lazysolid_compute::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult};
 
+lazysolid_compute::push_block! {
 /// The GLSL `Environment` record: constants plus the device addresses of the tables. Kernels
-/// receive it in a buffer or in push constants; it is only valid while its [`GpuEnvironment`]
-/// lives.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct EnvironmentParams {
+/// receive it in a buffer or in push constants; it borrows its [`GpuEnvironment`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EnvironmentParams<'a> {
     /// Radiance of a constant environment.
     pub radiance: [f32; 3],
     /// `ENVIRONMENT_*` of `shader_constants`.
@@ -30,16 +28,15 @@ pub struct EnvironmentParams {
     /// 0 when nothing can be sampled.
     pub sampleable: u32,
     /// Address of the RGB texels.
-    pub texels: u64,
+    pub texels: DeviceAddress<'a>,
     /// Address of the per-texel density.
-    pub pdf: u64,
+    pub pdf: DeviceAddress<'a>,
     /// Address of the marginal CDF.
-    pub marginal_cdf: u64,
+    pub marginal_cdf: DeviceAddress<'a>,
     /// Address of the conditional CDFs.
-    pub conditional_cdf: u64,
+    pub conditional_cdf: DeviceAddress<'a>,
 }
-
-const _: () = assert!(size_of::<EnvironmentParams>() == 72);
+}
 
 /// An environment uploaded to the device: owns the buffers its [`EnvironmentParams`] point at.
 pub struct GpuEnvironment {
@@ -47,7 +44,8 @@ pub struct GpuEnvironment {
     pdf: GpuBuffer<f32>,
     marginal_cdf: GpuBuffer<f32>,
     conditional_cdf: GpuBuffer<f32>,
-    params: EnvironmentParams,
+    /// The record's constants (its addresses are null here; see [`GpuEnvironment::params`]).
+    constants: EnvironmentParams<'static>,
 }
 
 impl GpuEnvironment {
@@ -59,7 +57,7 @@ impl GpuEnvironment {
             GpuBuffer::from_slice(gpu, "environment marginal cdf", &map.marginal_cdf)?;
         let conditional_cdf =
             GpuBuffer::from_slice(gpu, "environment conditional cdf", &map.conditional_cdf)?;
-        let params = EnvironmentParams {
+        let constants = EnvironmentParams {
             radiance: map.radiance.to_array(),
             kind: map.kind,
             intensity: map.intensity,
@@ -68,17 +66,14 @@ impl GpuEnvironment {
             width: map.width,
             height: map.height,
             sampleable: map.sampleable as u32,
-            texels: texels.address(),
-            pdf: pdf.address(),
-            marginal_cdf: marginal_cdf.address(),
-            conditional_cdf: conditional_cdf.address(),
+            ..Default::default()
         };
         Ok(GpuEnvironment {
             texels,
             pdf,
             marginal_cdf,
             conditional_cdf,
-            params,
+            constants,
         })
     }
 
@@ -94,9 +89,15 @@ impl GpuEnvironment {
         })
     }
 
-    /// The GLSL record, to copy into a buffer or push constants.
-    pub fn params(&self) -> EnvironmentParams {
-        self.params
+    /// The GLSL record, to copy into device records or push constants.
+    pub fn params(&self) -> EnvironmentParams<'_> {
+        EnvironmentParams {
+            texels: self.texels.address(),
+            pdf: self.pdf.address(),
+            marginal_cdf: self.marginal_cdf.address(),
+            conditional_cdf: self.conditional_cdf.address(),
+            ..self.constants
+        }
     }
 
     /// Device bytes of the tables.

@@ -5,13 +5,17 @@
 //! baseline row of the same run; its ratio is `baseline min / this min` (above 1: faster).
 
 use super::CommonArgs;
+use crate::cli::output::write_atomically;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::gpu::{Gpu, GpuResult, Recorder};
 use serde::Serialize;
-use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
+
+/// The project's revision this executable was built from (`tools/build.rs`): `unknown`
+/// outside a git checkout, `-dirty` when tracked files differed from the commit.
+pub const REVISION: &str = env!("LAZYSOLID_REVISION");
 
 /// Facts that make a result file interpretable later: where, when and on what it was run.
 #[derive(Clone, Debug, Serialize)]
@@ -21,8 +25,10 @@ pub struct RunInfo {
     pub device_type: String,
     pub driver: String,
     pub vulkan_api: String,
+    /// When the run started: the one timestamp of the run, also in its file and folder names.
     pub date_utc: String,
-    pub git_revision: String,
+    /// The project's revision the executable was built from.
+    pub revision: String,
     pub host_cpu: String,
     pub host_threads: usize,
     pub warmup: usize,
@@ -67,6 +73,9 @@ pub struct Row {
     pub elements: u64,
     /// Who ran it, e.g. `gpu` or `cpu std sort_unstable (1 thread)`.
     pub implementation: String,
+    /// Where the measured structure was constructed, where that is a choice (`--builder`):
+    /// `cpu` or `gpu` for perfect hashes, none otherwise.
+    pub builder: Option<String>,
     pub stats: Stats,
     /// Throughput at the min time.
     pub throughput: f64,
@@ -98,6 +107,7 @@ impl Bench {
     /// Starts a suite of `cases` cases on `gpu`.
     pub fn new(suite: &str, gpu: &Gpu, common: &CommonArgs, cases: u64) -> anyhow::Result<Bench> {
         anyhow::ensure!(common.runs >= 1, "--runs must be at least 1");
+        let start = chrono::Utc::now();
         let d = gpu.info();
         let info = RunInfo {
             suite: suite.to_string(),
@@ -105,8 +115,8 @@ impl Bench {
             device_type: d.device_type.clone(),
             driver: d.driver.clone(),
             vulkan_api: d.api_version.clone(),
-            date_utc: chrono::Utc::now().format("%Y-%m-%dT%H:%M:%SZ").to_string(),
-            git_revision: git_revision(),
+            date_utc: start.format("%Y-%m-%dT%H:%M:%SZ").to_string(),
+            revision: REVISION.to_string(),
             host_cpu: host_cpu(),
             host_threads: std::thread::available_parallelism()
                 .map(|n| n.get())
@@ -123,10 +133,10 @@ impl Bench {
             .unwrap(),
         );
         Ok(Bench {
-            stamp: chrono::Utc::now().format("%Y%m%d-%H%M%S").to_string(),
+            stamp: start.format("%Y%m%d-%H%M%S").to_string(),
             info,
             rows: Vec::new(),
-            out: common.out.clone(),
+            out: common.out_dir.clone(),
             progress,
         })
     }
@@ -162,6 +172,7 @@ impl Bench {
             case: case.into(),
             elements,
             implementation: implementation.into(),
+            builder: None,
             stats,
             throughput,
             throughput_unit: unit.into(),
@@ -171,6 +182,13 @@ impl Bench {
         self.resolve_ratios();
         self.progress.inc(1);
         Ok(min)
+    }
+
+    /// Records where the structure the last row measured was constructed (`cpu` or `gpu`).
+    pub fn set_builder(&mut self, builder: &str) {
+        if let Some(row) = self.rows.last_mut() {
+            row.builder = Some(builder.to_string());
+        }
     }
 
     /// Shows what the suite is doing between timed cases (untimed work such as scoring).
@@ -185,8 +203,13 @@ impl Bench {
         Ok(dir)
     }
 
+    /// `<out>/<suite>-<date>`: the stem of every file and folder of the run.
     fn artifact_path(&self) -> PathBuf {
-        self.out.join(format!("{}-{}", self.info.suite, self.stamp))
+        self.out.join(format!(
+            "{}-{}",
+            self.info.suite.replace(' ', "-"),
+            self.stamp
+        ))
     }
 
     /// Rows so far; a row's ratio is set once its baseline row exists (in either order).
@@ -213,8 +236,8 @@ impl Bench {
         self.progress.finish_and_clear();
         let i = &self.info;
         println!(
-            "{} on {} ({}), {}, git {}, {} warm-up + {} runs",
-            i.suite, i.device, i.driver, i.date_utc, i.git_revision, i.warmup, i.runs
+            "{} on {} ({}), {}, revision {}, {} warm-up + {} runs",
+            i.suite, i.device, i.driver, i.date_utc, i.revision, i.warmup, i.runs
         );
         println!(
             "{:<28} {:>11} {:<36} {:>10} {:>10} {:>12} {:>9}",
@@ -222,11 +245,15 @@ impl Bench {
         );
         for r in &self.rows {
             let ratio = r.ratio.map(|x| format!("{x:.2}x")).unwrap_or_default();
+            let implementation = match &r.builder {
+                Some(b) => format!("{} [{b}-built]", r.implementation),
+                None => r.implementation.clone(),
+            };
             println!(
                 "{:<28} {:>11} {:<36} {:>10.3} {:>10.3} {:>7.1} {:<5} {:>8}",
                 r.case,
                 r.elements,
-                r.implementation,
+                implementation,
                 r.stats.min_ms,
                 r.stats.median_ms,
                 r.throughput,
@@ -239,33 +266,10 @@ impl Bench {
         }
         std::fs::create_dir_all(&self.out)
             .with_context(|| format!("creating {}", self.out.display()))?;
-        let stamp = chrono::Utc::now().format("%Y%m%d-%H%M%S");
-        let base = self
-            .out
-            .join(format!("{}-{stamp}", i.suite.replace(' ', "-")));
+        let base = self.artifact_path();
         let csv = base.with_extension("csv");
         let json = base.with_extension("json");
-        write_atomically(&csv, |f| {
-            writeln!(f, "# {}", serde_json::to_string(i)?)?;
-            writeln!(f, "case,elements,implementation,min_ms,median_ms,mean_ms,throughput,throughput_unit,baseline,ratio")?;
-            for r in &self.rows {
-                writeln!(
-                    f,
-                    "{},{},{},{:.6},{:.6},{:.6},{:.4},{},{},{}",
-                    r.case,
-                    r.elements,
-                    r.implementation,
-                    r.stats.min_ms,
-                    r.stats.median_ms,
-                    r.stats.mean_ms,
-                    r.throughput,
-                    r.throughput_unit,
-                    r.baseline.clone().unwrap_or_default(),
-                    r.ratio.map(|x| format!("{x:.4}")).unwrap_or_default()
-                )?;
-            }
-            Ok(())
-        })?;
+        write_atomically(&csv, |f| self.write_csv(f))?;
         let notes: serde_json::Map<String, serde_json::Value> = notes
             .iter()
             .map(|(k, v)| (k.clone(), serde_json::json!(v)))
@@ -283,23 +287,52 @@ impl Bench {
         }
         Ok((csv, json))
     }
-}
 
-/// Writes through a temporary file and renames, so an interrupted run leaves no half file.
-fn write_atomically(
-    path: &std::path::Path,
-    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> anyhow::Result<()>,
-) -> anyhow::Result<()> {
-    let tmp = path.with_extension("partial");
-    let file =
-        std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-    let mut w = std::io::BufWriter::new(file);
-    write(&mut w)?;
-    w.flush()?;
-    drop(w);
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
-    Ok(())
+    /// One header line, then one row per case; every row repeats the run's suite, date,
+    /// revision and device so that files of several runs concatenate into one table. Fields
+    /// are quoted where they hold commas or quotes.
+    fn write_csv(&self, out: &mut impl std::io::Write) -> anyhow::Result<()> {
+        let mut w = csv::Writer::from_writer(out);
+        w.write_record([
+            "suite",
+            "date_utc",
+            "revision",
+            "device",
+            "case",
+            "elements",
+            "implementation",
+            "builder",
+            "min_ms",
+            "median_ms",
+            "mean_ms",
+            "throughput",
+            "throughput_unit",
+            "baseline",
+            "ratio",
+        ])?;
+        let i = &self.info;
+        for r in &self.rows {
+            w.write_record([
+                i.suite.clone(),
+                i.date_utc.clone(),
+                i.revision.clone(),
+                i.device.clone(),
+                r.case.clone(),
+                r.elements.to_string(),
+                r.implementation.clone(),
+                r.builder.clone().unwrap_or_default(),
+                format!("{:.6}", r.stats.min_ms),
+                format!("{:.6}", r.stats.median_ms),
+                format!("{:.6}", r.stats.mean_ms),
+                format!("{:.4}", r.throughput),
+                r.throughput_unit.clone(),
+                r.baseline.clone().unwrap_or_default(),
+                r.ratio.map(|x| format!("{x:.4}")).unwrap_or_default(),
+            ])?;
+        }
+        w.flush()?;
+        Ok(())
+    }
 }
 
 /// The device time of the commands `work` records, in milliseconds, from two GPU timestamps
@@ -321,29 +354,6 @@ pub fn time_cpu<R>(f: impl FnOnce() -> R) -> (R, f64) {
     let t = Instant::now();
     let r = f();
     (r, t.elapsed().as_secs_f64() * 1e3)
-}
-
-fn git_revision() -> String {
-    let run = |args: &[&str]| {
-        std::process::Command::new("git")
-            .args(args)
-            .output()
-            .ok()
-            .filter(|o| o.status.success())
-            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-    };
-    match run(&["rev-parse", "--short=12", "HEAD"]) {
-        Some(rev) => {
-            let dirty = run(&["status", "--porcelain", "--untracked-files=no"])
-                .is_some_and(|s| !s.is_empty());
-            if dirty {
-                format!("{rev}-dirty")
-            } else {
-                rev
-            }
-        }
-        None => "unknown".into(),
-    }
 }
 
 fn host_cpu() -> String {

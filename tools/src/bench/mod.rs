@@ -11,6 +11,7 @@ mod synth;
 mod textures;
 mod trace;
 
+use crate::cli::output::check_writable_dir;
 use crate::cli::GlobalArgs;
 use clap::{Args, Subcommand};
 use std::path::PathBuf;
@@ -46,13 +47,23 @@ pub struct CommonArgs {
     /// Measured runs per case; the table reports their min and median.
     #[arg(long, default_value_t = 5)]
     pub runs: usize,
-    /// Folder for the CSV and JSON files.
-    #[arg(long, default_value = "results")]
-    pub out: PathBuf,
+    /// Folder for the CSV and JSON files and the figures (created if needed, checked before
+    /// the suite starts).
+    #[arg(long, value_name = "DIR", default_value = "results")]
+    pub out_dir: PathBuf,
 }
 
 /// Runs the chosen suite.
 pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
+    let common = match &command {
+        BenchCommand::Prims(a) => &a.common,
+        BenchCommand::Hash(a) => &a.common,
+        BenchCommand::Psh(a) => &a.common,
+        BenchCommand::Trace(a) => &a.common,
+        BenchCommand::Synth(a) => &a.common,
+        BenchCommand::Textures(a) => &a.common,
+    };
+    check_writable_dir("--out-dir", &common.out_dir)?;
     match command {
         BenchCommand::Prims(args) => prims::run(&args, global),
         BenchCommand::Hash(args) => hash::run(&args, global),

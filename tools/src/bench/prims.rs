@@ -9,8 +9,9 @@ use clap::Args;
 use lazysolid_compute::gpu::{Gpu, GpuBuffer, Kernel, Recorder};
 use lazysolid_compute::kernels;
 use lazysolid_compute::prims::{
-    compact_cpu, exclusive_scan_cpu, push::CopyPush, reduce_cpu, CompactOutput, Compactor, Keep,
-    KeepCpu, RadixSort, Reduce, ReduceOp, Scan,
+    compact_cpu, exclusive_scan_cpu,
+    push::{CopyCountPush, CopyPush},
+    reduce_cpu, CompactOutput, Compactor, Keep, KeepCpu, RadixSort, Reduce, ReduceOp, Scan,
 };
 use rand::{Rng, SeedableRng};
 
@@ -91,7 +92,7 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                         &copy_quads,
                         copy_quads.groups_for(quads as u64),
                         &bindings,
-                        &(quads as u32),
+                        &CopyCountPush { n: quads as u32 },
                     )?;
                 }
                 Ok(())

@@ -9,7 +9,8 @@
 use super::harness::{time_cpu, time_gpu, Bench, Throughput};
 use super::plot::bar_chart;
 use super::CommonArgs;
-use crate::cli::GlobalArgs;
+use crate::cli::resolution::Resolution;
+use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use glam::{Affine3A, Vec3};
@@ -21,19 +22,19 @@ use lazysolid_renderer::mesh::Mesh;
 use obvhs::ray::{Ray, RayHit};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
-use std::path::PathBuf;
 
 /// What to trace.
 #[derive(Args)]
 pub struct TraceArgs {
     #[command(flatten)]
     pub common: CommonArgs,
-    /// The mesh (OFF or OBJ), normalized into the unit cube.
-    #[arg(long, default_value = "assets/meshes/armadillo.off")]
-    pub mesh: PathBuf,
-    /// Primary rays: a square image of this many pixels per side.
-    #[arg(long, default_value_t = 1024)]
-    pub res: u32,
+    /// The mesh: a name in the assets' meshes (armadillo, bunny00, ...) or a path to an OFF or
+    /// OBJ file; normalized into the unit cube.
+    #[arg(long, value_name = "NAME|PATH", default_value = "armadillo")]
+    pub mesh: String,
+    /// Primary rays: one per pixel of an image of WxH pixels (N for NxN).
+    #[arg(long, value_name = "WxH", default_value = "1024x1024")]
+    pub res: Resolution,
     /// CPU threads of the obvhs baseline.
     #[arg(long, default_value_t = 2)]
     pub cpu_threads: usize,
@@ -41,13 +42,11 @@ pub struct TraceArgs {
 
 /// Runs the suite.
 pub fn run(args: &TraceArgs, global: &GlobalArgs) -> anyhow::Result<()> {
-    ensure!(
-        (16..=4096).contains(&args.res),
-        "--res {} is out of range (16..=4096)",
-        args.res
-    );
+    args.res.check("--res", 16..=4096)?;
     ensure!(args.cpu_threads >= 1, "--cpu-threads must be at least 1");
-    let mesh = Mesh::load_unit_cube(&args.mesh).with_context(|| "loading the benchmark mesh")?;
+    let mesh_path = assets::mesh("--mesh", &args.mesh)?;
+    let mesh = Mesh::load_unit_cube(&mesh_path)
+        .with_context(|| format!("loading --mesh {}", mesh_path.display()))?;
     let gpu = global.gpu()?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.cpu_threads)
@@ -152,7 +151,7 @@ pub fn run(args: &TraceArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         &dir.join("trace-rates.png"),
         &format!(
             "{} ({} triangles): rays per second",
-            args.mesh.file_name().unwrap_or_default().to_string_lossy(),
+            mesh_path.file_name().unwrap_or_default().to_string_lossy(),
             tris
         ),
         "ray set",
@@ -203,29 +202,30 @@ fn trace_single_level(b: &MeshBvh, rays: &[GpuRay]) -> Vec<(u32, f32)> {
         .collect()
 }
 
-/// A pinhole camera at (0.5, 0.55, 2.2) looking at the unit cube's centre, 35° field of view;
-/// rays in 8×8-pixel tiles, the order in which a renderer launches them.
-fn primary_rays(res: u32) -> Vec<GpuRay> {
+/// A pinhole camera at (0.5, 0.55, 2.2) looking at the unit cube's centre, 35° vertical field
+/// of view; rays in 8×8-pixel tiles, the order in which a renderer launches them.
+fn primary_rays(res: Resolution) -> Vec<GpuRay> {
+    let (w, h) = (res.width, res.height);
     let eye = Vec3::new(0.5, 0.55, 2.2);
     let forward = (Vec3::new(0.5, 0.5, 0.5) - eye).normalize();
     let right = forward.cross(Vec3::Y).normalize();
     let up = right.cross(forward);
     let half = (35f32.to_radians() * 0.5).tan();
-    (0..res.div_ceil(8) * res.div_ceil(8) * 64)
-        .filter(|&i| {
-            let tiles_x = res.div_ceil(8);
-            let (tile, within) = (i / 64, i % 64);
-            (tile % tiles_x) * 8 + within % 8 < res && (tile / tiles_x) * 8 + within / 8 < res
-        })
-        .map(|i| {
-            let (tile, within) = (i / 64, i % 64);
-            let tiles_x = res.div_ceil(8);
-            let (x, y) = (
-                (tile % tiles_x) * 8 + within % 8,
-                (tile / tiles_x) * 8 + within / 8,
-            );
-            let sx = ((x as f32 + 0.5) / res as f32 * 2.0 - 1.0) * half;
-            let sy = (1.0 - (y as f32 + 0.5) / res as f32 * 2.0) * half;
+    let aspect = w as f32 / h as f32;
+    let tiles_x = w.div_ceil(8);
+    let pixel = |i: u32| {
+        let (tile, within) = (i / 64, i % 64);
+        (
+            (tile % tiles_x) * 8 + within % 8,
+            (tile / tiles_x) * 8 + within / 8,
+        )
+    };
+    (0..tiles_x * h.div_ceil(8) * 64)
+        .map(pixel)
+        .filter(|&(x, y)| x < w && y < h)
+        .map(|(x, y)| {
+            let sx = ((x as f32 + 0.5) / w as f32 * 2.0 - 1.0) * half * aspect;
+            let sy = (1.0 - (y as f32 + 0.5) / h as f32 * 2.0) * half;
             GpuRay {
                 origin: eye.into(),
                 tmin: 0.0,

@@ -1,12 +1,17 @@
 //! Subcommands that are not benchmarks, and what every subcommand shares.
 
+pub mod assets;
+pub mod builder;
 pub mod device;
 pub mod diff;
+pub mod exit_status;
+pub mod output;
 pub mod render;
+pub mod resolution;
 pub mod solid;
 pub mod synth;
 
-use lazysolid_compute::gpu::{Gpu, GpuOptions, ValidationLog};
+use lazysolid_compute::gpu::{Gpu, GpuOptions, Validation, ValidationLog};
 use std::cell::RefCell;
 use std::sync::Arc;
 
@@ -14,6 +19,8 @@ use std::sync::Arc;
 pub struct GlobalArgs {
     pub device: Option<String>,
     pub verbose: bool,
+    /// `--validation`: the layer on, as `LAZYSOLID_VALIDATION=1`.
+    pub validation: bool,
     pub validation_logs: RefCell<Vec<Arc<ValidationLog>>>,
 }
 
@@ -23,6 +30,9 @@ impl GlobalArgs {
         let mut options = GpuOptions::from_env();
         if self.device.is_some() {
             options.device = self.device.clone();
+        }
+        if self.validation {
+            options.validation = Validation::Required("--validation is given".into());
         }
         let gpu = Gpu::new(&options)?;
         if gpu.validation_enabled() {

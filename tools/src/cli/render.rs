@@ -1,5 +1,7 @@
 //! `lazysolid render SCENE.toml -o out.png`: path-trace a scene file on the device.
 
+use super::output::check_writable;
+use super::resolution::Resolution;
 use super::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::{Args, ValueEnum};
@@ -26,7 +28,7 @@ pub enum ToneCurve {
 pub struct RenderArgs {
     /// The scene file (TOML; see docs/scenes.md).
     pub scene: PathBuf,
-    /// The tone-mapped 8-bit PNG to write.
+    /// The tone-mapped 8-bit PNG to write (its folder must exist: checked before rendering).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Also write the HDR film (with albedo, normal and depth layers) as OpenEXR; default:
@@ -39,9 +41,9 @@ pub struct RenderArgs {
     /// Samples per pixel, overriding the scene's.
     #[arg(long)]
     pub spp: Option<u32>,
-    /// Resolution WIDTHxHEIGHT, overriding the scene's.
-    #[arg(long, value_parser = parse_resolution)]
-    pub res: Option<(u32, u32)>,
+    /// Image size WxH in pixels (N for NxN), overriding the scene's.
+    #[arg(long, value_name = "WxH")]
+    pub res: Option<Resolution>,
     /// Seed of the random numbers, overriding the scene's.
     #[arg(long)]
     pub seed: Option<u32>,
@@ -53,40 +55,8 @@ pub struct RenderArgs {
     pub tonemap: ToneCurve,
 }
 
-fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("{s:?} is not WIDTHxHEIGHT (e.g. 640x480)"))?;
-    let parse = |v: &str, what: &str| -> Result<u32, String> {
-        let n: u32 = v
-            .trim()
-            .parse()
-            .map_err(|_| format!("{what} {v:?} in {s:?} is not a whole number"))?;
-        if !(1..=8192).contains(&n) {
-            return Err(format!("{what} {n} in {s:?} is out of range (1..=8192)"));
-        }
-        Ok(n)
-    };
-    Ok((parse(w, "width")?, parse(h, "height")?))
-}
-
 /// Runs the command.
 pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
-    let mut scene = Scene::load(&args.scene)?;
-    if let Some(spp) = args.spp {
-        ensure!(
-            (1..=1_048_576).contains(&spp),
-            "--spp {spp} is out of range (1..=1048576)"
-        );
-        scene.render.spp = spp;
-    }
-    if let Some((w, h)) = args.res {
-        scene.render.width = w;
-        scene.render.height = h;
-    }
-    if let Some(seed) = args.seed {
-        scene.render.seed = seed;
-    }
     let exr = if args.no_exr {
         None
     } else {
@@ -96,6 +66,26 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 .unwrap_or_else(|| args.output.with_extension("exr")),
         )
     };
+    check_writable("-o", &args.output)?;
+    if let Some(exr) = &exr {
+        check_writable("--exr", exr)?;
+    }
+    let mut scene = Scene::load(&args.scene)?;
+    if let Some(spp) = args.spp {
+        ensure!(
+            (1..=1_048_576).contains(&spp),
+            "--spp {spp} is out of range (1..=1048576)"
+        );
+        scene.render.spp = spp;
+    }
+    if let Some(res) = args.res {
+        res.check("--res", 1..=8192)?;
+        scene.render.width = res.width;
+        scene.render.height = res.height;
+    }
+    if let Some(seed) = args.seed {
+        scene.render.seed = seed;
+    }
     let gpu = global.gpu()?;
     let start = Instant::now();
     let mut tracer = PathTracer::new(&gpu, &scene)

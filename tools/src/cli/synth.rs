@@ -1,8 +1,10 @@
-//! `lazysolid synth EXEMPLAR --size WxH --offset X,Y --seed S -o out.png`: synthesize a window
+//! `lazysolid synth EXEMPLAR --res WxH --offset X,Y --seed S -o out.png`: synthesize a window
 //! of the unbounded texture plane from an exemplar on the device, and score it.
 
-use super::GlobalArgs;
-use anyhow::{ensure, Context};
+use super::output::{check_writable, write_atomically};
+use super::resolution::Resolution;
+use super::{assets, GlobalArgs};
+use anyhow::ensure;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::synth::{
@@ -16,11 +18,13 @@ use std::time::Instant;
 /// What to synthesize and where to write it.
 #[derive(Args)]
 pub struct SynthArgs {
-    /// The exemplar: PNG, JPEG or GIMP pattern (.pat), 16² to 256² pixels.
-    pub exemplar: PathBuf,
-    /// Output size, WIDTH or WIDTHxHEIGHT.
-    #[arg(long, default_value = "256", value_parser = parse_size)]
-    pub size: (u32, u32),
+    /// The exemplar, 16² to 256² pixels: a name in the assets' exemplars (leather, brick, ...)
+    /// or a path to a PNG, JPEG or GIMP pattern (.pat).
+    #[arg(value_name = "NAME|PATH")]
+    pub exemplar: String,
+    /// Output size WxH in pixels (N for NxN).
+    #[arg(long, value_name = "WxH", default_value = "256x256")]
+    pub res: Resolution,
     /// Absolute position X,Y of the window's first pixel in the unbounded output plane.
     #[arg(long, default_value = "0,0", value_parser = parse_offset, allow_hyphen_values = true)]
     pub offset: (i32, i32),
@@ -47,21 +51,10 @@ pub struct SynthArgs {
     /// Most output pixels the neighbourhood energy evaluates (a regular subgrid beyond that).
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
-    /// The PNG to write; the coordinate map goes next to it as NAME.coords.png.
+    /// The PNG to write; the coordinate map goes next to it as NAME.coords.png (both checked
+    /// before synthesis starts).
     #[arg(short, long)]
     pub output: PathBuf,
-}
-
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let parse = |v: &str| -> Result<u32, String> {
-        v.trim()
-            .parse()
-            .map_err(|_| format!("{v:?} in {s:?} is not a whole number"))
-    };
-    match s.split_once(['x', 'X']) {
-        Some((w, h)) => Ok((parse(w)?, parse(h)?)),
-        None => parse(s).map(|n| (n, n)),
-    }
 }
 
 fn parse_offset(s: &str) -> Result<(i32, i32), String> {
@@ -82,26 +75,24 @@ fn coords_path(output: &Path) -> PathBuf {
     output.with_file_name(format!("{stem}.coords.png"))
 }
 
-/// Writes an RGB PNG through a temporary name in the same folder, then renames it.
+/// Writes an RGB PNG whole or not at all.
 pub(crate) fn write_png(
     path: &Path,
     width: u32,
     height: u32,
     rgb: &[[u8; 3]],
 ) -> anyhow::Result<()> {
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let tmp = path.with_file_name(format!(".{name}.partial"));
     let bytes: Vec<u8> = rgb.iter().flatten().copied().collect();
-    image::save_buffer_with_format(
-        &tmp,
-        &bytes,
-        width,
-        height,
-        image::ExtendedColorType::Rgb8,
-        image::ImageFormat::Png,
-    )
-    .with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
+    write_atomically(path, |w| {
+        Ok(image::write_buffer_with_format(
+            w,
+            &bytes,
+            width,
+            height,
+            image::ExtendedColorType::Rgb8,
+            image::ImageFormat::Png,
+        )?)
+    })
 }
 
 /// Runs the command.
@@ -113,7 +104,10 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "-o {}: the output must be a .png file",
         args.output.display()
     );
-    let exemplar = Exemplar::load(&args.exemplar)?;
+    check_writable("-o", &args.output)?;
+    check_writable("-o", &coords_path(&args.output))?;
+    let exemplar_path = assets::exemplar("EXEMPLAR", &args.exemplar, None)?;
+    let exemplar = Exemplar::load(&exemplar_path)?;
     let start = Instant::now();
     let analysis_params = AnalysisParams {
         k: args.k,
@@ -131,7 +125,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     )?;
     let window = Region {
         origin: [args.offset.0, args.offset.1],
-        size: [args.size.0, args.size.1],
+        size: [args.res.width, args.res.height],
     };
     let gpu = global.gpu()?;
     let synth = GpuSynthesizer::new(&gpu, &analysis)?;
@@ -145,7 +139,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let synth_s = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
-    let (w, h) = args.size;
+    let (w, h) = (args.res.width, args.res.height);
     let colours = result.colours(&exemplar);
     let window_coords = result.window_coords();
     let repetition = period_repetition(&window_coords, w, h, exemplar.width, exemplar.height);
@@ -173,7 +167,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
 
     println!(
         "exemplar {} ({}x{}, {} levels, k = {})",
-        args.exemplar.display(),
+        exemplar_path.display(),
         exemplar.width,
         exemplar.height,
         levels,

@@ -17,8 +17,7 @@ use super::gpu::{PerfectHashGpu, PerfectParams};
 use super::kernels::PerfectKernels;
 use super::sizes::PerfectSizes;
 use super::table::{table_bytes, PerfectAccess, PerfectConfig, PerfectHash};
-use crate::gpu::{GpuBuffer, GpuResult};
-use bytemuck::{Pod, Zeroable};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
 use glam::{UVec3, Vec3, Vec4};
 use std::sync::Arc;
 
@@ -109,15 +108,16 @@ pub fn blocked_sizes(cells: &[u64], resolution: u32) -> Result<Vec<BlockChoice>,
         .collect()
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct BlockedQueryPush {
-    table: PerfectParams,
-    positions: u64,
-    results: u64,
-    n: u32,
-    block: u32,
-    resolution: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct BlockedQueryPush<'a> {
+        table: PerfectParams<'a>,
+        positions: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        block: u32,
+        resolution: u32,
+    }
 }
 
 /// A blocked perfect hash on the host (constrained access: only positions whose footprint

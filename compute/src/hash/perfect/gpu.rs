@@ -18,10 +18,9 @@ use super::super::keys::{KeyLayout, Universe};
 use super::kernels::PerfectKernels;
 use super::sizes::PerfectSizes;
 use super::table::{PerfectAccess, PerfectAttempt, PerfectConfig, PerfectHash, PerfectReport};
-use crate::gpu::{GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 use crate::prims::{CompactOutput, Keep};
 use crate::shader_constants::HASH_NOT_FOUND;
-use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
 
 /// Size classes counted exactly; larger buckets share the last class.
@@ -33,195 +32,207 @@ const SWEEPS_PER_CHECK: u32 = 4;
 /// Candidate slots one bucket examines per dispatch (llvmpipe caps loops at 65,535 steps).
 const BUDGET: u32 = 8192;
 
-/// The table parameters a kernel passes to `glsl/include/hash/perfect.glsl` (the GLSL
-/// `PerfectHashParams`, 56 bytes, same field order).
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-#[repr(C, packed(4))]
-pub struct PerfectParams {
-    /// Device address of the packed offset table.
-    pub offsets: u64,
-    /// Device address of the payload words.
-    pub data: u64,
-    /// Device address of the tags (0 for constrained access).
-    pub tags: u64,
-    /// |H|.
-    pub h: u32,
-    /// |Φ|.
-    pub phi: u32,
-    /// 2 or 3.
-    pub dimensions: u32,
-    /// Bits per offset component.
-    pub component_bits: u32,
-    /// Universe extents.
-    pub dims: [u32; 3],
-    /// Payload words per slot: 1, or (b+1)³ for blocked tables.
-    pub block_words: u32,
+crate::push_block! {
+    /// The table parameters a kernel passes to `glsl/include/hash/perfect.glsl` (the GLSL
+    /// `PerfectHashParams`, 56 bytes, same field order).
+    #[derive(Clone, Copy, Debug, Default)]
+    pub struct PerfectParams<'a> {
+        /// Device address of the packed offset table.
+        pub offsets: DeviceAddress<'a>,
+        /// Device address of the payload words.
+        pub data: DeviceAddress<'a>,
+        /// Device address of the tags (0 for constrained access).
+        pub tags: DeviceAddress<'a>,
+        /// |H|.
+        pub h: u32,
+        /// |Φ|.
+        pub phi: u32,
+        /// 2 or 3.
+        pub dimensions: u32,
+        /// Bits per offset component.
+        pub component_bits: u32,
+        /// Universe extents.
+        pub dims: [u32; 3],
+        /// Payload words per slot: 1, or (b+1)³ for blocked tables.
+        pub block_words: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct PreparePush {
-    keys: u64,
-    h0s: u64,
-    buckets: u64,
-    counts: u64,
-    anchors: u64,
-    status: u64,
-    key_count: u64,
-    n: u32,
-    layout_id: u32,
-    dims: [u32; 3],
-    dimensions: u32,
-    axis_bits: u32,
-    h: u32,
-    phi: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct PreparePush<'a> {
+        keys: DeviceAddress<'a>,
+        h0s: DeviceAddress<'a>,
+        buckets: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        anchors: DeviceAddress<'a>,
+        status: DeviceAddress<'a>,
+        key_count: u64,
+        n: u32,
+        layout_id: u32,
+        dims: [u32; 3],
+        dimensions: u32,
+        axis_bits: u32,
+        h: u32,
+        phi: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct ScatterPush {
-    buckets: u64,
-    h0s: u64,
-    starts: u64,
-    cursor: u64,
-    members: u64,
-    member_h0: u64,
-    n: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ScatterPush<'a> {
+        buckets: DeviceAddress<'a>,
+        h0s: DeviceAddress<'a>,
+        starts: DeviceAddress<'a>,
+        cursor: DeviceAddress<'a>,
+        members: DeviceAddress<'a>,
+        member_h0: DeviceAddress<'a>,
+        n: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct ClassesPush {
-    counts: u64,
-    starts: u64,
-    members: u64,
-    member_h0: u64,
-    keys: u64,
-    histogram: u64,
-    singles: u64,
-    status: u64,
-    entries: u32,
-    classes: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ClassesPush<'a> {
+        counts: DeviceAddress<'a>,
+        starts: DeviceAddress<'a>,
+        members: DeviceAddress<'a>,
+        member_h0: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        histogram: DeviceAddress<'a>,
+        singles: DeviceAddress<'a>,
+        status: DeviceAddress<'a>,
+        entries: u32,
+        classes: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct OrderPush {
-    counts: u64,
-    class_start: u64,
-    class_cursor: u64,
-    order: u64,
-    entries: u32,
-    classes: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct OrderPush<'a> {
+        counts: DeviceAddress<'a>,
+        class_start: DeviceAddress<'a>,
+        class_cursor: DeviceAddress<'a>,
+        order: DeviceAddress<'a>,
+        entries: u32,
+        classes: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct ProposePush {
-    order: u64,
-    counts: u64,
-    starts: u64,
-    anchors: u64,
-    h0s: u64,
-    member_h0: u64,
-    occupied: u64,
-    claims: u64,
-    state: u64,
-    proposal: u64,
-    status: u64,
-    largest_pending: u64,
-    first: u32,
-    count: u32,
-    iteration: u32,
-    h: u32,
-    slots: u32,
-    dimensions: u32,
-    budget: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ProposePush<'a> {
+        order: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        starts: DeviceAddress<'a>,
+        anchors: DeviceAddress<'a>,
+        h0s: DeviceAddress<'a>,
+        member_h0: DeviceAddress<'a>,
+        occupied: DeviceAddress<'a>,
+        claims: DeviceAddress<'a>,
+        state: DeviceAddress<'a>,
+        proposal: DeviceAddress<'a>,
+        status: DeviceAddress<'a>,
+        largest_pending: DeviceAddress<'a>,
+        first: u32,
+        count: u32,
+        iteration: u32,
+        h: u32,
+        slots: u32,
+        dimensions: u32,
+        budget: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct VerifyPush {
-    order: u64,
-    counts: u64,
-    starts: u64,
-    member_h0: u64,
-    occupied: u64,
-    claims: u64,
-    state: u64,
-    proposal: u64,
-    offsets: u64,
-    pending: u64,
-    largest_pending: u64,
-    first: u32,
-    count: u32,
-    iteration: u32,
-    h: u32,
-    dimensions: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct VerifyPush<'a> {
+        order: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        starts: DeviceAddress<'a>,
+        member_h0: DeviceAddress<'a>,
+        occupied: DeviceAddress<'a>,
+        claims: DeviceAddress<'a>,
+        state: DeviceAddress<'a>,
+        proposal: DeviceAddress<'a>,
+        offsets: DeviceAddress<'a>,
+        pending: DeviceAddress<'a>,
+        largest_pending: DeviceAddress<'a>,
+        first: u32,
+        count: u32,
+        iteration: u32,
+        h: u32,
+        dimensions: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct FreeCountPush {
-    occupied: u64,
-    free_counts: u64,
-    words: u32,
-    slots: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct FreeCountPush<'a> {
+        occupied: DeviceAddress<'a>,
+        free_counts: DeviceAddress<'a>,
+        words: u32,
+        slots: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct AssignPush {
-    occupied: u64,
-    free_ranks: u64,
-    singles: u64,
-    single_count: u64,
-    anchors: u64,
-    h0s: u64,
-    offsets: u64,
-    words: u32,
-    slots: u32,
-    h: u32,
-    dimensions: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct AssignPush<'a> {
+        occupied: DeviceAddress<'a>,
+        free_ranks: DeviceAddress<'a>,
+        singles: DeviceAddress<'a>,
+        single_count: DeviceAddress<'a>,
+        anchors: DeviceAddress<'a>,
+        h0s: DeviceAddress<'a>,
+        offsets: DeviceAddress<'a>,
+        words: u32,
+        slots: u32,
+        h: u32,
+        dimensions: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct PackPush {
-    offsets: u64,
-    words: u64,
-    entries: u32,
-    h: u32,
-    dimensions: u32,
-    component_bits: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct PackPush<'a> {
+        offsets: DeviceAddress<'a>,
+        words: DeviceAddress<'a>,
+        entries: u32,
+        h: u32,
+        dimensions: u32,
+        component_bits: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct FillPush {
-    buckets: u64,
-    h0s: u64,
-    offsets: u64,
-    payloads: u64,
-    data: u64,
-    tags: u64,
-    status: u64,
-    n: u32,
-    h: u32,
-    dimensions: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct FillPush<'a> {
+        buckets: DeviceAddress<'a>,
+        h0s: DeviceAddress<'a>,
+        offsets: DeviceAddress<'a>,
+        payloads: DeviceAddress<'a>,
+        data: DeviceAddress<'a>,
+        tags: DeviceAddress<'a>,
+        status: DeviceAddress<'a>,
+        n: u32,
+        h: u32,
+        dimensions: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct QueryPush {
-    table: PerfectParams,
-    keys: u64,
-    results: u64,
-    key_count: u64,
-    n: u32,
-    layout_id: u32,
-    axis_bits: u32,
-    checked: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct QueryPush<'a> {
+        table: PerfectParams<'a>,
+        keys: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        key_count: u64,
+        n: u32,
+        layout_id: u32,
+        axis_bits: u32,
+        checked: u32,
+    }
 }
 
 const STATUS_BAD_KEY: usize = 0;
@@ -512,7 +523,7 @@ impl PerfectBuilder {
                     for &(first, count) in &classes {
                         for _ in 0..ITERATIONS_PER_CLASS {
                             iteration += 1;
-                            let target = pending.address() + 4 * SWEEPS_PER_CHECK as u64;
+                            let target = pending.address_at(SWEEPS_PER_CHECK as usize)?;
                             self.record_round(
                                 rec,
                                 &addresses,
@@ -527,7 +538,7 @@ impl PerfectBuilder {
                 }
                 for sweep in 0..SWEEPS_PER_CHECK {
                     iteration += 1;
-                    let target = pending.address() + 4 * sweep as u64;
+                    let target = pending.address_at(sweep as usize)?;
                     self.record_round(rec, &addresses, sizes, 0, multi, iteration, target)?;
                 }
                 Ok(())
@@ -613,7 +624,9 @@ impl PerfectBuilder {
                     offsets: offsets.address(),
                     payloads: payloads.address(),
                     data: data.address(),
-                    tags: tags.as_ref().map_or(0, |t| t.address()),
+                    tags: tags
+                        .as_ref()
+                        .map_or(DeviceAddress::NULL, GpuBuffer::address),
                     status: status.address(),
                     n: n as u32,
                     h: sizes.h,
@@ -647,12 +660,12 @@ impl PerfectBuilder {
     fn record_round(
         &self,
         rec: &mut Recorder<'_>,
-        a: &Addresses,
+        a: &Addresses<'_>,
         sizes: &PerfectSizes,
         first: u32,
         count: u32,
         iteration: u32,
-        pending: u64,
+        pending: DeviceAddress<'_>,
     ) -> GpuResult<()> {
         if count == 0 {
             return Ok(());
@@ -708,18 +721,18 @@ impl PerfectBuilder {
 struct Addresses<'a> {
     /// The largest pending size class left by the last iteration (alternating words).
     largest: [&'a GpuBuffer<u32>; 2],
-    order: u64,
-    counts: u64,
-    starts: u64,
-    anchors: u64,
-    h0s: u64,
-    member_h0: u64,
-    occupied: u64,
-    claims: u64,
-    state: u64,
-    proposal: u64,
-    status: u64,
-    offsets: u64,
+    order: DeviceAddress<'a>,
+    counts: DeviceAddress<'a>,
+    starts: DeviceAddress<'a>,
+    anchors: DeviceAddress<'a>,
+    h0s: DeviceAddress<'a>,
+    member_h0: DeviceAddress<'a>,
+    occupied: DeviceAddress<'a>,
+    claims: DeviceAddress<'a>,
+    state: DeviceAddress<'a>,
+    proposal: DeviceAddress<'a>,
+    status: DeviceAddress<'a>,
+    offsets: DeviceAddress<'a>,
 }
 
 fn keys_or_one(keys: &[u64]) -> Vec<u64> {
@@ -767,11 +780,14 @@ impl PerfectHashGpu {
     }
 
     /// The parameters for `glsl/include/hash/perfect.glsl`.
-    pub fn params(&self) -> PerfectParams {
+    pub fn params(&self) -> PerfectParams<'_> {
         PerfectParams {
             offsets: self.offsets.address(),
             data: self.data.address(),
-            tags: self.tags.as_ref().map_or(0, |t| t.address()),
+            tags: self
+                .tags
+                .as_ref()
+                .map_or(DeviceAddress::NULL, GpuBuffer::address),
             h: self.sizes.h,
             phi: self.sizes.phi,
             dimensions: self.sizes.dimensions,

@@ -6,6 +6,8 @@
 //!   σ = 1/(2d) entries per key and grown by 10 % per failure, coprime with |H|;
 //! - [`build_perfect_cpu`]: the sequential greedy reference;
 //! - [`PerfectBuilder`]: the parallel construction in Vulkan compute;
+//! - [`PerfectConstruction`]: which of the two builds a table (by default the faster one on
+//!   the device: the CPU build on a CPU driver);
 //! - [`PerfectHashGpu`]: a table on the device, read by `glsl/include/hash/perfect.glsl`;
 //! - [`BlockedPerfectHash`]: blocks of texels with duplicated borders so that one block
 //!   serves a whole trilinear footprint.
@@ -13,10 +15,11 @@
 //! Layout, sizes and measurements: `docs/hashing.md`, "Perfect spatial hashing". Perfect
 //! spatial hashing is the subject of US patent 7,619,623 (see the README).
 
-mod blocked;
+pub(crate) mod blocked;
+mod construction;
 mod cpu;
 mod function;
-mod gpu;
+pub(crate) mod gpu;
 mod kernels;
 mod sizes;
 mod table;
@@ -24,6 +27,7 @@ mod table;
 pub use blocked::{
     block_keys, blocked_sizes, BlockChoice, BlockedLayout, BlockedPerfectHash, BLOCK_SIZES,
 };
+pub use construction::PerfectConstruction;
 pub use cpu::{build_perfect_cpu, key_points};
 pub use function::{
     bucket, h0, pack_offsets, read_offset, search_start, slot, slot_coords, slot_index,

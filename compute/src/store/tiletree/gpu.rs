@@ -3,64 +3,66 @@
 
 use super::plan::Plan;
 use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
-use crate::gpu::{GpuBuffer, GpuResult};
+use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
 use crate::store::colours::fill_colours;
 use crate::store::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use crate::store::{ColourSource, Filter, SparseStore, StoreError, StoreReport};
 use crate::voxel::VoxelKeys;
-use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 use std::path::Path;
 use std::sync::Arc;
 
-/// What `store/tiletree.glsl` receives: the `TileTreeParams` struct, field for field.
-#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Eq)]
-#[repr(C)]
-pub struct TileTreeParams {
-    /// Device address of the node cells.
-    pub nodes: u64,
-    /// Device address of the leaf records.
-    pub leaves: u64,
-    /// Device address of the tile map.
-    pub map: u64,
-    /// The root's entry.
-    pub root: u32,
-    /// R.
-    pub resolution: u32,
-    /// Tile map width in texels.
-    pub map_width: u32,
-    /// 0.
-    pub pad: u32,
+crate::push_block! {
+    /// What `store/tiletree.glsl` receives: the `TileTreeParams` struct, field for field.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct TileTreeParams<'a> {
+        /// Device address of the node cells.
+        pub nodes: DeviceAddress<'a>,
+        /// Device address of the leaf records.
+        pub leaves: DeviceAddress<'a>,
+        /// Device address of the tile map.
+        pub map: DeviceAddress<'a>,
+        /// The root's entry.
+        pub root: u32,
+        /// R.
+        pub resolution: u32,
+        /// Tile map width in texels.
+        pub map_width: u32,
+        /// 0.
+        pub pad: u32,
+    }
 }
 
-#[derive(Clone, Copy, Default, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct FillPush {
-    tiles: u64,
-    triangles: u64,
-    positions: u64,
-    indices: u64,
-    keys: u64,
-    colours: u64,
-    filled_in: u64,
-    filled_out: u64,
-    map: u64,
-    n_tiles: u32,
-    n_texels: u32,
-    resolution: u32,
-    map_width: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy, Default)]
+    pub(crate) struct FillPush<'a> {
+        tiles: DeviceAddress<'a>,
+        triangles: DeviceAddress<'a>,
+        positions: DeviceAddress<'a>,
+        indices: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        colours: DeviceAddress<'a>,
+        filled_in: DeviceAddress<'a>,
+        filled_out: DeviceAddress<'a>,
+        map: DeviceAddress<'a>,
+        n_tiles: u32,
+        n_texels: u32,
+        resolution: u32,
+        map_width: u32,
+        mode: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct LookupPush {
-    store: TileTreeParams,
-    points: u64,
-    normals: u64,
-    results: u64,
-    n: u32,
-    mode: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LookupPush<'a> {
+        store: TileTreeParams<'a>,
+        points: DeviceAddress<'a>,
+        normals: DeviceAddress<'a>,
+        results: DeviceAddress<'a>,
+        n: u32,
+        mode: u32,
+    }
 }
 
 /// The TileTree store. The tree is static: it is built from a mesh, and its colours can be
@@ -289,7 +291,7 @@ fn check_normals(points: &[Vec3], normals: &[Vec3]) -> Result<(), StoreError> {
 }
 
 impl SparseStore for TileTree {
-    type Params = TileTreeParams;
+    type Params<'a> = TileTreeParams<'a>;
 
     fn name(&self) -> &'static str {
         NAME
@@ -321,7 +323,7 @@ impl SparseStore for TileTree {
         self.bytes_by_part().iter().sum()
     }
 
-    fn params(&self) -> TileTreeParams {
+    fn params(&self) -> TileTreeParams<'_> {
         TileTreeParams {
             nodes: self.nodes.address(),
             leaves: self.leaves.address(),
@@ -351,19 +353,18 @@ impl SparseStore for TileTree {
     ) -> Result<TimedLookup<'_>, StoreError> {
         check_normals(points, normals)?;
         let k = &self.kernels;
-        Ok(prepare_lookup(
-            k,
-            &k.tiletree_lookup,
-            points,
-            normals,
-            |a| LookupPush {
+        let groups = k.tiletree_lookup.groups_for(points.len() as u64);
+        let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
+        Ok(prepare_lookup(k, points, normals, move |rec, a| {
+            let push = LookupPush {
                 store: self.params(),
                 points: a.points,
                 normals: a.normals,
                 results: a.results,
-                n: points.len() as u32,
-                mode: (filter == Filter::Trilinear) as u32,
-            },
-        )?)
+                n,
+                mode,
+            };
+            rec.dispatch(&k.tiletree_lookup, groups, &[], &push)
+        })?)
     }
 }

@@ -14,7 +14,7 @@
 mod config;
 mod fill_cpu;
 mod geometry;
-mod gpu;
+pub(crate) mod gpu;
 mod lookup_cpu;
 mod pack;
 mod plan;

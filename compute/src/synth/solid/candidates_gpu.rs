@@ -8,27 +8,27 @@ use super::candidates::{
     SearchKey, SolidCandidates,
 };
 use super::roles::{image_axis, shared_axis, ROLES};
-use crate::gpu::{Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth_solid;
 use crate::synth::SynthResult;
-use bytemuck::{Pod, Zeroable};
 use std::collections::HashMap;
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct SearchPush {
-    query: u64,
-    target: u64,
-    pixels: u64,
-    distances: u64,
-    shift: u32,
-    query_axis: u32,
-    target_axis: u32,
-    strip: u32,
-    spacing: u32,
-    s: u32,
-    first_target: u32,
-    target_count: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct SearchPush<'a> {
+        query: DeviceAddress<'a>,
+        target: DeviceAddress<'a>,
+        pixels: DeviceAddress<'a>,
+        distances: DeviceAddress<'a>,
+        shift: u32,
+        query_axis: u32,
+        target_axis: u32,
+        strip: u32,
+        spacing: u32,
+        s: u32,
+        first_target: u32,
+        target_count: u32,
+    }
 }
 
 /// Target pixels one strip-search dispatch compares (llvmpipe stops an invocation's loops
@@ -39,47 +39,49 @@ const TARGETS_PER_DISPATCH: u32 = 4096;
 /// iterations).
 const COHERENCE_CHUNK: u32 = 8;
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct TriplesPush {
-    colours1: u64,
-    colours2: u64,
-    m1_pixels: u64,
-    m1_distances: u64,
-    m2_pixels: u64,
-    m2_distances: u64,
-    triples: u64,
-    errors: u64,
-    counts: u64,
-    shift: u32,
-    axis1: u32,
-    axis2: u32,
-    strip: u32,
-    spacing: u32,
-    s: u32,
-    kept: u32,
-    role: u32,
-    role1: u32,
-    role2: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct TriplesPush<'a> {
+        colours1: DeviceAddress<'a>,
+        colours2: DeviceAddress<'a>,
+        m1_pixels: DeviceAddress<'a>,
+        m1_distances: DeviceAddress<'a>,
+        m2_pixels: DeviceAddress<'a>,
+        m2_distances: DeviceAddress<'a>,
+        triples: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        shift: u32,
+        axis1: u32,
+        axis2: u32,
+        strip: u32,
+        spacing: u32,
+        s: u32,
+        kept: u32,
+        role: u32,
+        role1: u32,
+        role2: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct CoherencePush {
-    in_triples: u64,
-    in_errors: u64,
-    in_counts: u64,
-    out_triples: u64,
-    out_errors: u64,
-    out_counts: u64,
-    fallbacks: u64,
-    shift: u32,
-    spacing: u32,
-    slots: u32,
-    role1: u32,
-    role2: u32,
-    first: u32,
-    chunk: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct CoherencePush<'a> {
+        in_triples: DeviceAddress<'a>,
+        in_errors: DeviceAddress<'a>,
+        in_counts: DeviceAddress<'a>,
+        out_triples: DeviceAddress<'a>,
+        out_errors: DeviceAddress<'a>,
+        out_counts: DeviceAddress<'a>,
+        fallbacks: DeviceAddress<'a>,
+        shift: u32,
+        spacing: u32,
+        slots: u32,
+        role1: u32,
+        role2: u32,
+        first: u32,
+        chunk: u32,
+    }
 }
 
 /// Strip matches on the GPU.

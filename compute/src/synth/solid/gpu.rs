@@ -7,42 +7,43 @@ use super::cpu::{check_solid, CLASSES_3D};
 use super::plan::{plan_boxes, VolumeBox};
 use super::roles::ROLES;
 use super::volume::{LevelTriples, SolidSynthesis};
-use crate::gpu::{Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth_solid;
 use crate::synth::gpu::class_span;
 use crate::synth::neighbourhood::pack_i8_words;
 use crate::synth::{LevelTimes, SynthParams, SynthResult};
-use bytemuck::{Pod, Zeroable};
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct UpsamplePush {
-    parent: u64,
-    triples: u64,
-    origin: [i32; 3],
-    size: [u32; 3],
-    parent_origin: [i32; 3],
-    parent_size: [u32; 3],
-    origin_mod: [u32; 3],
-    side: u32,
-    spacing: u32,
-    level: u32,
-    seed: u32,
-    strength: u32,
-    has_parent: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct UpsamplePush<'a> {
+        parent: DeviceAddress<'a>,
+        triples: DeviceAddress<'a>,
+        origin: [i32; 3],
+        size: [u32; 3],
+        parent_origin: [i32; 3],
+        parent_size: [u32; 3],
+        origin_mod: [u32; 3],
+        side: u32,
+        spacing: u32,
+        level: u32,
+        seed: u32,
+        strength: u32,
+        has_parent: u32,
+    }
 }
 
-#[derive(Clone, Copy, Pod, Zeroable)]
-#[repr(C, packed(4))]
-struct CorrectPush {
-    triples: u64,
-    table: u64,
-    origin: [i32; 3],
-    size: [u32; 3],
-    first: [u32; 3],
-    count: [u32; 3],
-    side: u32,
-    spacing: u32,
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct CorrectPush<'a> {
+        triples: DeviceAddress<'a>,
+        table: DeviceAddress<'a>,
+        origin: [i32; 3],
+        size: [u32; 3],
+        first: [u32; 3],
+        count: [u32; 3],
+        side: u32,
+        spacing: u32,
+    }
 }
 
 /// One role of one level on the GPU.
@@ -104,10 +105,10 @@ impl GpuSolidSynthesizer {
                 .try_into()
                 .unwrap_or_else(|_| unreachable!("three roles"));
             let table: Vec<u64> = (0..ROLES)
-                .map(|r| roles[r].appearance.address())
-                .chain((0..ROLES).map(|r| roles[r].records.address()))
-                .chain((0..ROLES).map(|r| roles[r].candidates.address()))
-                .chain((0..ROLES).map(|r| roles[r].counts.address()))
+                .map(|r| roles[r].appearance.address().raw())
+                .chain((0..ROLES).map(|r| roles[r].records.address().raw()))
+                .chain((0..ROLES).map(|r| roles[r].candidates.address().raw()))
+                .chain((0..ROLES).map(|r| roles[r].counts.address().raw()))
                 .collect();
             levels.push(GpuLevel {
                 spacing: lv.spacing,

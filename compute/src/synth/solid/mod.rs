@@ -6,9 +6,9 @@
 
 mod analysis;
 mod candidates;
-mod candidates_gpu;
+pub(crate) mod candidates_gpu;
 mod cpu;
-mod gpu;
+pub(crate) mod gpu;
 mod jitter;
 mod plan;
 mod roles;

@@ -9,9 +9,10 @@ mod figures;
 
 use super::harness::{time_cpu, time_gpu, Bench, Throughput};
 use super::CommonArgs;
-use crate::cli::GlobalArgs;
+use crate::cli::resolution::Resolution;
+use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use datasets::Dataset;
 use lazysolid_compute::gpu::{Gpu, GpuBuffer};
 use lazysolid_compute::hash::*;
@@ -19,8 +20,37 @@ use lazysolid_compute::shader_constants::HASH_NOT_FOUND;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rayon::prelude::*;
-use std::path::PathBuf;
 use std::sync::Arc;
+
+/// The key sets of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum HashDataset {
+    /// Uniformly random points of a 2D universe (the paper's 1M keys in 8K²).
+    #[value(name = "random-2d")]
+    Random2d,
+    /// The mesh rasterized: coherent 2D keys (the key layouts and table pictures use it).
+    Image,
+    /// The mesh's surface voxels: coherent 3D keys.
+    Voxels,
+}
+
+/// The hash schemes under test.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum HashScheme {
+    /// Robin Hood hashing with coherent probing.
+    Coherent,
+    /// Robin Hood hashing with random probing.
+    Random,
+    /// Cuckoo hashing.
+    Cuckoo,
+}
+
+/// The command-line name of a value, which the suite also uses in its tables.
+fn value_name(v: &impl ValueEnum) -> String {
+    v.to_possible_value()
+        .map(|p| p.get_name().to_string())
+        .unwrap_or_default()
+}
 
 /// Sizes and sweeps of the hash benchmark.
 #[derive(Args)]
@@ -30,29 +60,39 @@ pub struct HashArgs {
     /// Load factors of the sweep.
     #[arg(long, value_delimiter = ',', default_value = "0.5,0.7,0.85,0.95,0.99")]
     pub load_factors: Vec<f64>,
-    /// Side of the image dataset (the armadillo rasterized at this size).
-    #[arg(long, default_value_t = 4096)]
-    pub image_size: u32,
+    /// Pixels of the image dataset (the mesh rasterized; square: N or NxN).
+    #[arg(long, value_name = "WxH", default_value = "4096x4096")]
+    pub image_res: Resolution,
     /// Side of the random dataset's 2D universe.
     #[arg(long, default_value_t = 8192)]
     pub random_universe: u32,
     /// Keys of the random dataset.
     #[arg(long, default_value_t = 1 << 20)]
     pub random_keys: usize,
-    /// Resolution of the voxel dataset.
-    #[arg(long, default_value_t = 512)]
-    pub voxel_resolution: u32,
-    /// The mesh of the image and voxel datasets.
-    #[arg(long, default_value = "assets/meshes/armadillo.off")]
-    pub mesh: PathBuf,
-    /// Datasets to run, of `random-2d`, `image` and `voxels` (the key-layout comparison needs
-    /// `image`, the age histogram `random-2d`): a subset is a quick look at one case.
-    #[arg(long, value_delimiter = ',', default_value = "random-2d,image,voxels")]
-    pub datasets: Vec<String>,
-    /// Hash schemes to run, of `coherent`, `random` and `cuckoo` (the baselines, dense array
-    /// and hashbrown, always run).
-    #[arg(long, value_delimiter = ',', default_value = "coherent,random,cuckoo")]
-    pub schemes: Vec<String>,
+    /// Side N of the voxel dataset's N³ grid.
+    #[arg(long, value_name = "N", default_value_t = 512)]
+    pub voxel_res: u32,
+    /// The mesh of the image and voxel datasets: a name in the assets' meshes (armadillo,
+    /// bunny00, ...) or a path to an OFF or OBJ file.
+    #[arg(long, value_name = "NAME|PATH", default_value = "armadillo")]
+    pub mesh: String,
+    /// Datasets to run (the key-layout comparison needs `image`, the age histogram
+    /// `random-2d`): a subset is a quick look at one case.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "random-2d,image,voxels"
+    )]
+    pub datasets: Vec<HashDataset>,
+    /// Hash schemes to run (the baselines, dense array and hashbrown, always run).
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "coherent,random,cuckoo"
+    )]
+    pub schemes: Vec<HashScheme>,
     /// Small sizes (1024² image, 128³ voxels, 2^16 random keys): a quick look, not the
     /// reference measurement.
     #[arg(long)]
@@ -220,36 +260,27 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.load_factors.iter().all(|&lf| lf > 0.0 && lf <= 1.0),
         "--load-factors must lie in (0, 1]"
     );
+    let image_side = args.image_res.side("--image-res", "the image dataset")?;
     let (image_size, voxel_res, random_keys, random_universe) = if args.quick {
         (1024, 128, 1 << 16, 2048)
     } else {
         (
-            args.image_size,
-            args.voxel_resolution,
+            image_side,
+            args.voxel_res,
             args.random_keys,
             args.random_universe,
         )
     };
-    const DATASETS: [&str; 3] = ["random-2d", "image", "voxels"];
-    for name in &args.datasets {
-        ensure!(
-            DATASETS.contains(&name.as_str()),
-            "--datasets: unknown dataset {name:?} (known: {})",
-            DATASETS.join(", ")
-        );
-    }
-    for name in &args.schemes {
-        ensure!(
-            SCHEMES.contains(&name.as_str()),
-            "--schemes: unknown scheme {name:?} (known: {})",
-            SCHEMES.join(", ")
-        );
-    }
-    let wanted = |name: &str| args.datasets.iter().any(|d| d == name);
+    let wanted = |name: &str| args.datasets.iter().any(|d| value_name(d) == name);
     let schemes: Vec<&str> = SCHEMES
         .into_iter()
-        .filter(|s| args.schemes.iter().any(|a| a == s))
+        .filter(|s| args.schemes.iter().any(|a| value_name(a) == *s))
         .collect();
+    let mesh = if wanted("image") || wanted("voxels") {
+        assets::mesh("--mesh", &args.mesh)?
+    } else {
+        Default::default()
+    };
     let gpu = global.gpu()?;
     let kernels = HashKernels::new(&gpu)?;
     eprintln!("preparing datasets…");
@@ -258,10 +289,10 @@ pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         datasets.push(datasets::random_2d(random_universe, random_keys, 1));
     }
     if wanted("image") {
-        datasets.push(datasets::armadillo_image(&args.mesh, image_size)?);
+        datasets.push(datasets::armadillo_image(&mesh, image_size)?);
     }
     if wanted("voxels") {
-        datasets.push(datasets::armadillo_voxels(&args.mesh, voxel_res)?);
+        datasets.push(datasets::armadillo_voxels(&mesh, voxel_res)?);
     }
     let per_dataset = (args.load_factors.len() * schemes.len() * (1 + QUERY_SETS.len())
         + 2 * QUERY_SETS.len()) as u64;

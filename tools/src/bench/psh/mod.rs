@@ -4,19 +4,23 @@
 //! side, read-backs included), and query rates next to the coherent hash (Robin Hood, coherent
 //! probing, load factor 0.85) and the dense array on the same keys. Also the blocked variant's
 //! bytes for b = 1..4 on the armadillo's interpolation cells.
+//!
+//! Both constructions are always timed (their comparison is the suite's point); `--builder`
+//! chooses whose table the queries read, as it chooses the construction everywhere else.
 
 use super::harness::{time_cpu, time_gpu, Bench, Throughput};
 use super::hash::datasets::{self, Dataset};
 use super::plot::bar_chart;
 use super::CommonArgs;
-use crate::cli::GlobalArgs;
+use crate::cli::builder::Builder;
+use crate::cli::resolution::Resolution;
+use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::gpu::GpuBuffer;
 use lazysolid_compute::hash::perfect::*;
 use lazysolid_compute::hash::*;
 use std::collections::HashSet;
-use std::path::PathBuf;
 
 /// Sizes of the perfect-hash benchmark.
 #[derive(Args)]
@@ -29,19 +33,28 @@ pub struct PshArgs {
     /// Keys of the 2D random dataset (up to 65,536 keep 8-bit offsets).
     #[arg(long, default_value_t = 60_000)]
     pub random_keys: usize,
-    /// Side of the image dataset (the armadillo rasterized at this size; 400 gives 62k
+    /// Pixels of the image dataset (the mesh rasterized; square: N or NxN; 400x400 gives 62k
     /// pixels, within the 8-bit offset range).
-    #[arg(long, default_value_t = 400)]
-    pub image_size: u32,
-    /// Voxel resolutions of the armadillo datasets (1024 gives 2.6M keys).
-    #[arg(long, value_delimiter = ',', default_value = "256,1024")]
-    pub voxel_resolutions: Vec<u32>,
-    /// Resolution of the blocked-variant report (interpolation cells of the armadillo).
-    #[arg(long, default_value_t = 256)]
-    pub blocked_resolution: u32,
-    /// The mesh of the image and voxel datasets.
-    #[arg(long, default_value = "assets/meshes/armadillo.off")]
-    pub mesh: PathBuf,
+    #[arg(long, value_name = "WxH", default_value = "400x400")]
+    pub image_res: Resolution,
+    /// Sides N of the voxel datasets' N³ grids, one dataset each (1024 gives 2.6M keys).
+    #[arg(
+        long,
+        value_name = "N",
+        value_delimiter = ',',
+        default_value = "256,1024"
+    )]
+    pub voxel_res: Vec<u32>,
+    /// Side N of the N³ grid of the blocked-variant report (interpolation cells of the mesh).
+    #[arg(long, value_name = "N", default_value_t = 256)]
+    pub blocked_voxel_res: u32,
+    /// The mesh of the image and voxel datasets: a name in the assets' meshes (armadillo,
+    /// bunny00, ...) or a path to an OFF or OBJ file.
+    #[arg(long, value_name = "NAME|PATH", default_value = "armadillo")]
+    pub mesh: String,
+    /// Whose table the queries read: both constructions are timed regardless.
+    #[arg(long, value_enum, default_value_t = Builder::Auto)]
+    pub builder: Builder,
     /// Small sizes (2^14 random keys, 256² image, 128³ voxels): a quick look only.
     #[arg(long)]
     pub quick: bool,
@@ -74,28 +87,31 @@ struct Summary {
 
 /// Runs the suite.
 pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    let image_side = args.image_res.side("--image-res", "the image dataset")?;
     let (random_universe, random_keys, image_size, resolutions, blocked_res) = if args.quick {
         (512, 1 << 14, 256, vec![128], 64)
     } else {
         (
             args.random_universe,
             args.random_keys,
-            args.image_size,
-            args.voxel_resolutions.clone(),
-            args.blocked_resolution,
+            image_side,
+            args.voxel_res.clone(),
+            args.blocked_voxel_res,
         )
     };
+    let mesh_path = assets::mesh("--mesh", &args.mesh)?;
     let gpu = global.gpu()?;
     let kernels = PerfectKernels::new(&gpu)?;
     let hash_kernels = HashKernels::new(&gpu)?;
     let builder = PerfectBuilder::new(&kernels);
+    let queried = PerfectConstruction::from(args.builder).resolve(&gpu);
     eprintln!("preparing datasets…");
     let mut sets: Vec<Dataset> = vec![
         datasets::random_2d(random_universe, random_keys, 1),
-        datasets::armadillo_image(&args.mesh, image_size)?,
+        datasets::armadillo_image(&mesh_path, image_size)?,
     ];
     for &r in &resolutions {
-        let mut ds = datasets::armadillo_voxels(&args.mesh, r)?;
+        let mut ds = datasets::armadillo_voxels(&mesh_path, r)?;
         ds.name = format!("voxels-{r}");
         sets.push(ds);
     }
@@ -131,6 +147,7 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 Ok(ms)
             },
         )?;
+        bench.set_builder(PerfectConstruction::Cpu.name());
         let cpu_table = cpu_table.context("no CPU table")?;
         check(&cpu_table, &keys, &ds.payloads, &format!("{} CPU", ds.name))?;
         let key_buf = GpuBuffer::from_slice(&gpu, "psh bench keys", &keys)?;
@@ -148,6 +165,7 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 Ok(ms)
             },
         )?;
+        bench.set_builder(PerfectConstruction::Gpu.name());
         let gpu_table = gpu_table.context("no GPU table")?;
         let gpu_host = gpu_table.to_host()?;
         check(&gpu_host, &keys, &ds.payloads, &format!("{} GPU", ds.name))?;
@@ -166,7 +184,7 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             ("cpu growths", cpu_table.report.growths() as f64),
             ("gpu growths", gpu_host.report.growths() as f64),
             ("cpu total bytes (constrained)", cpu_table.bytes() as f64),
-            ("gpu total bytes (constrained)", gpu_table.bytes() as f64),
+            ("gpu total bytes (constrained)", gpu_host.bytes() as f64),
             (
                 "total bytes (unconstrained)",
                 table_bytes(&g, PerfectAccess::Unconstrained, 1) as f64,
@@ -186,7 +204,12 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             }
         }
 
-        // Queries: present keys in raster order, through the GLSL include.
+        // Queries: present keys in raster order, through the GLSL include, on the table of the
+        // chosen construction.
+        let table = match queried {
+            PerfectConstruction::Cpu => PerfectHashGpu::upload(&kernels, &cpu_table)?,
+            _ => gpu_table,
+        };
         let results = GpuBuffer::<u32>::new(&gpu, "psh bench results", n)?;
         let case = format!("{name} query");
         let psh_ms = bench.case(
@@ -195,12 +218,9 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             "perfect hash (gpu)",
             Throughput::Elements,
             Some("coherent hash lf 0.85 (gpu)"),
-            || {
-                time_gpu(&gpu, |rec| {
-                    gpu_table.record_query(rec, &key_buf, &results, n)
-                })
-            },
+            || time_gpu(&gpu, |rec| table.record_query(rec, &key_buf, &results, n)),
         )?;
+        bench.set_builder(queried.name());
         ensure!(
             results.read()? == ds.payloads,
             "{case}: the perfect hash answers wrongly"
@@ -266,8 +286,8 @@ pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     }
 
     // The blocked variant: bytes for every block size on the armadillo's interpolation cells.
-    let mesh = lazysolid_renderer::mesh::Mesh::load_unit_cube(&args.mesh)
-        .with_context(|| format!("loading {}", args.mesh.display()))?;
+    let mesh = lazysolid_renderer::mesh::Mesh::load_unit_cube(&mesh_path)
+        .with_context(|| format!("loading {}", mesh_path.display()))?;
     let cells = lazysolid_compute::voxel::grid_cells_cpu(
         &mesh.positions,
         &mesh.triangles,

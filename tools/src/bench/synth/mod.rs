@@ -19,7 +19,8 @@ mod quality;
 use super::harness::{time_cpu, Bench, Throughput};
 use super::plot::bar_chart;
 use super::CommonArgs;
-use crate::cli::GlobalArgs;
+use crate::cli::resolution::Resolution;
+use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::synth::{
@@ -35,16 +36,27 @@ use std::path::PathBuf;
 pub struct SynthArgs {
     #[command(flatten)]
     pub common: CommonArgs,
-    /// Exemplars: names of GIMP patterns in --exemplar-dir (NAME.pat), or paths to PNG, JPEG
+    /// Exemplars: names of GIMP patterns (NAME.pat in --exemplar-dir), or paths to PNG, JPEG
     /// or .pat files.
-    #[arg(long, value_delimiter = ',', default_value = "leather,brick,walnut")]
+    #[arg(
+        long,
+        value_name = "NAME|PATH",
+        value_delimiter = ',',
+        default_value = "leather,brick,walnut"
+    )]
     pub exemplars: Vec<String>,
-    /// Where named exemplars live (scripts/fetch-assets.sh fills it).
-    #[arg(long, default_value = "assets/exemplars")]
-    pub exemplar_dir: PathBuf,
-    /// Square output sizes in pixels per side.
-    #[arg(long, value_delimiter = ',', default_value = "256,512")]
-    pub sizes: Vec<u32>,
+    /// Where named exemplars live; default: the assets' exemplars (scripts/fetch-assets.sh
+    /// fills them).
+    #[arg(long, value_name = "DIR")]
+    pub exemplar_dir: Option<PathBuf>,
+    /// Output sizes, one case each (square: N or NxN).
+    #[arg(
+        long,
+        value_name = "WxH",
+        value_delimiter = ',',
+        default_value = "256,512"
+    )]
+    pub res: Vec<Resolution>,
     /// Seed of both synthesizers in the timed runs, and the first of the scored seeds.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
@@ -100,14 +112,6 @@ struct CaseResult {
     theirs: SeedScores,
 }
 
-fn exemplar_path(args: &SynthArgs, name: &str) -> PathBuf {
-    if name.contains('/') || name.contains('.') {
-        PathBuf::from(name)
-    } else {
-        args.exemplar_dir.join(format!("{name}.pat"))
-    }
-}
-
 fn display_name(path: &std::path::Path) -> String {
     path.file_stem()
         .unwrap_or_default()
@@ -118,14 +122,15 @@ fn display_name(path: &std::path::Path) -> String {
 /// Runs the suite.
 pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
-    ensure!(!args.sizes.is_empty(), "--sizes names no size");
-    if let Some(bad) = args.sizes.iter().find(|s| !SIZE_RANGE.contains(s)) {
-        anyhow::bail!(
-            "--sizes {bad} is out of range ({}..={})",
-            SIZE_RANGE.start(),
-            SIZE_RANGE.end()
-        );
-    }
+    ensure!(!args.res.is_empty(), "--res names no size");
+    let all_sizes = args
+        .res
+        .iter()
+        .map(|r| {
+            r.check("--res", SIZE_RANGE)?;
+            r.side("--res", "each output")
+        })
+        .collect::<anyhow::Result<Vec<u32>>>()?;
     ensure!(args.cpu_threads >= 1, "--cpu-threads must be at least 1");
     ensure!(
         (1..=MAX_QUALITY_SEEDS).contains(&args.quality_seeds),
@@ -133,14 +138,14 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.quality_seeds
     );
     let (names, sizes) = if args.quick {
-        (&args.exemplars[..1], &args.sizes[..1])
+        (&args.exemplars[..1], &all_sizes[..1])
     } else {
-        (&args.exemplars[..], &args.sizes[..])
+        (&args.exemplars[..], &all_sizes[..])
     };
     let exemplars = names
         .iter()
         .map(|n| {
-            let path = exemplar_path(args, n);
+            let path = assets::exemplar("--exemplars", n, args.exemplar_dir.as_deref())?;
             Exemplar::load(&path)
                 .with_context(|| {
                     format!(

@@ -12,10 +12,12 @@ mod viewpoint;
 use super::harness::{time_cpu, Bench, Throughput};
 use super::plot::{bar_chart, rgb_image};
 use super::CommonArgs;
-use crate::cli::GlobalArgs;
+use crate::cli::builder::Builder;
+use crate::cli::resolution::Resolution;
+use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
-use clap::Args;
-use lazysolid_compute::hash::perfect::PerfectAccess;
+use clap::{Args, ValueEnum};
+use lazysolid_compute::hash::perfect::{PerfectAccess, PerfectConstruction};
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{
     ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore,
@@ -27,21 +29,74 @@ use std::path::PathBuf;
 use thesis::ThesisRow;
 use viewpoint::Viewpoint;
 
+/// The sparse texture structures of the table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum StoreKind {
+    /// N³ tree textures (each shape of --octree).
+    Octree,
+    /// The coherent hash.
+    Hash,
+    /// The perfect spatial hash, one texel per key.
+    Perfect,
+    /// The blocked perfect hash (trilinear only: one block serves a trilinear footprint).
+    PerfectBlocked,
+    /// The TileTree.
+    Tiletree,
+}
+
+/// The filtering modes of the lookups.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FilterKind {
+    /// One texel per lookup.
+    Nearest,
+    /// Eight texels per lookup (the TileTree: bilinear on its tile).
+    Trilinear,
+}
+
+impl From<FilterKind> for Filter {
+    fn from(f: FilterKind) -> Filter {
+        match f {
+            FilterKind::Nearest => Filter::Nearest,
+            FilterKind::Trilinear => Filter::Trilinear,
+        }
+    }
+}
+
 /// What to measure.
 #[derive(Args)]
 pub struct TexturesArgs {
     #[command(flatten)]
     pub common: CommonArgs,
-    /// The mesh: a name in assets/meshes (armadillo, bunny00, ...) or a path to an OFF/OBJ file;
-    /// normalized into the unit cube.
-    #[arg(long, default_value = "armadillo")]
+    /// The mesh: a name in the assets' meshes (armadillo, bunny00, ...) or a path to an OFF or
+    /// OBJ file; normalized into the unit cube.
+    #[arg(long, value_name = "NAME|PATH", default_value = "armadillo")]
     pub mesh: String,
-    /// Equivalent resolution R of every structure (R³ grid over the unit cube).
-    #[arg(long, default_value_t = 1024)]
-    pub res: u32,
-    /// Pixels per side of the viewpoint.
-    #[arg(long, default_value_t = 800)]
-    pub view: u32,
+    /// Equivalent resolution of every structure: the side N of an N³ grid over the unit cube.
+    #[arg(long, value_name = "N", default_value_t = 1024)]
+    pub voxel_res: u32,
+    /// Pixels of the viewpoint (square: N or NxN).
+    #[arg(long, value_name = "WxH", default_value = "800x800")]
+    pub res: Resolution,
+    /// Structures to measure.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "octree,hash,perfect,perfect-blocked,tiletree"
+    )]
+    pub stores: Vec<StoreKind>,
+    /// Filtering modes to measure.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "nearest,trilinear"
+    )]
+    pub filters: Vec<FilterKind>,
+    /// Where the perfect hash (texel layout) is constructed; the blocked layout is always
+    /// built on the host.
+    #[arg(long, value_enum, default_value_t = Builder::Auto)]
+    pub builder: Builder,
     /// Seed of the marble colour source.
     #[arg(long, default_value_t = 7)]
     pub seed: u32,
@@ -66,40 +121,51 @@ struct Measured {
 
 /// Runs the suite.
 pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
-    ensure!(
-        (16..=4096).contains(&args.view),
-        "--view {} is out of range (16..=4096)",
-        args.view
-    );
-    let mesh_path = if args.mesh.contains('/') || args.mesh.contains('.') {
-        PathBuf::from(&args.mesh)
+    args.res.check("--res", 16..=4096)?;
+    let view_side = args.res.side("--res", "the viewpoint")?;
+    let res = args.voxel_res;
+    let wants = |s: StoreKind| args.stores.contains(&s);
+    let filters: Vec<Filter> = [Filter::Nearest, Filter::Trilinear]
+        .into_iter()
+        .filter(|f| args.filters.iter().any(|&a| Filter::from(a) == *f))
+        .collect();
+    let octrees = if wants(StoreKind::Octree) {
+        octree_configs(&args.octree, res)?
     } else {
-        PathBuf::from(format!("assets/meshes/{}.off", args.mesh))
+        Vec::new()
     };
+    let per_filter = octrees.len() as u64
+        + [StoreKind::Hash, StoreKind::Perfect, StoreKind::Tiletree]
+            .into_iter()
+            .filter(|&s| wants(s))
+            .count() as u64;
+    let blocked = filters.contains(&Filter::Trilinear) && wants(StoreKind::PerfectBlocked);
+    let cases = filters.len() as u64 * per_filter + blocked as u64;
+    ensure!(
+        cases > 0,
+        "--stores and --filters leave nothing to measure (perfect-blocked has trilinear lookups \
+         only)"
+    );
+    let mesh_path = assets::mesh("--mesh", &args.mesh)?;
     let mesh = Mesh::load_unit_cube(&mesh_path)
         .with_context(|| format!("loading --mesh {}", mesh_path.display()))?;
-    let octrees = octree_configs(&args.octree, args.res)?;
     let gpu = global.gpu()?;
+    let construction = PerfectConstruction::from(args.builder).resolve(&gpu);
     let kernels = StoreKernels::new(&gpu)?;
     let mut voxelizer = Voxelizer::new(&gpu)?;
     let (surface, surface_ms) =
-        time_cpu(|| voxelizer.surface(&mesh.positions, &mesh.triangles, args.res));
-    let surface = surface.with_context(|| format!("voxelizing at --res {}", args.res))?;
+        time_cpu(|| voxelizer.surface(&mesh.positions, &mesh.triangles, res));
+    let surface = surface.with_context(|| format!("voxelizing at --voxel-res {res}"))?;
     let (corners, corners_ms) =
-        time_cpu(|| voxelizer.interpolation(&mesh.positions, &mesh.triangles, args.res));
+        time_cpu(|| voxelizer.interpolation(&mesh.positions, &mesh.triangles, res));
     let corners = corners?;
-    let cells = voxelizer.cells(
-        &mesh.positions,
-        &mesh.triangles,
-        VoxelGrid::cells(args.res)?,
-    )?;
-    let view = viewpoint::view(&mesh, args.view);
+    let cells = voxelizer.cells(&mesh.positions, &mesh.triangles, VoxelGrid::cells(res)?)?;
+    let view = viewpoint::view(&mesh, view_side);
     ensure!(
         !view.points.is_empty(),
         "the viewpoint sees nothing of {}",
         mesh_path.display()
     );
-    let cases = 2 * (3 + octrees.len() as u64) + 1;
     let bench = Bench::new("bench-textures", &gpu, &args.common, cases)?;
     let dir = bench.artifact_dir()?;
     let mut session = Session {
@@ -116,17 +182,22 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             .collect::<Vec<_>>()
             .join("·")
     };
-    let baseline = |f: Filter| format!("octree {}", octree_name(&octrees[0])) + descents(f);
+    // Ratios are to the first octree of the same filtering, when octrees are measured.
+    let baseline = |f: Filter| {
+        octrees
+            .first()
+            .map(|c| format!("octree {}", octree_name(c)) + descents(f))
+    };
     let mut tree_notes = Vec::new();
 
-    for filter in [Filter::Nearest, Filter::Trilinear] {
+    for filter in filters {
         let keys = match filter {
             Filter::Nearest => &surface,
             Filter::Trilinear => &corners,
         };
         for (i, config) in octrees.iter().enumerate() {
             let label = format!("octree {}", octree_name(config)) + descents(filter);
-            let (store, build_ms) = build_octree(&kernels, args.res, keys, &source, config)?;
+            let (store, build_ms) = build_octree(&kernels, res, keys, &source, config)?;
             // Nodes per level: what the memory of each tree shape is made of.
             for (level, n) in store.node_counts().into_iter().enumerate() {
                 tree_notes.push((format!("{label} nodes at level {level}"), n as f64));
@@ -135,55 +206,47 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 Filter::Nearest => ThesisRow::OctreeNearest,
                 Filter::Trilinear => ThesisRow::OctreeTrilinear,
             });
-            let base = (i > 0).then(|| baseline(filter));
+            let base = if i > 0 { baseline(filter) } else { None };
             session.measure(&store, filter, label, thesis, base, build_ms)?;
         }
-        let label = "coherent hash".to_string() + lookups(filter);
-        let (store, build_ms) = time_cpu(|| {
-            HashStore::build(
-                &kernels,
-                args.res,
-                keys,
-                &source,
-                RobinHoodConfig::default(),
-            )
-        });
-        let store = store.with_context(|| format!("building the {label}"))?;
-        session.measure(
-            &store,
-            filter,
-            label,
-            None,
-            Some(baseline(filter)),
-            build_ms,
-        )?;
-        let label = "perfect hash".to_string() + lookups(filter);
-        let (store, build_ms) = time_cpu(|| {
-            PerfectStore::build(
-                &kernels,
-                args.res,
-                keys,
-                &source,
-                PerfectAccess::Constrained,
-            )
-        });
-        let store = store.with_context(|| format!("building the {label}"))?;
-        let thesis = match filter {
-            Filter::Nearest => ThesisRow::HashNearest,
-            Filter::Trilinear => ThesisRow::HashTrilinear,
-        };
-        session.measure(
-            &store,
-            filter,
-            label,
-            Some(thesis),
-            Some(baseline(filter)),
-            build_ms,
-        )?;
-        drop(store);
-        if filter == Filter::Trilinear {
+        if wants(StoreKind::Hash) {
+            let label = "coherent hash".to_string() + lookups(filter);
+            let (store, build_ms) = time_cpu(|| {
+                HashStore::build(&kernels, res, keys, &source, RobinHoodConfig::default())
+            });
+            let store = store.with_context(|| format!("building the {label}"))?;
+            session.measure(&store, filter, label, None, baseline(filter), build_ms)?;
+        }
+        if wants(StoreKind::Perfect) {
+            let label = "perfect hash".to_string() + lookups(filter);
+            let (store, build_ms) = time_cpu(|| {
+                PerfectStore::build_with(
+                    &kernels,
+                    res,
+                    keys,
+                    &source,
+                    PerfectAccess::Constrained,
+                    construction,
+                )
+            });
+            let store = store.with_context(|| format!("building the {label}"))?;
+            let thesis = match filter {
+                Filter::Nearest => ThesisRow::HashNearest,
+                Filter::Trilinear => ThesisRow::HashTrilinear,
+            };
+            session.measure(
+                &store,
+                filter,
+                label,
+                Some(thesis),
+                baseline(filter),
+                build_ms,
+            )?;
+            session.bench.set_builder(store.construction().name());
+        }
+        if filter == Filter::Trilinear && wants(StoreKind::PerfectBlocked) {
             let (store, build_ms) =
-                time_cpu(|| PerfectStore::build_blocked(&kernels, args.res, &cells, &source, None));
+                time_cpu(|| PerfectStore::build_blocked(&kernels, res, &cells, &source, None));
             let store = store.context("building the blocked perfect hash")?;
             let label = format!(
                 "perfect hash blocked, b = {} (1 block)",
@@ -194,34 +257,30 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 filter,
                 label,
                 Some(ThesisRow::HashBlocked),
-                Some(baseline(filter)),
+                baseline(filter),
                 build_ms,
             )?;
+            session.bench.set_builder(store.construction().name());
         }
-        let label = "tiletree".to_string() + tile_filter(filter);
-        let (tree, build_ms) = time_cpu(|| {
-            TileTree::build(
-                &kernels,
-                &mesh.positions,
-                &mesh.triangles,
-                args.res,
-                &source,
-                TileTreeConfig::default(),
-            )
-        });
-        let (tree, _) = tree.with_context(|| format!("building the {label}"))?;
-        if filter == Filter::Trilinear {
-            tree.write_tile_map_png(&session.dir.join("tiletree-tile-map.png"))?;
+        if wants(StoreKind::Tiletree) {
+            let label = "tiletree".to_string() + tile_filter(filter);
+            let (tree, build_ms) = time_cpu(|| {
+                TileTree::build(
+                    &kernels,
+                    &mesh.positions,
+                    &mesh.triangles,
+                    res,
+                    &source,
+                    TileTreeConfig::default(),
+                )
+            });
+            let (tree, _) = tree.with_context(|| format!("building the {label}"))?;
+            if filter == Filter::Trilinear {
+                tree.write_tile_map_png(&session.dir.join("tiletree-tile-map.png"))?;
+            }
+            let thesis = (filter == Filter::Trilinear).then_some(ThesisRow::TileTree);
+            session.measure(&tree, filter, label, thesis, baseline(filter), build_ms)?;
         }
-        let thesis = (filter == Filter::Trilinear).then_some(ThesisRow::TileTree);
-        session.measure(
-            &tree,
-            filter,
-            label,
-            thesis,
-            Some(baseline(filter)),
-            build_ms,
-        )?;
     }
 
     let Session {
@@ -233,14 +292,14 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     summary(&measured, &bench, &dir, args)?;
     let mut notes = vec![
         ("triangles".to_string(), mesh.triangles.len() as f64),
-        ("resolution".to_string(), args.res as f64),
+        ("resolution".to_string(), res as f64),
         ("surface voxels".to_string(), surface.len as f64),
         ("interpolation voxels".to_string(), corners.len as f64),
         ("surface voxelization ms".to_string(), surface_ms),
         ("interpolation voxelization ms".to_string(), corners_ms),
         (
             "viewpoint pixels".to_string(),
-            (args.view * args.view) as f64,
+            (view_side * view_side) as f64,
         ),
         (
             "viewpoint surface points".to_string(),
@@ -461,7 +520,7 @@ fn summary(
     args: &TexturesArgs,
 ) -> anyhow::Result<()> {
     // The thesis measured the armadillo at 1024³; elsewhere its megabytes mean nothing here.
-    let comparable = args.mesh == "armadillo" && args.res == 1024;
+    let comparable = args.mesh == "armadillo" && args.voxel_res == 1024;
     let thesis_mb = |m: &Measured| m.thesis.filter(|_| comparable).map(|t| t.megabytes());
     let base_ms = |f: Filter| {
         measured
@@ -471,7 +530,12 @@ fn summary(
     };
     println!(
         "Table 4.1 on {} ({}), {} at {}³, {}×{} viewpoint:",
-        bench.info.device, bench.info.driver, args.mesh, args.res, args.view, args.view
+        bench.info.device,
+        bench.info.driver,
+        args.mesh,
+        args.voxel_res,
+        args.res.width,
+        args.res.height
     );
     println!(
         "{:<34} {:>10} {:>10} {:>8} {:>12} {:>10} {:>10}",
@@ -503,7 +567,7 @@ fn summary(
     let labels: Vec<String> = measured.iter().map(|m| m.short.clone()).collect();
     bar_chart(
         &dir.join("textures-memory.png"),
-        &format!("{} at {}³: GPU memory", args.mesh, args.res),
+        &format!("{} at {}³: GPU memory", args.mesh, args.voxel_res),
         "structure (N nearest, T trilinear; oct: octree level sizes, psh: perfect hash)",
         "MB",
         &labels,
@@ -526,7 +590,7 @@ fn summary(
         &dir.join("textures-speed.png"),
         &format!(
             "{} at {}³, {}² viewpoint: lookup speed relative to the octree of the same filtering",
-            args.mesh, args.res, args.view
+            args.mesh, args.voxel_res, args.res.width
         ),
         "structure (N nearest, T trilinear; oct: octree level sizes, psh: perfect hash)",
         "× octree",

@@ -1,0 +1,117 @@
+//! Meshes and exemplars by name, from any folder.
+//!
+//! A value with a path separator or a `.` is a path (relative to the current folder, as the
+//! shell gives it). Any other value is an asset name: `armadillo` is
+//! `<assets>/meshes/armadillo.off` (or `.obj`), `leather` is `<assets>/exemplars/leather.pat`.
+//! The asset folder is, first found:
+//! 1. `LAZYSOLID_ASSETS`, when set (it must then exist);
+//! 2. the `assets/` folder of the repository the executable was built in, found by walking up
+//!    from the executable (`target/release/lazysolid` → `assets/`);
+//! 3. an `assets/` folder in the current folder or one of its parents.
+
+use anyhow::{bail, Context};
+use std::path::{Path, PathBuf};
+
+/// Environment variable naming the asset folder (the one holding `meshes/` and `exemplars/`).
+pub const ASSETS_ENV: &str = "LAZYSOLID_ASSETS";
+
+/// The asset folder by the rule above, or an error saying where it looked.
+pub fn asset_root() -> anyhow::Result<PathBuf> {
+    if let Some(dir) = std::env::var_os(ASSETS_ENV).filter(|d| !d.is_empty()) {
+        let dir = PathBuf::from(dir);
+        if !dir.is_dir() {
+            bail!("{ASSETS_ENV}={}: no such folder", dir.display());
+        }
+        return Ok(dir);
+    }
+    let mut starts = Vec::new();
+    if let Some(exe_dir) = std::env::current_exe()
+        .ok()
+        .and_then(|e| e.parent().map(Path::to_path_buf))
+    {
+        starts.push(exe_dir);
+    }
+    if let Ok(cwd) = std::env::current_dir() {
+        starts.push(cwd);
+    }
+    for start in &starts {
+        if let Some(dir) = start
+            .ancestors()
+            .map(|a| a.join("assets"))
+            .find(|a| a.is_dir())
+        {
+            return Ok(dir);
+        }
+    }
+    bail!(
+        "no assets/ folder above {} (set {ASSETS_ENV}, or run scripts/fetch-assets.sh in the \
+         repository)",
+        starts
+            .iter()
+            .map(|s| s.display().to_string())
+            .collect::<Vec<_>>()
+            .join(" or ")
+    )
+}
+
+/// Whether `value` names a file rather than an asset.
+fn is_path(value: &str) -> bool {
+    value.contains(['/', '\\', '.'])
+}
+
+/// The mesh `--mesh value` names: a path as given, or `<assets>/meshes/NAME.off|.obj`.
+pub fn mesh(flag: &str, value: &str) -> anyhow::Result<PathBuf> {
+    named(flag, value, "meshes", &["off", "obj"], "mesh")
+}
+
+/// The exemplar `value` names: a path as given, or `NAME.pat` in `dir` (by default
+/// `<assets>/exemplars`).
+pub fn exemplar(flag: &str, value: &str, dir: Option<&Path>) -> anyhow::Result<PathBuf> {
+    match dir {
+        Some(dir) if !is_path(value) => Ok(dir.join(format!("{value}.pat"))),
+        _ => named(flag, value, "exemplars", &["pat"], "exemplar"),
+    }
+}
+
+fn named(
+    flag: &str,
+    value: &str,
+    folder: &str,
+    extensions: &[&str],
+    what: &str,
+) -> anyhow::Result<PathBuf> {
+    if is_path(value) {
+        return Ok(PathBuf::from(value));
+    }
+    let dir = asset_root()
+        .with_context(|| format!("{flag} {value}: looking for the {what} named {value:?}"))?
+        .join(folder);
+    if let Some(found) = extensions
+        .iter()
+        .map(|e| dir.join(format!("{value}.{e}")))
+        .find(|p| p.is_file())
+    {
+        return Ok(found);
+    }
+    let mut known: Vec<String> = std::fs::read_dir(&dir)
+        .into_iter()
+        .flatten()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|x| extensions.iter().any(|e| x.eq_ignore_ascii_case(e)))
+        })
+        .filter_map(|p| Some(p.file_stem()?.to_string_lossy().into_owned()))
+        .collect();
+    known.sort();
+    bail!(
+        "{flag} {value}: no {what} named {value:?} in {} (known: {}); give a path, or run \
+         scripts/fetch-assets.sh",
+        dir.display(),
+        if known.is_empty() {
+            "none".to_string()
+        } else {
+            known.join(", ")
+        }
+    )
+}
