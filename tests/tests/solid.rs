@@ -155,11 +155,11 @@ fn overlapping_boxes_agree() {
     });
     let (ta, tb) = (sa.window_triples(), sb.window_triples());
     let mut compared = 0;
-    for i in 0..a.voxels() {
+    for (i, t) in ta.iter().enumerate() {
         let p = a.position(i);
         let inside = (0..3).all(|k| p[k] >= b.origin[k] && p[k] < b.origin[k] + b.size[k] as i32);
         if inside {
-            assert_eq!(ta[i], tb[b.index(p)], "voxel {p:?}");
+            assert_eq!(*t, tb[b.index(p)], "voxel {p:?}");
             compared += 1;
         }
     }

@@ -84,7 +84,7 @@ impl GpuSolidSynthesizer {
         let mut levels = Vec::with_capacity(analysis.levels.len());
         for (l, (lv, sets)) in analysis.levels.iter().zip(&candidates.levels).enumerate() {
             let mut roles = Vec::with_capacity(ROLES);
-            for r in 0..ROLES {
+            for (r, set) in sets.iter().enumerate() {
                 let name = |what: &str| format!("solid {what} level {l} role {r}");
                 roles.push(GpuRole {
                     appearance: GpuBuffer::from_slice(
@@ -97,8 +97,8 @@ impl GpuSolidSynthesizer {
                         name("neighbourhoods"),
                         &pack_i8_words(lv.roles[r].neighbourhoods.as_flattened()),
                     )?,
-                    candidates: GpuBuffer::from_slice(gpu, name("candidates"), &sets[r].triples)?,
-                    counts: GpuBuffer::from_slice(gpu, name("candidate counts"), &sets[r].counts)?,
+                    candidates: GpuBuffer::from_slice(gpu, name("candidates"), &set.triples)?,
+                    counts: GpuBuffer::from_slice(gpu, name("candidate counts"), &set.counts)?,
                 });
             }
             let roles: [GpuRole; ROLES] = roles
