@@ -61,6 +61,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Psh(a) => &a.common,
         BenchCommand::Trace(a) => &a.common,
         BenchCommand::Synth(a) => &a.common,
+        BenchCommand::Solid(a) => &a.common,
         BenchCommand::Textures(a) => &a.common,
     };
     check_writable_dir("--out-dir", &common.out_dir)?;
