@@ -8,9 +8,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 meshes=(armadillo.off bunny00.off ChineseDragon-10kv.off elephant.off cube.off)
-# Stone, brick, wood, cloth, leather and paper, 64² to 128².
+# Stone, brick, wood, cloth, leather and paper, 64² to 128²; granite1 (100², grey) is the
+# fine-grained stone on which the synthesizer's period repetition is checked.
 patterns=(Stone/brick.pat Stone/terra.pat Wood/walnut.pat Wood/parque1.pat Fabric/burlap.pat
-  Animal/leather.pat Paper/crinklepaper.pat Stone/pink_marble.pat)
+  Animal/leather.pat Paper/crinklepaper.pat Stone/pink_marble.pat Stone/granite1.pat)
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -102,60 +102,9 @@ pub const COHERENT_OFFSETS: [u32; 16] = [
     COHERENT_OFFSET_15,
 ];
 
-/// Workgroup width of kernels that trace rays through `render/cwbvh.glsl`: their traversal
-/// stacks (32 entries of 8 bytes per invocation) fill lavapipe's 32 KiB of shared memory.
-pub const CWBVH_WORKGROUP_SIZE: u32 = 128;
-/// Material kinds of the path tracer (`renderer::scene::MaterialKind`), as stored in the
-/// GPU material's `kind` field.
-pub const MATERIAL_LAMBERTIAN: u32 = 0;
-/// See [`MATERIAL_LAMBERTIAN`].
-pub const MATERIAL_CONDUCTOR: u32 = 1;
-/// See [`MATERIAL_LAMBERTIAN`].
-pub const MATERIAL_PLASTIC: u32 = 2;
-/// See [`MATERIAL_LAMBERTIAN`].
-pub const MATERIAL_DIELECTRIC: u32 = 3;
-/// See [`MATERIAL_LAMBERTIAN`].
-pub const MATERIAL_EMISSIVE: u32 = 4;
-
-/// Solid texture kinds of a GPU material: none means the albedo is the material's colour.
-pub const TEXTURE_NONE: u32 = 0;
-/// See [`TEXTURE_NONE`].
-pub const TEXTURE_MARBLE: u32 = 1;
-/// See [`TEXTURE_NONE`].
-pub const TEXTURE_WOOD: u32 = 2;
-/// See [`TEXTURE_NONE`].
-pub const TEXTURE_CHECKER: u32 = 3;
-
-/// Analytic light kinds of a GPU light.
-pub const LIGHT_SPHERE: u32 = 0;
-/// See [`LIGHT_SPHERE`].
-pub const LIGHT_QUAD: u32 = 1;
-
-/// Environment kinds: the same radiance everywhere, or a lat-long HDR map.
-pub const ENVIRONMENT_CONSTANT: u32 = 0;
-/// See [`ENVIRONMENT_CONSTANT`].
-pub const ENVIRONMENT_LATLONG: u32 = 1;
-
-/// What `glsl/render/shading_test.comp` evaluates for each case: the BSDF entry points, the
-/// solid textures, the lights, the environment, or the random numbers and warps.
-pub const SHADING_TEST_BSDF: u32 = 0;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_TEXTURE: u32 = 1;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_LIGHT: u32 = 2;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_ENVIRONMENT: u32 = 3;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_RNG: u32 = 4;
-
-/// Sparse stores a renderer record may describe.
-pub const STORE_KIND_HASH: u32 = 0;
-/// See [`STORE_KIND_HASH`].
-pub const STORE_KIND_OCTREE: u32 = 1;
-/// Nearest-texel store reads.
-pub const STORE_FILTER_NEAREST: u32 = 0;
-/// Trilinear store reads (the store holds the interpolation voxels).
-pub const STORE_FILTER_TRILINEAR: u32 = 1;
+/// Coordinate tolerance, in exemplar pixels, of the synthesizer's period penalty
+/// (`synth/period.rs`): the period repetition measure's tolerance.
+pub const SYNTH_PERIOD_TOLERANCE: u32 = 4;
 
 /// Largest S of solid-synthesis candidates: strips kept per other exemplar (the thesis' 65).
 pub const SOLID_MAX_S: u32 = 65;

@@ -148,6 +148,20 @@ vec3 offset_origin(vec3 p, vec3 ng, vec3 d) {
     return p + ng * (dot(d, ng) >= 0.0 ? eps : -eps);
 }
 
+// True when an analytic light other than `skip` lies on the ray before tmax: lights occlude
+// like any other surface (the back of a one-sided quad included), so a shadow ray is blocked
+// exactly when a BSDF ray in the same direction would have stopped at that light.
+bool lights_occlude(vec3 o, vec3 d, float tmax, uint skip) {
+    for (uint i = 0u; i < frame.light_count; i++) {
+        float t;
+        vec3 le;
+        if (i != skip && light_intersect(lights[i], o, d, tmax, t, le)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 // Nearest analytic light along the ray before tmax: its index, or -1.
 int hit_lights(vec3 o, vec3 d, inout float tmax, out vec3 radiance) {
     int found = -1;
@@ -200,6 +214,10 @@ void main() {
             vec3 aov_normal = vec3(0.0);
             float aov_depth = 1.0 / 0.0;
 
+            // depth counts the bounces so far: the ray traced at depth d ends a path of d
+            // bounces when it finds an emitter. A path scatters at most max_depth times, so the
+            // vertex reached at depth max_depth neither samples a light nor continues: each
+            // path length up to max_depth is counted by both strategies, and none beyond it.
             for (uint depth = 0u; depth <= frame.max_depth; depth++) {
                 TraceHit h;
                 rays++;
@@ -247,6 +265,9 @@ void main() {
                     }
                     break;
                 }
+                if (depth == frame.max_depth) {
+                    break;
+                }
 
                 vec3 t_axis, b_axis;
                 make_frame(s.ns, t_axis, b_axis);
@@ -282,9 +303,11 @@ void main() {
                         if (max3(f) > 0.0) {
                             vec3 o2 = offset_origin(s.p, s.ng, wi);
                             float tmax = dist < 1.0 / 0.0 ? dist * (1.0 - 1e-4) - 1e-4 : dist;
+                            uint skip = pick < frame.light_count ? pick : 0xffffffffu;
                             TraceHit sh;
                             rays++;
-                            if (!cwbvh_trace(o2, wi, 0.0, tmax, true, sh)) {
+                            if (!lights_occlude(o2, wi, tmax, skip) &&
+                                !cwbvh_trace(o2, wi, 0.0, tmax, true, sh)) {
                                 float lp = select_pdf * lpdf;
                                 float w = power_heuristic(lp, bsdf_pdf(m, albedo, wo, wi_l));
                                 radiance += beta * f * li * (w / lp);

@@ -2,8 +2,9 @@
 // One correction subpass: every interior pixel of one parity class takes, among the k-coherence
 // candidates of its 3x3 neighbours (shifted back by the neighbour's offset), the one whose
 // exemplar neighbourhood best matches its synthesized neighbourhood (integer SSD; ties keep the
-// current coordinate, then go to the smaller packed one). The other classes are only read, so
-// the update is in place. The neighbourhood is the 4-diagonal one of Lefebvre & Hoppe 2006:
+// current coordinate, then go to the smaller packed one; a candidate whose coherent patch would
+// span an exemplar period gets a penalty added, see compute/src/synth/period.rs). The other
+// classes are only read, so the update is in place. The neighbourhood is the 4-diagonal one of Lefebvre & Hoppe 2006:
 // per diagonal the sum of 3 predicted appearance vectors, against 3x the candidate's
 // precomputed record. CPU reference: compute/src/synth/cpu.rs (correct_subpass) and
 // compute/src/synth/neighbourhood.rs.
@@ -22,6 +23,8 @@ layout(push_constant, scalar) uniform Push {
     uvec2 exemplar;
     uint spacing;
     uint k;
+    uvec2 reach;              // period_reach of the level; 0: the axis is never penalized
+    uint penalty;             // added to a candidate spanning a period; 0: no test
 } pc;
 
 // The appearance vector at packed coordinate c moved by spacing * d, as two words of 4 x i8.
@@ -29,6 +32,12 @@ uvec2 appearance_at(uint c, ivec2 d) {
     uvec2 e = synth_unpack(c);
     e = uvec2(synth_wrap(e.x, d.x, pc.exemplar.x), synth_wrap(e.y, d.y, pc.exemplar.y));
     return UVec2Ptr(pc.appearance).v[e.y * pc.exemplar.x + e.x];
+}
+
+// Toroidal distance of p and q along an axis of n pixels.
+uint torus_axis(uint p, uint q, uint n) {
+    uint d = p > q ? p - q : q - p;
+    return min(d, n - d);
 }
 
 // Squared distance of 4 synthesized sums and 3x the 4 components of word w.
@@ -72,14 +81,17 @@ void main() {
     // skipping it cannot change the choice), from a compacted list: the loop then runs as
     // many times as the lane with the most distinct ones needs, not over the union of the
     // positions where some lane has a new one.
+    // continued[n]: the coordinate that continues neighbour n's patch at the centre.
+    uvec2 continued[9];
     uint bases[9];
     uint unique[9];
     uint count = 0;
     for (int n = 0; n < 9; n++) {
         ivec2 d = ivec2(n % 3 - 1, n / 3 - 1);
         uvec2 u = synth_unpack(around[n]);
-        bases[n] = synth_wrap(u.y, -d.y * s, pc.exemplar.y) * pc.exemplar.x
-            + synth_wrap(u.x, -d.x * s, pc.exemplar.x);
+        continued[n] = uvec2(synth_wrap(u.x, -d.x * s, pc.exemplar.x),
+                             synth_wrap(u.y, -d.y * s, pc.exemplar.y));
+        bases[n] = continued[n].y * pc.exemplar.x + continued[n].x;
         bool repeated = false;
         for (int m = 0; m < n; m++) {
             repeated = repeated || bases[m] == bases[n];
@@ -101,6 +113,26 @@ void main() {
                 + word_distance(sums[2], lo.z) + word_distance(sums[3], lo.w)
                 + word_distance(sums[4], hi.x) + word_distance(sums[5], hi.y)
                 + word_distance(sums[6], hi.z) + word_distance(sums[7], hi.w);
+            if (pc.penalty != 0u) {
+                // The extent of the patch the candidate would continue: itself and the
+                // neighbours it continues (compute/src/synth/period.rs, spans_period).
+                ivec2 lo = ivec2(0);
+                ivec2 hi = ivec2(0);
+                for (int n = 0; n < 9; n++) {
+                    uint dx = torus_axis(c.x, continued[n].x, pc.exemplar.x);
+                    uint dy = torus_axis(c.y, continued[n].y, pc.exemplar.y);
+                    if (n != 4 && max(dx, dy) <= SYNTH_PERIOD_TOLERANCE) {
+                        ivec2 d = ivec2(n % 3 - 1, n / 3 - 1);
+                        lo = min(lo, d);
+                        hi = max(hi, d);
+                    }
+                }
+                uvec2 extent = uvec2(hi - lo);
+                if ((pc.reach.x != 0u && extent.x >= pc.reach.x)
+                    || (pc.reach.y != 0u && extent.y >= pc.reach.y)) {
+                    dist += pc.penalty;
+                }
+            }
             uint rank = cand == current ? 0u : cand + 1u;
             if (dist < best_d || (dist == best_d && rank < best_rank)) {
                 best_d = dist;

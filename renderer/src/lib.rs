@@ -7,6 +7,8 @@
 //!   of the GLSL shading library.
 //! - [`render`]: the path-tracing kernel's driver (progressive passes into a float film).
 //! - [`output`] and [`diff`]: EXR/PNG writing and FLIP image comparison.
+//! - [`kernels`] and [`shader_constants`]: the renderer's GLSL kernels (`glsl/render/`), compiled
+//!   by `build.rs`, and the constants they share with the Rust code.
 
 pub mod accel;
 pub mod diff;
@@ -15,6 +17,12 @@ pub mod output;
 mod push_registry;
 pub mod render;
 pub mod scene;
+pub mod shader_constants;
 pub mod shading;
+
+/// Kernels compiled from `glsl/render/` at build time.
+pub mod kernels {
+    include!(concat!(env!("OUT_DIR"), "/kernels.rs"));
+}
 
 pub use push_registry::push_registry;

@@ -2,9 +2,9 @@
 //! every kernel's block against the reflected GLSL.
 
 use crate::accel::ray_queries::TraceRaysPush;
+use crate::kernels::render::{PATH_TRACE, TRACE_RAYS};
 use crate::render::path_tracer::PathTracePush;
 use lazysolid_compute::gpu::PushRegistration;
-use lazysolid_compute::kernels::render::{PATH_TRACE, TRACE_RAYS};
 
 /// The registry of the renderer's kernels (the shading test kernel is registered by the tests
 /// that dispatch it).

@@ -131,7 +131,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
     let mut all = lazysolid_compute::push_registry();
     all.extend(lazysolid_renderer::push_registry());
     all.push(PushRegistration::of::<ShadingTestPush>(
-        &lazysolid_compute::kernels::render::SHADING_TEST,
+        &lazysolid_renderer::kernels::render::SHADING_TEST,
     ));
     all
 }

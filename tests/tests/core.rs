@@ -1,9 +1,105 @@
-//! The Vulkan core on the real device: buffers, kernels, descriptor binding, limits, timing.
+//! The Vulkan core on the real device: device requirements, buffers, the kernel cache,
+//! descriptor binding, limits, timing.
 
-use lazysolid_compute::gpu::{DeviceAddress, GpuBuffer, GpuError, Kernel};
+use lazysolid_compute::gpu::{
+    check_features, DeviceAddress, Feature, Gpu, GpuBuffer, GpuError, Kernel, REQUIRED_FEATURES,
+};
 use lazysolid_compute::kernels;
 use lazysolid_compute::prims::push::{CopyCountPush, CopyPush};
+use lazysolid_compute::shader_constants::DEFAULT_WORKGROUP_SIZE;
 use lazysolid_tests::{random_u32, with_gpu};
+use std::sync::Arc;
+
+/// The device choice refuses a device that lacks a required feature before creating it, naming
+/// the device and each missing feature; the check is fed the device's own feature list minus
+/// one feature at a time.
+#[test]
+fn a_missing_device_feature_is_reported_by_name() {
+    let devices = Gpu::list_devices().unwrap();
+    let usable = devices
+        .iter()
+        .find(|d| d.missing_requirements().is_empty())
+        .expect("the test machine has a usable device");
+    usable.check_requirements().unwrap();
+    for &missing in REQUIRED_FEATURES {
+        let without: Vec<Feature> = usable
+            .features
+            .iter()
+            .copied()
+            .filter(|&f| f != missing)
+            .collect();
+        let err = check_features(&usable.name, &without, REQUIRED_FEATURES).unwrap_err();
+        assert!(matches!(err, GpuError::MissingFeature { .. }), "{err}");
+        let text = err.to_string();
+        assert!(
+            text.contains(missing.name()) && text.contains(&usable.name),
+            "{text}"
+        );
+    }
+    let err = check_features(
+        "a device",
+        &[],
+        &[Feature::ShaderInt64, Feature::BufferDeviceAddress],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("\"a device\"") && err.contains("shaderInt64, bufferDeviceAddress"),
+        "{err}"
+    );
+}
+
+/// One pipeline per (kernel, workgroup size, specialization constants) per device, shared by
+/// every request and every clone of the device.
+#[test]
+fn the_kernel_cache_builds_each_pipeline_once() {
+    with_gpu(|gpu| {
+        let before = gpu.pipelines_created();
+        let a = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
+        let b = gpu.clone().kernel(&kernels::prims::COPY_WORDS).unwrap();
+        assert!(Arc::ptr_eq(&a, &b));
+        assert_eq!(gpu.pipelines_created(), before + 1);
+        let c = gpu
+            .kernel_with(&kernels::prims::COPY_WORDS, 64, &[])
+            .unwrap();
+        assert!(!Arc::ptr_eq(&a, &c));
+        assert_eq!(c.workgroup_size(), 64);
+        let d = gpu
+            .kernel_with(&kernels::prims::COPY_WORDS, DEFAULT_WORKGROUP_SIZE, &[])
+            .unwrap();
+        assert!(Arc::ptr_eq(&a, &d));
+        assert_eq!(gpu.pipelines_created(), before + 2);
+        assert_eq!(gpu.cached_kernels(), vec!["prims/copy_words.comp"]);
+        // A workgroup over the device limit is refused by name, and nothing is cached.
+        let err = gpu
+            .kernel_with(&kernels::prims::COPY_WORDS, u32::MAX, &[])
+            .err()
+            .unwrap();
+        assert!(err.to_string().contains("prims/copy_words.comp"), "{err}");
+        assert_eq!(gpu.pipelines_created(), before + 2);
+    });
+}
+
+/// A kernel of one device cannot be dispatched on another.
+#[test]
+fn a_kernel_of_another_device_is_refused() {
+    with_gpu(|gpu| {
+        let other = Gpu::new(&lazysolid_compute::gpu::GpuOptions::for_tests()).unwrap();
+        let foreign: Arc<Kernel> = other.kernel(&kernels::prims::COPY_WORDS).unwrap();
+        let a = GpuBuffer::<u32>::zeroed(gpu, "a", 4).unwrap();
+        let err = gpu
+            .submit(|rec| {
+                rec.dispatch(
+                    &foreign,
+                    [1, 1, 1],
+                    &[("Src", a.arg()), ("Dst", a.arg())],
+                    &CopyCountPush { n: 4 },
+                )
+            })
+            .unwrap_err();
+        assert!(err.to_string().contains("another device"), "{err}");
+    });
+}
 
 lazysolid_compute::push_block! {
     /// A count of the wrong width for `copy_words.comp`.
@@ -24,7 +120,7 @@ lazysolid_compute::push_block! {
 #[test]
 fn a_push_block_that_differs_from_glsl_is_refused_at_dispatch() {
     with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &kernels::prims::COPY_VEC4).unwrap();
+        let kernel = gpu.kernel(&kernels::prims::COPY_VEC4).unwrap();
         let a = GpuBuffer::<u32>::zeroed(gpu, "a", 16).unwrap();
         let b = GpuBuffer::<u32>::zeroed(gpu, "b", 16).unwrap();
         let push = SwappedCopy {
@@ -49,7 +145,7 @@ fn a_push_block_that_differs_from_glsl_is_refused_at_dispatch() {
 #[test]
 fn recorded_work_keeps_the_buffers_it_addresses_alive() {
     with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &kernels::prims::COPY_VEC4).unwrap();
+        let kernel = gpu.kernel(&kernels::prims::COPY_VEC4).unwrap();
         let data = random_u32(1024, 7);
         let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", data.len()).unwrap();
         gpu.submit(|rec| {
@@ -76,7 +172,7 @@ fn recorded_work_keeps_the_buffers_it_addresses_alive() {
 fn buffer_round_trip_and_empty_buffers() {
     with_gpu(|gpu| {
         let data = random_u32(10_007, 1);
-        let buf = GpuBuffer::from_slice(gpu, "round trip", &data).unwrap();
+        let mut buf = GpuBuffer::from_slice(gpu, "round trip", &data).unwrap();
         assert_eq!(buf.read().unwrap(), data);
         assert_eq!(buf.read_range(17, 100).unwrap(), &data[17..117]);
         let empty = GpuBuffer::<u32>::new(gpu, "empty", 0).unwrap();
@@ -91,7 +187,7 @@ fn buffer_round_trip_and_empty_buffers() {
 #[test]
 fn descriptor_bound_copy_kernel() {
     with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+        let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         for n in [1usize, 255, 256, 257, 100_000] {
             let data = random_u32(n, n as u64);
             let src = GpuBuffer::from_slice(gpu, "src", &data).unwrap();
@@ -113,7 +209,7 @@ fn descriptor_bound_copy_kernel() {
 #[test]
 fn dispatch_interface_errors_name_the_kernel() {
     with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+        let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         let a = GpuBuffer::<u32>::zeroed(gpu, "a", 16).unwrap();
         let missing = gpu
             .submit(|rec| {
@@ -195,7 +291,7 @@ fn over_limit_requests_are_refused_with_the_limit_named() {
             let words = (range / 4 + 1024) as usize;
             let big = GpuBuffer::<u32>::new(gpu, "big source", words).unwrap();
             let small = GpuBuffer::<u32>::new(gpu, "small", 16).unwrap();
-            let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+            let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
             let err = gpu
                 .submit(|rec| {
                     rec.dispatch(
@@ -227,7 +323,7 @@ fn over_limit_requests_are_refused_with_the_limit_named() {
 #[test]
 fn timestamps_measure_elapsed_work() {
     with_gpu(|gpu| {
-        let kernel = Kernel::new(gpu, &kernels::prims::COPY_WORDS).unwrap();
+        let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         let n = 1 << 20;
         let src = GpuBuffer::<u32>::zeroed(gpu, "src", n).unwrap();
         let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", n).unwrap();

@@ -7,7 +7,12 @@ use lazysolid_compute::kernels::{self, prims};
 #[test]
 fn every_kernel_push_block_matches_its_host_block() {
     let registry = lazysolid_tests::push_registry();
-    let kernels: Vec<_> = kernels::ALL.iter().flat_map(|m| m.iter()).collect();
+    // Each crate compiles its own kernels: the compute crate's and the renderer's.
+    let kernels: Vec<_> = kernels::ALL
+        .iter()
+        .chain(lazysolid_renderer::kernels::ALL)
+        .flat_map(|m| m.iter())
+        .collect();
     let mut problems = Vec::new();
     for kernel in &kernels {
         let entries: Vec<_> = registry

@@ -5,11 +5,9 @@
 use lazysolid_compute::synth::solid::{
     analyze_solid, candidates_cpu, plan_boxes, synthesize_solid_cpu, voxel_colour, CandidateParams,
     GpuCandidates, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox,
-    MAX_CANDIDATES, ROLE_AXES,
+    LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
-use lazysolid_compute::synth::{
-    default_passes, energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams,
-};
+use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{asset_exemplar, rng, with_gpu};
 use rand::Rng;
 use std::sync::OnceLock;
@@ -32,13 +30,18 @@ fn prepare(exemplars: SolidExemplars) -> Case {
     (exemplars, analysis, candidates)
 }
 
-/// One 32² leather crop playing all three roles.
+/// One 16² leather crop playing all three roles.
 fn shared() -> &'static Case {
     static CELL: OnceLock<Case> = OnceLock::new();
     CELL.get_or_init(|| {
-        prepare(SolidExemplars::new(crop("leather.pat", 8, 8, 32), [None, None, None]).unwrap())
+        prepare(SolidExemplars::new(crop("leather.pat", 8, 8, 16), [None, None, None]).unwrap())
     })
 }
+
+/// Loop iterations per dispatch small enough that every search of a 16² exemplar with the
+/// default parameters is split: the strip search over 3 dispatches, the crossbar ranking into
+/// one per row of S, the coherence filter's 100 candidates into 12.
+const TIGHT_LOOP_BUDGET: u32 = 8000;
 
 /// Three different 16² crops (terra, brick, walnut) as E_x, E_y, E_z.
 fn three() -> &'static Case {
@@ -55,10 +58,15 @@ fn three() -> &'static Case {
 
 #[test]
 fn candidates_gpu_equal_cpu() {
-    for (name, (exemplars, analysis, cpu)) in [("shared", shared()), ("three", three())] {
+    let cases = [
+        ("shared", shared(), LOOP_BUDGET),
+        ("three", three(), LOOP_BUDGET),
+        ("three, tight loop budget", three(), TIGHT_LOOP_BUDGET),
+    ];
+    for (name, (exemplars, analysis, cpu), budget) in cases {
         assert_eq!(exemplars.images.len(), if name == "shared" { 1 } else { 3 });
         let gpu = with_gpu(|gpu| {
-            GpuCandidates::new(gpu)
+            GpuCandidates::with_loop_budget(gpu, budget)
                 .unwrap()
                 .compute(analysis, &CandidateParams::default(), &mut |_| {})
                 .unwrap()
@@ -99,7 +107,9 @@ fn boxed(origin: [i32; 3], size: [u32; 3]) -> VolumeBox {
 fn synthesis_gpu_equals_cpu_on_every_level() {
     for (name, (_, analysis, candidates)) in [("shared", shared()), ("three", three())] {
         let levels = analysis.levels.len() as u32;
-        let passes: Vec<u32> = (0..levels).map(|l| [1, 2, 0][l as usize % 3]).collect();
+        // One pass at every other level, from the finest down, none in between: each pass pads
+        // the level's box by 8 voxels a side, which the CPU reference pays for on 2 cores.
+        let passes: Vec<u32> = (0..levels).map(|l| (levels - l) % 2).collect();
         let params = SynthParams::new(levels, 11, &passes, &[0.5]).unwrap();
         let window = boxed([-5, 7, 2], [16, 16, 16]);
         let cpu = synthesize_solid_cpu(analysis, candidates, &params, window).unwrap();
@@ -141,7 +151,10 @@ fn synthesis_gpu_equals_cpu_on_every_level() {
 fn overlapping_boxes_agree() {
     let (_, analysis, candidates) = shared();
     let levels = analysis.levels.len() as u32;
-    let params = SynthParams::new(levels, 3, &default_passes(levels), &[0.5]).unwrap();
+    // One pass at the three finest levels: their boxes are padded, and the coarser ones
+    // follow as their parents.
+    let passes: Vec<u32> = (0..levels).map(|l| (l + 3 >= levels) as u32).collect();
+    let params = SynthParams::new(levels, 3, &passes, &[0.5]).unwrap();
     let (a, b) = (boxed([0, 0, 0], [12, 10, 8]), boxed([5, -3, 4], [9, 9, 9]));
     let (sa, sb) = with_gpu(|gpu| {
         let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
@@ -175,21 +188,21 @@ fn overlapping_boxes_agree() {
     assert_eq!(plan_boxes(a, &params.passes).len(), levels as usize);
 }
 
-/// A 32-periodic lattice volume whose red channel varies along x only, green along y only and
+/// A 16-periodic lattice volume whose red channel varies along x only, green along y only and
 /// blue along z only (three random injective 1D profiles).
 fn lattice() -> impl Fn([i32; 3]) -> [u8; 3] {
     let mut r = rng(5);
     let mut profile = || {
         let mut values: Vec<u8> = (0..=255).collect();
-        for i in 0..32 {
+        for i in 0..16 {
             let j = r.random_range(i..256);
             values.swap(i, j);
         }
-        values.truncate(32);
+        values.truncate(16);
         values
     };
     let f = [profile(), profile(), profile()];
-    move |p| std::array::from_fn(|c| f[c][p[c].rem_euclid(32) as usize])
+    move |p| std::array::from_fn(|c| f[c][p[c].rem_euclid(16) as usize])
 }
 
 #[test]
@@ -200,21 +213,25 @@ fn zero_jitter_reproduces_a_lattice_volume() {
     let v = lattice();
     let cut = |role: usize| {
         let [a, b] = ROLE_AXES[role];
-        let rgb = (0..32 * 32)
+        let rgb = (0..16 * 16)
             .map(|i| {
                 let mut p = [0i32; 3];
-                p[a] = i % 32;
-                p[b] = i / 32;
+                p[a] = i % 16;
+                p[b] = i / 16;
                 v(p)
             })
             .collect();
-        Exemplar::from_rgb(format!("lattice {role}"), 32, 32, rgb).unwrap()
+        Exemplar::from_rgb(format!("lattice {role}"), 16, 16, rgb).unwrap()
     };
     let exemplars =
         SolidExemplars::new(cut(0), [Some(cut(0)), Some(cut(1)), Some(cut(2))]).unwrap();
     let (exemplars, analysis, candidates) = prepare(exemplars);
     let levels = analysis.levels.len() as u32;
-    let params = SynthParams::new(levels, 9, &[2], &[0.0]).unwrap();
+    // Correction at the coarsest and the finest level.
+    let passes: Vec<u32> = (0..levels)
+        .map(|l| (l == 0 || l + 1 == levels) as u32)
+        .collect();
+    let params = SynthParams::new(levels, 9, &passes, &[0.0]).unwrap();
     let window = boxed([-37, 50, 3], [10, 9, 11]);
     let synthesis = with_gpu(|gpu| {
         let synth = GpuSolidSynthesizer::new(gpu, &analysis, &candidates).unwrap();
@@ -223,37 +240,41 @@ fn zero_jitter_reproduces_a_lattice_volume() {
             .unwrap()
             .0
     });
-    // Every coordinate is the projection of the position (the 3D tiling), so each role's
-    // slices are exact copies of its exemplar, and the median colour is the volume itself.
-    for (i, t) in synthesis.window_triples().into_iter().enumerate() {
+    // What is reproduced, exactly: every voxel's triple is the projection of its absolute
+    // position mod 16 into each role's image (the 3D tiling, with translation zero), so the
+    // median colour of the three exemplars at the triple is the volume itself, V(p).
+    let triples = synthesis.window_triples();
+    for (i, t) in triples.iter().enumerate() {
         let p = window.position(i);
         for (role, axes) in ROLE_AXES.iter().enumerate() {
             let want = (
-                p[axes[0]].rem_euclid(32) as u32,
-                p[axes[1]].rem_euclid(32) as u32,
+                p[axes[0]].rem_euclid(16) as u32,
+                p[axes[1]].rem_euclid(16) as u32,
             );
             assert_eq!(unpack(t[role]), want, "voxel {p:?} role {role}");
         }
-        assert_eq!(voxel_colour(&exemplars, t), v(p), "voxel {p:?}");
+        assert_eq!(voxel_colour(&exemplars, *t), v(p), "voxel {p:?}");
     }
-    // Zero energy of a slice perpendicular to x coloured by E_x.
-    let slice: Vec<[u8; 3]> = (0..window.size[1] * window.size[2])
-        .map(|i| {
-            let j = (i / window.size[1]) * window.size[1] * window.size[0]
-                + (i % window.size[1]) * window.size[0];
-            let (x, y) = unpack(synthesis.window_triples()[j as usize][0]);
-            exemplars.role(0).at(x, y)
-        })
-        .collect();
-    let e = energy_cpu(
-        exemplars.role(0),
-        &slice,
-        window.size[1],
-        window.size[2],
-        100,
-    )
-    .unwrap();
-    assert!(e.iter().all(|&x| x == 0));
+    // And every role's slices through the window are exact translated copies of its exemplar:
+    // the mid slice perpendicular to each axis, coloured by that axis's exemplar at the
+    // voxels' coordinates, has zero neighbourhood energy against it at every pixel.
+    for (axis, [a, b]) in ROLE_AXES.into_iter().enumerate() {
+        let (w, h) = (window.size[a], window.size[b]);
+        let slice: Vec<[u8; 3]> = (0..w * h)
+            .map(|k| {
+                let mut p = window.origin;
+                p[axis] += window.size[axis] as i32 / 2;
+                p[a] += (k % w) as i32;
+                p[b] += (k / w) as i32;
+                let (x, y) = unpack(triples[window.index(p)][axis]);
+                exemplars.role(axis).at(x, y)
+            })
+            .collect();
+        let e = energy_cpu(exemplars.role(axis), &slice, w, h, (w * h) as usize).unwrap();
+        // Every interior pixel: (w - 6)(h - 6) of them.
+        assert_eq!(e.len(), ((w - 6) * (h - 6)) as usize, "axis {axis}");
+        assert!(e.iter().all(|&x| x == 0), "axis {axis}: {e:?}");
+    }
 }
 
 #[test]

@@ -5,7 +5,8 @@
 use lazysolid_compute::synth::{
     analyze, default_passes, energy_cpu, hash4, histogram_distance, pack, period_repetition,
     plan_regions, synthesize_cpu, unpack, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis,
-    GpuSynthesizer, Region, SynthError, SynthParams, MIN_EXEMPLAR_SIDE, REPETITION_TOLERANCE,
+    GpuSynthesizer, Region, SynthError, SynthParams, MAX_PERIOD_PENALTY, MIN_EXEMPLAR_SIDE,
+    REPETITION_TOLERANCE,
 };
 use lazysolid_tests::{asset_exemplar, with_gpu};
 use std::sync::OnceLock;
@@ -70,7 +71,13 @@ fn gpu_equals_cpu_on_every_level() {
         } else {
             (0..levels).map(|l| [3, 0, 1, 2][l as usize % 4]).collect()
         };
-        let params = SynthParams::new(levels, 7 + case as u32, &passes, &[0.6]).unwrap();
+        // Case 0 ranks candidates that span a period last (the largest penalty), case 1 adds
+        // a penalty comparable to the distances, so that it trades against them.
+        let penalty = if case == 0 { MAX_PERIOD_PENALTY } else { 3000 };
+        let params = SynthParams::new(levels, 7 + case as u32, &passes, &[0.6])
+            .unwrap()
+            .with_period_penalty(penalty)
+            .unwrap();
         let win = window(-13, 29, 40, 24);
         let cpu = synthesize_cpu(analysis, &params, win).unwrap();
         let gpu = with_gpu(|gpu| {
@@ -145,8 +152,12 @@ fn overlapping_windows_agree() {
 
 #[test]
 fn zero_jitter_reproduces_the_tiling() {
+    // Without the period penalty: the tiling is the one layout it exists to discourage.
     for (_, analysis) in [leather(), terra_crop()] {
-        let params = SynthParams::new(analysis.levels.len() as u32, 5, &[2], &[0.0]).unwrap();
+        let params = SynthParams::new(analysis.levels.len() as u32, 5, &[2], &[0.0])
+            .unwrap()
+            .with_period_penalty(0)
+            .unwrap();
         let win = window(-100, 55, 50, 30);
         let gpu = with_gpu(|gpu| {
             let synth = GpuSynthesizer::new(gpu, analysis).unwrap();
@@ -340,6 +351,14 @@ fn bad_exemplars_are_rejected_with_the_file_and_limit() {
     assert!(SynthParams::new(7, 0, &[2], &[0.1, 0.2]).is_err());
     assert!(SynthParams::new(7, 0, &[2, 2], &[0.5]).is_err());
     assert!(SynthParams::new(7, 0, &[9], &[0.5]).is_err());
+    let too_much = SynthParams::new(7, 0, &[2], &[0.5])
+        .unwrap()
+        .with_period_penalty(MAX_PERIOD_PENALTY + 1)
+        .unwrap_err();
+    assert!(
+        too_much.to_string().contains("period penalty"),
+        "{too_much}"
+    );
     let params = SynthParams::new(analysis.levels.len() as u32, 0, &[2], &[0.5]).unwrap();
     assert!(synthesize_cpu(analysis, &params, window(0, 0, 0, 4)).is_err());
 }

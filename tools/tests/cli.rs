@@ -108,8 +108,8 @@ fn device_lists_limits_and_marks_the_chosen_device() {
         "maxStorageBufferRange",
         "device heap",
         "subgroup size",
-        "64-bit buffer atomics",
-        "timestamps",
+        "shaderBufferInt64Atomics",
+        "timestamp queries on a compute queue",
         "<- used by lazysolid",
     ] {
         assert!(out.contains(needle), "missing {needle:?} in:\n{out}");
@@ -545,24 +545,45 @@ fn synth_writes_texture_and_coordinate_map_with_metrics() {
         exemplar.display()
     );
     let dir = tempfile::tempdir().unwrap();
+    let cache = tempfile::tempdir().unwrap();
     let out = dir.path().join("terra.png");
     // The exemplar by its asset name, from a folder outside the repository.
-    let (ok, stdout, err) = run(lazysolid()
-        .current_dir(dir.path())
-        .arg("synth")
-        .arg("terra")
-        .args(["--res", "48x32", "--offset", "-70,5", "--seed", "4"])
-        .args(["--energy-samples", "64", "-o", "terra.png"])
-        .env("LAZYSOLID_VALIDATION", "1"));
-    assert!(ok, "{err}");
-    assert!(stdout.contains("terra.pat"), "{stdout}");
+    let synth = |extra: &[&str]| {
+        let (ok, stdout, err) = run(lazysolid()
+            .current_dir(dir.path())
+            .arg("synth")
+            .arg("terra")
+            .args(["--res", "48x32", "--offset", "-70,5", "--seed", "4"])
+            .args(["--energy-samples", "64"])
+            .args(extra)
+            .args(["-o", "terra.png"])
+            .env("LAZYSOLID_CACHE_DIR", cache.path())
+            .env("LAZYSOLID_VALIDATION", "1"));
+        assert!(ok, "{err}");
+        assert!(stdout.contains("terra.pat"), "{stdout}");
+        (stdout, std::fs::read(&out).unwrap())
+    };
+    // The first run analyses the exemplar and caches the analysis, the second reads it, and
+    // both write the same image; --no-cache neither reads nor writes the cache.
+    let (stdout, first) = synth(&[]);
     for needle in [
+        "cache miss",
         "synthesis (GPU)",
         "neighbourhood energy",
         "colour histogram distance",
     ] {
         assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
     }
+    let cached: Vec<_> = std::fs::read_dir(cache.path().join("synth-analysis"))
+        .unwrap()
+        .collect();
+    assert_eq!(cached.len(), 1);
+    let (stdout, second) = synth(&[]);
+    assert!(stdout.contains("cache hit"), "{stdout}");
+    assert_eq!(first, second);
+    let (stdout, third) = synth(&["--no-cache"]);
+    assert!(stdout.contains("cache off"), "{stdout}");
+    assert_eq!(first, third);
     let image = image::open(&out).unwrap();
     assert_eq!((image.width(), image.height()), (48, 32));
     let coords = image::open(dir.path().join("terra.coords.png")).unwrap();
@@ -584,6 +605,16 @@ fn synth_names_a_bad_exemplar_and_writes_nothing() {
         "{err}"
     );
     assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.exists());
+    // An empty cache folder variable is refused by name, before any work.
+    let terra = repo("assets/exemplars/terra.pat");
+    let (ok, _, err) = run(lazysolid()
+        .arg("synth")
+        .arg(&terra)
+        .arg("-o")
+        .arg(&out)
+        .env("LAZYSOLID_CACHE_DIR", ""));
+    assert!(!ok && err.contains("LAZYSOLID_CACHE_DIR"), "{err}");
     assert!(!out.exists());
 }
 
@@ -608,7 +639,8 @@ fn bench_synth_writes_its_tables_files_and_images() {
             "leather 64x64 analysis",
             "leather 64x64 -> 64x64",
             "lazysolid gpu passes (timestamps)",
-            "lazysolid end-to-end (wall)",
+            "lazysolid end-to-end cold (wall)",
+            "lazysolid end-to-end warm (wall)",
             "texture-synthesis 0.8.2 (2 threads)",
             "energy lazysolid",
             "mean of 2 seed(s)",
@@ -616,8 +648,8 @@ fn bench_synth_writes_its_tables_files_and_images() {
             "target leather 64x64 -> 64x64: >= 20x faster",
         ],
     );
-    // The analysis row and four rows of the one case.
-    assert_eq!(bench.csv().1.len(), 1 + 4);
+    // The analysis row and five rows of the one case.
+    assert_eq!(bench.csv().1.len(), 1 + 5);
     let json = bench.json();
     let derived = &json["derived"];
     for key in [
@@ -956,7 +988,8 @@ fn every_help_uses_one_word_and_one_value_form_per_thing() {
     let mut forms: std::collections::BTreeMap<String, std::collections::BTreeSet<String>> =
         Default::default();
     for (command, help) in every_help() {
-        for line in help.lines() {
+        // Flag lines only (`  -o, --output <OUTPUT>`), not flags named in prose.
+        for line in help.lines().filter(|l| l.trim_start().starts_with('-')) {
             let words: Vec<&str> = line.split_whitespace().collect();
             for (i, w) in words.iter().enumerate() {
                 let flag = w.trim_end_matches(',');
@@ -1255,23 +1288,47 @@ fn solid_names_each_bad_input_and_writes_nothing() {
     let big = terra_square(dir.path(), 32);
     let odd = dir.path().join("odd.png");
     image::RgbImage::new(24, 24).save(&odd).unwrap();
+    let tiny = dir.path().join("tiny.png");
+    image::RgbImage::new(8, 8).save(&tiny).unwrap();
+    let huge = dir.path().join("huge.png");
+    image::RgbImage::new(256, 256).save(&huge).unwrap();
+    let corrupt = dir.path().join("corrupt.png");
+    std::fs::write(&corrupt, b"not a PNG at all").unwrap();
     let out = dir.path().join("out.nrrd");
-    let cases: [(Vec<&str>, &[&str]); 6] = [
+    let path = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    let cases: [(Vec<String>, &[&str]); 11] = [
         (
-            vec!["--ey", big.to_str().unwrap()],
+            vec!["--ey".into(), path(&big)],
             &["--ey", "terra32.png", "same side"],
         ),
         (
-            vec!["--ex", odd.to_str().unwrap()],
+            vec!["--ex".into(), path(&odd)],
             &["odd.png", "power-of-two"],
         ),
+        (vec!["--ex".into(), path(&tiny)], &["tiny.png", "16..=128"]),
+        (vec!["--ez".into(), path(&huge)], &["huge.png", "16..=128"]),
         (
-            vec!["--ez", "/nonexistent/e.png"],
+            vec!["--ez".into(), "/nonexistent/e.png".into()],
             &["/nonexistent/e.png", "cannot read"],
         ),
-        (vec!["--size", "100"], &["--size 100", "64, 128, 256"]),
-        (vec!["--strip", "4"], &["strip", "odd"]),
-        (vec!["--s", "80"], &["`s`", "1..=65"]),
+        (
+            vec!["--ey".into(), path(&corrupt)],
+            &["corrupt.png", "cannot decode"],
+        ),
+        (
+            vec!["--size".into(), "100".into()],
+            &["--size 100", "64, 128, 256"],
+        ),
+        (
+            vec!["--size".into(), "512".into()],
+            &["--size 512", "64, 128, 256"],
+        ),
+        (
+            vec!["--offset".into(), "300000000,0,0".into()],
+            &["--offset 300000000,0,0", "268435456"],
+        ),
+        (vec!["--strip".into(), "4".into()], &["strip", "odd"]),
+        (vec!["--s".into(), "80".into()], &["`s`", "1..=65"]),
     ];
     for (extra, needles) in cases {
         let (ok, _, err) = run(lazysolid()
@@ -1295,5 +1352,5 @@ fn solid_names_each_bad_input_and_writes_nothing() {
     assert!(!ok && err.contains(".nrrd"), "{err}");
     assert!(!png_out.exists());
     // Nothing but the inputs in the folder.
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 3);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 6);
 }

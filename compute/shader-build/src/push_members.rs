@@ -122,7 +122,9 @@ fn parse(words: &[u32]) -> Module {
             OP_VARIABLE if a.len() >= 3 && a[2] == STORAGE_PUSH_CONSTANT => {
                 m.push_variable_type = m.pointees.get(&a[0]).map(|&(_, t)| t);
             }
-            20..=39 => {
+            // Every other type declaration (OpTypeVoid..OpTypeForwardPointer and the rest of
+            // the type range), including the guarded ones above whose guard failed.
+            other if (OP_TYPE_BOOL..=39).contains(&other) => {
                 m.types.insert(a[0], Type::Other(op));
             }
             _ => {}

@@ -153,7 +153,7 @@ impl<T: Pod> GpuBuffer<T> {
 
     /// A buffer holding a copy of `data`.
     pub fn from_slice(gpu: &Gpu, name: impl Into<String>, data: &[T]) -> GpuResult<Self> {
-        let buffer = Self::new(gpu, name, data.len())?;
+        let mut buffer = Self::new(gpu, name, data.len())?;
         buffer.write(0, data)?;
         Ok(buffer)
     }
@@ -161,10 +161,7 @@ impl<T: Pod> GpuBuffer<T> {
     /// A buffer of `len` zeroed elements.
     pub fn zeroed(gpu: &Gpu, name: impl Into<String>, len: usize) -> GpuResult<Self> {
         let buffer = Self::new(gpu, name, len)?;
-        let g = Gpu {
-            inner: buffer.memory.gpu.clone(),
-        };
-        g.submit(|rec| {
+        gpu.submit(|rec| {
             rec.fill(&buffer, 0);
             Ok(())
         })?;
@@ -282,8 +279,10 @@ impl<T: Pod> GpuBuffer<T> {
         Ok(())
     }
 
-    /// Writes `data` starting at element `offset`. No GPU work may be using the buffer.
-    pub fn write(&self, offset: usize, data: &[T]) -> GpuResult<()> {
+    /// Writes `data` starting at element `offset`. Takes the buffer mutably: a write through
+    /// the mapping must not alias a [`BufferArg`] or a read, and no recorded GPU work may be
+    /// using the buffer (submissions wait for completion).
+    pub fn write(&mut self, offset: usize, data: &[T]) -> GpuResult<()> {
         self.check_range(offset, data.len())?;
         if data.is_empty() {
             return Ok(());
@@ -300,11 +299,8 @@ impl<T: Pod> GpuBuffer<T> {
             };
             return Ok(());
         }
-        let gpu = Gpu {
-            inner: self.memory.gpu.clone(),
-        };
-        let staging = Staging::new(
-            &gpu,
+        let mut staging = Staging::new(
+            &self.memory.gpu,
             &format!("{} (upload staging)", self.name),
             std::mem::size_of_val(data) as u64,
             MemoryLocation::CpuToGpu,
@@ -312,10 +308,13 @@ impl<T: Pod> GpuBuffer<T> {
         staging
             .slice_mut()
             .copy_from_slice(bytemuck::cast_slice(data));
-        gpu.submit(|rec| {
-            rec.copy_raw(staging.raw, 0, self.memory.raw, byte_offset, staging.bytes);
-            Ok(())
-        })
+        self.memory
+            .gpu
+            .submit_timed(|rec| {
+                rec.copy_raw(staging.raw, 0, self.memory.raw, byte_offset, staging.bytes);
+                Ok(())
+            })
+            .map(|_| ())
     }
 
     /// Reads the whole buffer back. No GPU work may be writing it.
@@ -342,16 +341,13 @@ impl<T: Pod> GpuBuffer<T> {
             };
             return Ok(out);
         }
-        let gpu = Gpu {
-            inner: self.memory.gpu.clone(),
-        };
-        let staging = Staging::new(
-            &gpu,
+        let mut staging = Staging::new(
+            &self.memory.gpu,
             &format!("{} (readback staging)", self.name),
             dst.len() as u64,
             MemoryLocation::GpuToCpu,
         )?;
-        gpu.submit(|rec| {
+        self.memory.gpu.submit_timed(|rec| {
             rec.copy_raw(self.memory.raw, byte_offset, staging.raw, 0, staging.bytes);
             Ok(())
         })?;
@@ -369,8 +365,13 @@ struct Staging {
 }
 
 impl Staging {
-    fn new(gpu: &Gpu, name: &str, bytes: u64, location: MemoryLocation) -> GpuResult<Self> {
-        let inner = gpu.inner.clone();
+    fn new(
+        gpu: &Arc<GpuInner>,
+        name: &str,
+        bytes: u64,
+        location: MemoryLocation,
+    ) -> GpuResult<Self> {
+        let inner = gpu.clone();
         let create = vk::BufferCreateInfo::default()
             .size(bytes)
             .usage(vk::BufferUsageFlags::TRANSFER_SRC | vk::BufferUsageFlags::TRANSFER_DST);
@@ -414,8 +415,7 @@ impl Staging {
         Ok(staging)
     }
 
-    #[allow(clippy::mut_from_ref)]
-    fn slice_mut(&self) -> &mut [u8] {
+    fn slice_mut(&mut self) -> &mut [u8] {
         let a = self.allocation.as_ref().expect("live staging allocation");
         let ptr = a
             .mapped_ptr()

@@ -43,7 +43,17 @@ impl Gpu {
         &self,
         record: impl FnOnce(&mut Recorder<'_>) -> GpuResult<R>,
     ) -> GpuResult<(R, Vec<f64>)> {
-        let inner = &*self.inner;
+        self.inner.submit_timed(record)
+    }
+}
+
+impl GpuInner {
+    /// See [`Gpu::submit_timed`]; buffers submit their copies through this.
+    pub(crate) fn submit_timed<R>(
+        &self,
+        record: impl FnOnce(&mut Recorder<'_>) -> GpuResult<R>,
+    ) -> GpuResult<(R, Vec<f64>)> {
+        let inner = self;
         let device = &inner.device;
         let pool_info = vk::CommandPoolCreateInfo::default()
             .queue_family_index(inner.queue_family)
@@ -216,6 +226,12 @@ impl Recorder<'_> {
         push: &P,
     ) -> GpuResult<()> {
         let def = kernel.def;
+        if !std::ptr::eq(&*kernel.gpu, self.gpu) {
+            return Err(GpuError::KernelInterface {
+                kernel: def.name,
+                problem: "the kernel belongs to another device".into(),
+            });
+        }
         let push_bytes = push_bytes(push);
         if push_bytes.len() as u32 != def.push_constant_bytes {
             return Err(GpuError::KernelInterface {

@@ -2,6 +2,8 @@
 
 use super::device_info::DeviceInfo;
 use super::error::{GpuError, GpuResult, VkContext};
+use super::features::{enabled, Feature, REQUIRED_FEATURES};
+use super::kernel::KernelCache;
 use super::validation::{messenger_callback, ValidationLog, VALIDATION_LAYER};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
@@ -56,11 +58,13 @@ impl GpuOptions {
     }
 }
 
-/// A Vulkan device ready for compute work. Cloning is cheap; the device lives until the last
-/// clone and the last buffer or kernel made from it are gone.
+/// A Vulkan device ready for compute work, with its kernel cache. Cloning is cheap and shares
+/// both; the device lives until the last clone and the last buffer or kernel made from it are
+/// gone.
 #[derive(Clone)]
 pub struct Gpu {
     pub(crate) inner: Arc<GpuInner>,
+    pub(crate) kernels: Arc<KernelCache>,
 }
 
 pub(crate) struct GpuInner {
@@ -169,6 +173,7 @@ impl Gpu {
                     if validation { "on" } else { "off" }
                 );
                 Ok(Gpu {
+                    kernels: Arc::default(),
                     inner: Arc::new(GpuInner {
                         _entry: entry,
                         instance,
@@ -371,62 +376,28 @@ fn create_device(
     options: &GpuOptions,
 ) -> GpuResult<(vk::PhysicalDevice, DeviceInfo, ash::Device, u32)> {
     let (physical, info) = choose(enumerate(instance)?, options.device.as_deref())?;
-    if let Some(missing) = info.missing_requirements().first() {
-        return Err(GpuError::MissingFeature {
-            device: info.name.clone(),
-            missing: missing.to_string(),
-        });
-    }
+    info.check_requirements()?;
     let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
     let queue_family = families
         .iter()
         .position(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0)
         .ok_or_else(|| GpuError::MissingFeature {
             device: info.name.clone(),
-            missing: "a compute queue with timestamps".into(),
+            missing: Feature::ComputeTimestamps.name().into(),
         })? as u32;
     let priorities = [1.0f32];
     let queues = [vk::DeviceQueueCreateInfo::default()
         .queue_family_index(queue_family)
         .queue_priorities(&priorities)];
-    let extensions = [ash::khr::push_descriptor::NAME.as_ptr()];
-    let features = vk::PhysicalDeviceFeatures::default().shader_int64(true);
-    let mut f11 = vk::PhysicalDeviceVulkan11Features::default();
-    let mut f12 = vk::PhysicalDeviceVulkan12Features::default()
-        .buffer_device_address(true)
-        .scalar_block_layout(true)
-        .shader_buffer_int64_atomics(true)
-        .host_query_reset(true)
-        .vulkan_memory_model(true)
-        .vulkan_memory_model_device_scope(true);
-    let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
-    // Only request optional 1.2/1.3 features that exist.
-    let mut supported12 = vk::PhysicalDeviceVulkan12Features::default();
-    let mut supported13 = vk::PhysicalDeviceVulkan13Features::default();
-    let mut s2 = vk::PhysicalDeviceFeatures2::default()
-        .push_next(&mut supported12)
-        .push_next(&mut supported13);
-    unsafe { instance.get_physical_device_features2(physical, &mut s2) };
-    if supported12.vulkan_memory_model == vk::FALSE {
-        f12 = f12
-            .vulkan_memory_model(false)
-            .vulkan_memory_model_device_scope(false);
-    }
-    if supported13.maintenance4 == vk::TRUE {
-        f13 = f13.maintenance4(true);
-    }
-    if supported13.subgroup_size_control == vk::TRUE {
-        f13 = f13
-            .subgroup_size_control(true)
-            .compute_full_subgroups(supported13.compute_full_subgroups == vk::TRUE);
-    }
+    // Exactly the checked features: nothing the device choice did not see is enabled.
+    let (mut features, extensions) = enabled(REQUIRED_FEATURES);
+    let extensions: Vec<_> = extensions.iter().map(|e| e.as_ptr()).collect();
     let info_ci = vk::DeviceCreateInfo::default()
         .queue_create_infos(&queues)
         .enabled_extension_names(&extensions)
-        .enabled_features(&features)
-        .push_next(&mut f11)
-        .push_next(&mut f12)
-        .push_next(&mut f13);
+        .enabled_features(&features.core)
+        .push_next(&mut features.v12)
+        .push_next(&mut features.v13);
     let device = unsafe { instance.create_device(physical, &info_ci, None) }
         .vk("vkCreateDevice", info.name.clone())?;
     Ok((physical, info, device, queue_family))

@@ -1,5 +1,9 @@
 //! What lazysolid needs to know about a physical device, read once and printed by `lazysolid device`.
 
+use super::error::GpuResult;
+use super::features::{
+    check_features, DeviceCapabilities, Feature, FeatureStructs, REQUIRED_FEATURES,
+};
 use ash::vk;
 use std::ffi::CStr;
 
@@ -36,20 +40,10 @@ pub struct DeviceInfo {
     pub max_workgroup_count: u32,
     /// `maxComputeWorkGroupInvocations`.
     pub max_workgroup_invocations: u32,
-    /// `shaderBufferInt64Atomics`.
-    pub int64_atomics: bool,
-    /// `bufferDeviceAddress`.
-    pub buffer_device_address: bool,
-    /// `scalarBlockLayout`.
-    pub scalar_block_layout: bool,
-    /// Whether the compute queue has timestamps, and the nanoseconds per tick.
-    pub timestamps: bool,
+    /// The features of [`REQUIRED_FEATURES`] the device supports.
+    pub features: Vec<Feature>,
     /// `timestampPeriod` in nanoseconds.
     pub timestamp_period_ns: f32,
-    /// Whether `VK_KHR_push_descriptor` is present.
-    pub push_descriptor: bool,
-    /// Whether subgroup arithmetic, ballot and shuffle are supported in compute shaders.
-    pub subgroup_ops: bool,
 }
 
 impl DeviceInfo {
@@ -68,28 +62,26 @@ impl DeviceInfo {
         }
     }
 
-    /// The missing features that lazysolid requires, empty when the device is usable.
+    /// Whether the device supports `feature`.
+    pub fn has(&self, feature: Feature) -> bool {
+        self.features.contains(&feature)
+    }
+
+    /// The names of the required features the device lacks, empty when it is usable.
     pub fn missing_requirements(&self) -> Vec<&'static str> {
-        let mut missing = Vec::new();
-        if !self.buffer_device_address {
-            missing.push("bufferDeviceAddress");
-        }
-        if !self.scalar_block_layout {
-            missing.push("scalarBlockLayout");
-        }
-        if !self.int64_atomics {
-            missing.push("shaderBufferInt64Atomics");
-        }
-        if !self.push_descriptor {
-            missing.push("VK_KHR_push_descriptor");
-        }
-        if !self.subgroup_ops {
-            missing.push("subgroup arithmetic/ballot/shuffle in compute");
-        }
-        if !self.timestamps {
-            missing.push("timestamp queries on the compute queue");
-        }
-        missing
+        REQUIRED_FEATURES
+            .iter()
+            .filter(|f| !self.has(**f))
+            .map(|f| f.name())
+            .collect()
+    }
+
+    /// Checks the device against [`REQUIRED_FEATURES`].
+    ///
+    /// # Errors
+    /// [`GpuError::MissingFeature`] with the device's name and every missing feature.
+    pub fn check_requirements(&self) -> GpuResult<()> {
+        check_features(&self.name, &self.features, REQUIRED_FEATURES)
     }
 
     pub(crate) fn read(
@@ -106,9 +98,7 @@ impl DeviceInfo {
             .push_next(&mut maint4);
         unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
         let props = props2.properties;
-        let mut f12 = vk::PhysicalDeviceVulkan12Features::default();
-        let mut features2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f12);
-        unsafe { instance.get_physical_device_features2(physical, &mut features2) };
+        let features = read_features(instance, physical, props.api_version);
         let memory = unsafe { instance.get_physical_device_memory_properties(physical) };
         let heaps = &memory.memory_heaps[..memory.memory_heap_count as usize];
         let types = &memory.memory_types[..memory.memory_type_count as usize];
@@ -126,21 +116,19 @@ impl DeviceInfo {
                 )
         });
         let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
-        let timestamps = props.limits.timestamp_compute_and_graphics == vk::TRUE
-            || families.iter().any(|f| {
-                f.queue_flags.contains(vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0
-            });
+        let timestamps = families
+            .iter()
+            .any(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0);
         let extensions =
             unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
-        let has_ext = |name: &CStr| {
-            extensions
-                .iter()
-                .any(|e| e.extension_name_as_c_str() == Ok(name))
-        };
-        let needed_ops = vk::SubgroupFeatureFlags::BASIC
-            | vk::SubgroupFeatureFlags::ARITHMETIC
-            | vk::SubgroupFeatureFlags::BALLOT
-            | vk::SubgroupFeatureFlags::SHUFFLE;
+        let supported = DeviceCapabilities {
+            api_version: props.api_version,
+            features: &features,
+            extensions: &extensions,
+            subgroup: &subgroup,
+            compute_timestamps: timestamps,
+        }
+        .supported();
         let text = |raw: &[std::ffi::c_char]| {
             unsafe { CStr::from_ptr(raw.as_ptr()) }
                 .to_string_lossy()
@@ -188,16 +176,28 @@ impl DeviceInfo {
             max_shared_memory: props.limits.max_compute_shared_memory_size,
             max_workgroup_count: props.limits.max_compute_work_group_count[0],
             max_workgroup_invocations: props.limits.max_compute_work_group_invocations,
-            int64_atomics: f12.shader_buffer_int64_atomics == vk::TRUE,
-            buffer_device_address: f12.buffer_device_address == vk::TRUE,
-            scalar_block_layout: f12.scalar_block_layout == vk::TRUE,
-            timestamps,
+            features: supported,
             timestamp_period_ns: props.limits.timestamp_period,
-            push_descriptor: has_ext(ash::khr::push_descriptor::NAME),
-            subgroup_ops: subgroup
-                .supported_stages
-                .contains(vk::ShaderStageFlags::COMPUTE)
-                && subgroup.supported_operations.contains(needed_ops),
         }
     }
+}
+
+/// The device's core, Vulkan 1.2 and (on a 1.3 device) Vulkan 1.3 feature structures.
+pub(crate) fn read_features(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    api_version: u32,
+) -> FeatureStructs {
+    let mut f = FeatureStructs::default();
+    let mut features2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f.v12);
+    if vk::api_version_minor(api_version) >= 3 || vk::api_version_major(api_version) > 1 {
+        features2 = features2.push_next(&mut f.v13);
+    }
+    unsafe { instance.get_physical_device_features2(physical, &mut features2) };
+    let core = features2.features;
+    // The chain pointed into this frame; the structures travel on without it.
+    f.core = core;
+    f.v12.p_next = std::ptr::null_mut();
+    f.v13.p_next = std::ptr::null_mut();
+    f
 }

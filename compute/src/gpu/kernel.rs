@@ -1,11 +1,15 @@
-//! Compute pipelines built from the SPIR-V that `build.rs` embeds, with their interface checked
-//! at dispatch against the reflected GLSL bindings and push-constant block.
+//! Compute pipelines built from the SPIR-V that a crate's `build.rs` embeds, with their
+//! interface checked at dispatch against the reflected GLSL bindings and push-constant block.
+//! Pipelines are built only through the device's kernel cache ([`Gpu::kernel`]), once per
+//! (kernel, workgroup size, specialization constants), and shared.
 
 use super::context::{Gpu, GpuInner};
 use super::error::{GpuError, GpuResult, VkContext};
 use crate::shader_constants::DEFAULT_WORKGROUP_SIZE;
 use ash::vk;
-use std::sync::Arc;
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
 
 /// Kind of a reflected descriptor binding.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,10 +31,11 @@ pub struct BindingDef {
     pub kind: BindingKind,
 }
 
-/// A kernel as compiled at build time: generated in `crate::kernels`.
+/// A kernel as compiled at build time: generated in each owning crate's `kernels` module.
 #[derive(Clone, Copy, Debug)]
 pub struct KernelDef {
-    /// Path of the GLSL file below `glsl/`, used in every message about the kernel.
+    /// Path of the GLSL file below `glsl/`, used in every message about the kernel and as its
+    /// name in the kernel cache.
     pub name: &'static str,
     /// SPIR-V words.
     pub spirv: &'static [u32],
@@ -47,9 +52,10 @@ pub struct KernelDef {
 /// (`layout(local_size_x_id = 0) in;`).
 pub const WORKGROUP_SIZE_ID: u32 = 0;
 
-/// A compute pipeline with its layouts. Build once, dispatch many times.
+/// A compute pipeline with its layouts, shared through the device's kernel cache: get it with
+/// [`Gpu::kernel`] or [`Gpu::kernel_with`], dispatch it as often as needed.
 pub struct Kernel {
-    gpu: Arc<GpuInner>,
+    pub(crate) gpu: Arc<GpuInner>,
     pub(crate) def: &'static KernelDef,
     module: vk::ShaderModule,
     pub(crate) set_layout: vk::DescriptorSetLayout,
@@ -58,20 +64,103 @@ pub struct Kernel {
     workgroup_size: u32,
 }
 
-impl Kernel {
-    /// Builds `def` with the default workgroup size (256).
-    pub fn new(gpu: &Gpu, def: &'static KernelDef) -> GpuResult<Kernel> {
-        Self::with_constants(gpu, def, DEFAULT_WORKGROUP_SIZE, &[])
+impl Gpu {
+    /// `def` with the default workgroup size (256), from the device's kernel cache: the
+    /// pipeline is built at the first request and shared by every later one.
+    ///
+    /// # Errors
+    /// Shader-module or pipeline creation failures.
+    pub fn kernel(&self, def: &'static KernelDef) -> GpuResult<Arc<Kernel>> {
+        self.kernel_with(def, DEFAULT_WORKGROUP_SIZE, &[])
     }
 
-    /// Builds `def` with a workgroup width and further specialization constants `(id, value)`.
-    pub fn with_constants(
-        gpu: &Gpu,
+    /// `def` with a workgroup width and further specialization constants `(id, value)`, from
+    /// the device's kernel cache (one pipeline per distinct width and constants).
+    ///
+    /// # Errors
+    /// A workgroup size outside the device's limit, two different kernels under one name,
+    /// shader-module or pipeline creation failures.
+    pub fn kernel_with(
+        &self,
+        def: &'static KernelDef,
+        workgroup_size: u32,
+        constants: &[(u32, u32)],
+    ) -> GpuResult<Arc<Kernel>> {
+        self.kernels
+            .get(&self.inner, def, workgroup_size, constants)
+    }
+
+    /// The names of the kernels this device's kernel cache holds, sorted, once per kernel
+    /// (whatever its specializations): what a piece of work has actually needed.
+    pub fn cached_kernels(&self) -> Vec<&'static str> {
+        let mut names: Vec<_> = self
+            .kernels
+            .kernels
+            .lock()
+            .unwrap()
+            .keys()
+            .map(|k| k.0)
+            .collect();
+        names.sort_unstable();
+        names.dedup();
+        names
+    }
+
+    /// How many pipelines this device's kernel cache has built so far (each request that
+    /// found its kernel in the cache built none).
+    pub fn pipelines_created(&self) -> u64 {
+        self.kernels.created.load(Ordering::Relaxed)
+    }
+}
+
+/// Identity of a pipeline: kernel name, workgroup width, specialization constants.
+type KernelKey = (&'static str, u32, Vec<(u32, u32)>);
+
+/// The pipelines of one device. Owned by every clone of its [`Gpu`]; each [`Kernel`] holds the
+/// device itself, so the cache may be dropped before the device or after it.
+#[derive(Default)]
+pub(crate) struct KernelCache {
+    kernels: Mutex<HashMap<KernelKey, Arc<Kernel>>>,
+    created: AtomicU64,
+}
+
+impl KernelCache {
+    fn get(
+        &self,
+        gpu: &Arc<GpuInner>,
+        def: &'static KernelDef,
+        workgroup_size: u32,
+        constants: &[(u32, u32)],
+    ) -> GpuResult<Arc<Kernel>> {
+        let key = (def.name, workgroup_size, constants.to_vec());
+        // Held while building, so two threads asking for one kernel build it once.
+        let mut kernels = self.kernels.lock().unwrap();
+        if let Some(kernel) = kernels.get(&key) {
+            if kernel.def.spirv != def.spirv {
+                return Err(GpuError::KernelInterface {
+                    kernel: def.name,
+                    problem: "two different kernels have this name; kernels are cached by it"
+                        .into(),
+                });
+            }
+            return Ok(kernel.clone());
+        }
+        let kernel = Arc::new(Kernel::build(gpu, def, workgroup_size, constants)?);
+        self.created.fetch_add(1, Ordering::Relaxed);
+        kernels.insert(key, kernel.clone());
+        Ok(kernel)
+    }
+}
+
+impl Kernel {
+    /// Builds the pipeline; only the cache calls this.
+    fn build(
+        inner: &Arc<GpuInner>,
         def: &'static KernelDef,
         workgroup_size: u32,
         constants: &[(u32, u32)],
     ) -> GpuResult<Kernel> {
-        let inner = gpu.inner.clone();
+        let inner = inner.clone();
         if workgroup_size == 0 || workgroup_size > inner.info.max_workgroup_invocations {
             return Err(GpuError::KernelInterface {
                 kernel: def.name,

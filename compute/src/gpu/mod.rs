@@ -1,4 +1,5 @@
-//! The Vulkan core: device, validation, buffers, kernels, submission and timing.
+//! The Vulkan core: device and its required features, validation, buffers, the kernel cache,
+//! submission and timing.
 //!
 //! ```
 //! use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuOptions};
@@ -14,6 +15,7 @@ mod commands;
 mod context;
 mod device_info;
 mod error;
+mod features;
 mod keep_alive;
 mod kernel;
 mod push;
@@ -26,6 +28,7 @@ pub use commands::{Recorder, MAX_TIMESTAMPS};
 pub use context::{Gpu, GpuOptions, Validation, WeakGpu, DEVICE_ENV, VALIDATION_ENV};
 pub use device_info::DeviceInfo;
 pub use error::{GpuError, GpuResult};
+pub use features::{check_features, Feature, REQUIRED_FEATURES};
 pub use keep_alive::KeepAlive;
 pub use kernel::{BindingDef, BindingKind, Kernel, KernelDef, WORKGROUP_SIZE_ID};
 pub use push::{

@@ -9,6 +9,7 @@ use super::keys::Universe;
 use super::robin_hood::table_size_for;
 use super::validate::validate_entries;
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
+use crate::kernels::hash;
 use crate::shader_constants::HASH_NOT_FOUND;
 use std::sync::Arc;
 
@@ -201,8 +202,8 @@ impl CuckooTable {
             table_size: self.table_size,
             max_iterations: max_iterations(n),
         };
-        let k = &self.kernels.cuckoo_insert;
-        rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+        let k = self.kernels.kernel(&hash::CUCKOO_INSERT)?;
+        rec.dispatch(&k, k.groups_for(n as u64), &[], &push)
     }
 
     /// Rebuilds from the same keys and returns the GPU time of clearing and inserting in ms
@@ -237,8 +238,8 @@ impl CuckooTable {
             n: n as u32,
             table_size: self.table_size,
         };
-        let k = &self.kernels.cuckoo_query;
-        rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+        let k = self.kernels.kernel(&hash::CUCKOO_QUERY)?;
+        rec.dispatch(&k, k.groups_for(n as u64), &[], &push)
     }
 
     /// Queries `keys` and reads the results back.

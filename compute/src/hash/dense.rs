@@ -5,6 +5,7 @@ use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
+use crate::kernels::hash;
 use crate::shader_constants::HASH_NOT_FOUND;
 use std::sync::Arc;
 
@@ -64,8 +65,8 @@ impl DenseTable {
                 payloads: payloads.address(),
                 n: n as u32,
             };
-            let k = &kernels.dense_scatter;
-            rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+            let k = kernels.kernel(&hash::DENSE_SCATTER)?;
+            rec.dispatch(&k, k.groups_for(n as u64), &[], &push)
         })?;
         Ok(DenseTable {
             kernels: kernels.clone(),
@@ -88,8 +89,8 @@ impl DenseTable {
             results: results.address(),
             n: n as u32,
         };
-        let k = &self.kernels.dense_query;
-        rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+        let k = self.kernels.kernel(&hash::DENSE_QUERY)?;
+        rec.dispatch(&k, k.groups_for(n as u64), &[], &push)
     }
 
     /// Exact GPU bytes.

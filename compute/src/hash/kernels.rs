@@ -1,5 +1,6 @@
-//! Every hash kernel, built once per device and shared by the tables (pipelines are compiled at
-//! their first dispatch on lavapipe, so rebuilding a table must not rebuild them).
+//! What the hash tables share on one device: the kernels (fetched from the device's kernel
+//! cache at their first use, so building a table builds no pipeline twice and a table never
+//! builds the pipelines of another kind), and the primitives whose scratch they reuse.
 
 use super::cell::CellWidth;
 use super::error::HashError;
@@ -12,92 +13,63 @@ use std::sync::{Arc, Mutex};
 
 /// The Robin Hood kernels of one cell width.
 pub(crate) struct RobinHoodKernels {
-    pub insert: Kernel,
-    pub max_age: Kernel,
-    pub set_ages: Kernel,
-    /// The query kernel specialized for the coherent probe (`PROBE`, constant 1) ...
-    pub query_coherent: Kernel,
-    /// ... and for the random one.
-    pub query_random: Kernel,
+    pub insert: &'static KernelDef,
+    pub max_age: &'static KernelDef,
+    pub set_ages: &'static KernelDef,
+    /// Specialized per probe sequence (`PROBE`, constant 1).
+    query: &'static KernelDef,
 }
+
+const CELLS64: RobinHoodKernels = RobinHoodKernels {
+    insert: &hash::ROBIN_HOOD_INSERT64,
+    max_age: &hash::ROBIN_HOOD_MAX_AGE64,
+    set_ages: &hash::ROBIN_HOOD_SET_AGES64,
+    query: &hash::ROBIN_HOOD_QUERY64,
+};
+
+const CELLS32: RobinHoodKernels = RobinHoodKernels {
+    insert: &hash::ROBIN_HOOD_INSERT32,
+    max_age: &hash::ROBIN_HOOD_MAX_AGE32,
+    set_ages: &hash::ROBIN_HOOD_SET_AGES32,
+    query: &hash::ROBIN_HOOD_QUERY32,
+};
 
 impl RobinHoodKernels {
-    fn new(gpu: &Gpu, defs: [&'static KernelDef; 4]) -> GpuResult<RobinHoodKernels> {
-        let [insert, max_age, set_ages, query] = defs;
-        let probe =
-            |p: Probe| Kernel::with_constants(gpu, query, DEFAULT_WORKGROUP_SIZE, &[(1, p.id())]);
-        Ok(RobinHoodKernels {
-            insert: Kernel::new(gpu, insert)?,
-            max_age: Kernel::new(gpu, max_age)?,
-            set_ages: Kernel::new(gpu, set_ages)?,
-            query_coherent: probe(Probe::Coherent)?,
-            query_random: probe(Probe::Random)?,
-        })
-    }
-
     /// The query kernel of `probe`.
-    pub fn query(&self, probe: Probe) -> &Kernel {
-        match probe {
-            Probe::Coherent => &self.query_coherent,
-            Probe::Random => &self.query_random,
-        }
+    pub fn query(&self, gpu: &Gpu, probe: Probe) -> GpuResult<Arc<Kernel>> {
+        gpu.kernel_with(self.query, DEFAULT_WORKGROUP_SIZE, &[(1, probe.id())])
     }
 }
 
-/// All kernels of the hash tables, plus the primitives they use.
+/// The hash tables' shared context on one device: kernels come from the device's cache when
+/// first used; the radix sort (key validation) and the reduction (maximum age) keep their
+/// scratch here between builds.
 pub struct HashKernels {
     pub(crate) gpu: Gpu,
-    pub(crate) cells64: RobinHoodKernels,
-    pub(crate) cells32: RobinHoodKernels,
-    pub(crate) open_addressing: Kernel,
-    pub(crate) cuckoo_insert: Kernel,
-    pub(crate) cuckoo_query: Kernel,
-    pub(crate) dense_scatter: Kernel,
-    pub(crate) dense_query: Kernel,
-    pub(crate) check_keys: Kernel,
     pub(crate) sort: Mutex<RadixSort>,
     pub(crate) reduce: Mutex<Reduce>,
 }
 
 impl HashKernels {
-    /// Builds every kernel for `gpu`.
+    /// The context for `gpu`; builds no pipeline.
     pub fn new(gpu: &Gpu) -> GpuResult<Arc<HashKernels>> {
         Ok(Arc::new(HashKernels {
             gpu: gpu.clone(),
-            cells64: RobinHoodKernels::new(
-                gpu,
-                [
-                    &hash::ROBIN_HOOD_INSERT64,
-                    &hash::ROBIN_HOOD_MAX_AGE64,
-                    &hash::ROBIN_HOOD_SET_AGES64,
-                    &hash::ROBIN_HOOD_QUERY64,
-                ],
-            )?,
-            cells32: RobinHoodKernels::new(
-                gpu,
-                [
-                    &hash::ROBIN_HOOD_INSERT32,
-                    &hash::ROBIN_HOOD_MAX_AGE32,
-                    &hash::ROBIN_HOOD_SET_AGES32,
-                    &hash::ROBIN_HOOD_QUERY32,
-                ],
-            )?,
-            open_addressing: Kernel::new(gpu, &hash::OPEN_ADDRESSING_AGES)?,
-            cuckoo_insert: Kernel::new(gpu, &hash::CUCKOO_INSERT)?,
-            cuckoo_query: Kernel::new(gpu, &hash::CUCKOO_QUERY)?,
-            dense_scatter: Kernel::new(gpu, &hash::DENSE_SCATTER)?,
-            dense_query: Kernel::new(gpu, &hash::DENSE_QUERY)?,
-            check_keys: Kernel::new(gpu, &hash::CHECK_KEYS)?,
             sort: Mutex::new(RadixSort::new(gpu)?),
             reduce: Mutex::new(Reduce::new(gpu)?),
         }))
     }
 
-    pub(crate) fn robin_hood(&self, width: CellWidth) -> &RobinHoodKernels {
+    pub(crate) fn robin_hood(&self, width: CellWidth) -> &'static RobinHoodKernels {
         match width {
-            CellWidth::Bits64 => &self.cells64,
-            CellWidth::Bits32 => &self.cells32,
+            CellWidth::Bits64 => &CELLS64,
+            CellWidth::Bits32 => &CELLS32,
         }
+    }
+
+    /// `def` from the device's kernel cache.
+    pub(crate) fn kernel(&self, def: &'static KernelDef) -> GpuResult<Arc<Kernel>> {
+        self.gpu.kernel(def)
     }
 
     /// The device the kernels belong to.

@@ -5,6 +5,7 @@
 use super::kernels::HashKernels;
 use super::probe::Probe;
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
+use crate::kernels::hash;
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -30,6 +31,7 @@ pub fn plain_open_addressing_ages(
     max_age: u32,
 ) -> GpuResult<Vec<u32>> {
     let gpu = &kernels.gpu;
+    let kernel = kernels.kernel(&hash::OPEN_ADDRESSING_AGES)?;
     let k = GpuBuffer::from_slice(gpu, "open addressing keys", keys)?;
     let cells = GpuBuffer::<u64>::zeroed(gpu, "open addressing cells", table_size as usize)?;
     let ages = GpuBuffer::<u32>::new(gpu, "open addressing ages", keys.len())?;
@@ -43,13 +45,6 @@ pub fn plain_open_addressing_ages(
         probe: probe.id(),
         max_age,
     };
-    gpu.submit(|rec| {
-        rec.dispatch(
-            &kernels.open_addressing,
-            kernels.open_addressing.groups_for(keys.len() as u64),
-            &[],
-            &push,
-        )
-    })?;
+    gpu.submit(|rec| rec.dispatch(&kernel, kernel.groups_for(keys.len() as u64), &[], &push))?;
     ages.read()
 }

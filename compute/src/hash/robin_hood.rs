@@ -328,7 +328,8 @@ impl RobinHoodTable {
             key_bits: self.format.key_bits,
             probe: self.config.probe.id(),
         };
-        rec.dispatch(&k.insert, k.insert.groups_for(n as u64), &[], &push)
+        let insert = self.kernels.kernel(k.insert)?;
+        rec.dispatch(&insert, insert.groups_for(n as u64), &[], &push)
     }
 
     fn record_set_ages(
@@ -347,9 +348,10 @@ impl RobinHoodTable {
             probe: self.config.probe.id(),
             mode,
         };
+        let set_ages = self.kernels.kernel(k.set_ages)?;
         rec.dispatch(
-            &k.set_ages,
-            k.set_ages.groups_for(self.table_size as u64),
+            &set_ages,
+            set_ages.groups_for(self.table_size as u64),
             &[],
             &push,
         )
@@ -375,9 +377,10 @@ impl RobinHoodTable {
             key_bits: self.format.key_bits,
             probe: self.config.probe.id(),
         };
+        let max_age = self.kernels.kernel(k.max_age)?;
         rec.dispatch(
-            &k.max_age,
-            k.max_age.groups_for(self.table_size as u64),
+            &max_age,
+            max_age.groups_for(self.table_size as u64),
             &[],
             &push,
         )
@@ -600,8 +603,8 @@ impl RobinHoodTable {
             table_size: self.table_size,
             key_bits: self.format.key_bits,
         };
-        let query = k.query(self.config.probe);
-        rec.dispatch(query, query.groups_for(n as u64), &[], &push)
+        let query = k.query(&self.kernels.gpu, self.config.probe)?;
+        rec.dispatch(&query, query.groups_for(n as u64), &[], &push)
     }
 
     /// Queries `keys` and reads the results back.

@@ -5,6 +5,7 @@ use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
+use crate::kernels::hash;
 
 /// What the check found: the largest key and the duplicates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -79,6 +80,7 @@ pub(crate) fn validate_keys_gpu(
             first_duplicate: None,
         });
     }
+    let check_keys = kernels.kernel(&hash::CHECK_KEYS)?;
     let copy = GpuBuffer::<u64>::new(gpu, "key check copy", n)?;
     let counters = GpuBuffer::<u64>::from_slice(gpu, "key check counters", &[0, u64::MAX, 0, 0])?;
     let mut sort = kernels.sort.lock().unwrap();
@@ -91,12 +93,7 @@ pub(crate) fn validate_keys_gpu(
             key_count: universe.key_count(),
             n: n as u32,
         };
-        rec.dispatch(
-            &kernels.check_keys,
-            kernels.check_keys.groups_for(n as u64),
-            &[],
-            &push,
-        )
+        rec.dispatch(&check_keys, check_keys.groups_for(n as u64), &[], &push)
     })?;
     drop(sort);
     let [duplicates, first, outside, max_outside] = counters.read()?[..] else {

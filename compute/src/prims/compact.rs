@@ -7,7 +7,7 @@ use super::push::{CompactCountPush, CompactWritePush};
 use super::scan::Scan;
 use super::scratch::grown;
 use super::segments::Split;
-use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
+use crate::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{COMPACT_BY_FLAGS, COMPACT_BY_SENTINEL};
 
@@ -55,11 +55,10 @@ pub fn compact_cpu(values: &[u32], keep: KeepCpu<'_>, output: CompactOutput) -> 
         .collect()
 }
 
-/// GPU stream compaction; keeps its scratch between calls.
+/// GPU stream compaction; keeps its scratch between calls. Its kernels come from the device's
+/// kernel cache when it records.
 pub struct Compactor {
     gpu: Gpu,
-    count: Kernel,
-    write: Kernel,
     scan: Scan,
     offsets: Option<GpuBuffer<u32>>,
     trash: GpuBuffer<u32>,
@@ -68,12 +67,10 @@ pub struct Compactor {
 }
 
 impl Compactor {
-    /// Builds the kernels.
+    /// A compactor for `gpu`, with its one-word trash buffer.
     pub fn new(gpu: &Gpu) -> GpuResult<Compactor> {
         Ok(Compactor {
             gpu: gpu.clone(),
-            count: Kernel::new(gpu, &prims::COMPACT_COUNT)?,
-            write: Kernel::new(gpu, &prims::COMPACT_WRITE)?,
             scan: Scan::new(gpu)?,
             offsets: None,
             trash: GpuBuffer::new(gpu, "compaction trash word", 1)?,
@@ -116,6 +113,8 @@ impl Compactor {
             rec.fill(count, 0);
             return Ok(());
         }
+        let count_kernel = self.gpu.kernel(&prims::COMPACT_COUNT)?;
+        let write_kernel = self.gpu.kernel(&prims::COMPACT_WRITE)?;
         let split = Split::new(n, self.gpu.info(), self.segment_length);
         let offsets = grown(
             &mut self.offsets,
@@ -145,8 +144,8 @@ impl Compactor {
                 ("Counts", offsets.arg()),
             ];
             rec.dispatch(
-                &self.count,
-                split.groups(&self.count, words),
+                &count_kernel,
+                split.groups(&count_kernel, words),
                 &bindings,
                 &push,
             )?;
@@ -171,8 +170,8 @@ impl Compactor {
                 ("Offsets", offsets.arg()),
             ];
             rec.dispatch(
-                &self.write,
-                split.groups(&self.write, words),
+                &write_kernel,
+                split.groups(&write_kernel, words),
                 &bindings,
                 &push,
             )?;

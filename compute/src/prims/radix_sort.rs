@@ -35,11 +35,10 @@ pub fn sort_pairs_cpu<K: Copy + Into<u64>, V: Copy>(
     )
 }
 
-/// GPU radix sort; keeps its scratch between calls.
+/// GPU radix sort; keeps its scratch between calls. Its kernels come from the device's kernel
+/// cache when it records.
 pub struct RadixSort {
     gpu: Gpu,
-    count: Kernel,
-    scatter: Kernel,
     scan: Scan,
     hist: Option<GpuBuffer<u32>>,
     keys32: Option<GpuBuffer<u32>>,
@@ -59,12 +58,10 @@ struct Job<'a> {
 }
 
 impl RadixSort {
-    /// Builds the kernels.
+    /// A sort for `gpu`, without scratch yet.
     pub fn new(gpu: &Gpu) -> GpuResult<RadixSort> {
         Ok(RadixSort {
             gpu: gpu.clone(),
-            count: Kernel::new(gpu, &prims::RADIX_COUNT)?,
-            scatter: Kernel::new(gpu, &prims::RADIX_SCATTER)?,
             scan: Scan::new(gpu)?,
             hist: None,
             keys32: None,
@@ -175,13 +172,9 @@ impl RadixSort {
         };
         let passes = key_bits.div_ceil(RADIX_BITS);
         let hist = self.hist.as_ref().expect("grown above");
-        record_passes(
-            rec,
-            [&self.count, &self.scatter],
-            &mut self.scan,
-            hist,
-            &job,
-        )?;
+        let count = self.gpu.kernel(&prims::RADIX_COUNT)?;
+        let scatter = self.gpu.kernel(&prims::RADIX_SCATTER)?;
+        record_passes(rec, [&count, &scatter], &mut self.scan, hist, &job)?;
         if passes % 2 == 1 {
             // The result sits in the scratch buffers: copy it home.
             let bytes = keys.bytes().min((n * size_of::<K>()) as u64);

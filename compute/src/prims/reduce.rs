@@ -4,7 +4,7 @@
 use super::check_len;
 use super::scratch::grown_level;
 use super::segments::{reduce_segments, Split};
-use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use crate::gpu::{Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{
     DEFAULT_WORKGROUP_SIZE, REDUCE_OP_MAX, REDUCE_OP_MIN, REDUCE_OP_SUM,
@@ -30,11 +30,12 @@ impl ReduceOp {
         }
     }
 
-    fn index(self) -> usize {
+    /// The `REDUCE_OP_*` specialization constant.
+    fn id(self) -> u32 {
         match self {
-            ReduceOp::Sum => 0,
-            ReduceOp::Min => 1,
-            ReduceOp::Max => 2,
+            ReduceOp::Sum => REDUCE_OP_SUM,
+            ReduceOp::Min => REDUCE_OP_MIN,
+            ReduceOp::Max => REDUCE_OP_MAX,
         }
     }
 }
@@ -51,7 +52,6 @@ pub fn reduce_cpu(input: &[u32], op: ReduceOp) -> u32 {
 /// GPU reduction; keeps its scratch between calls.
 pub struct Reduce {
     gpu: Gpu,
-    kernels: [Kernel; 3],
     levels: Vec<GpuBuffer<u32>>,
     /// Words per invocation; `None` picks by device type (long on CPU devices, 16 on GPUs).
     /// Set it to test or tune the other policy.
@@ -59,19 +59,11 @@ pub struct Reduce {
 }
 
 impl Reduce {
-    /// Builds one specialized kernel per operator.
+    /// A reduction for `gpu`, without scratch yet. Its kernel, specialized per operator, comes
+    /// from the device's kernel cache when it records.
     pub fn new(gpu: &Gpu) -> GpuResult<Reduce> {
-        let k = |op| {
-            Kernel::with_constants(
-                gpu,
-                &prims::REDUCE_SEGMENTS,
-                DEFAULT_WORKGROUP_SIZE,
-                &[(1, op)],
-            )
-        };
         Ok(Reduce {
             gpu: gpu.clone(),
-            kernels: [k(REDUCE_OP_SUM)?, k(REDUCE_OP_MIN)?, k(REDUCE_OP_MAX)?],
             levels: Vec::new(),
             segment_length: None,
         })
@@ -112,7 +104,11 @@ impl Reduce {
         for (level, &size) in sizes[1..sizes.len() - 1].iter().enumerate() {
             grown_level(&mut self.levels, &self.gpu, "reduce partials", level, size)?;
         }
-        let kernel = &self.kernels[op.index()];
+        let kernel = self.gpu.kernel_with(
+            &prims::REDUCE_SEGMENTS,
+            DEFAULT_WORKGROUP_SIZE,
+            &[(1, op.id())],
+        )?;
         for (i, split) in splits.iter().enumerate() {
             let from = if i == 0 { src } else { &self.levels[i - 1] };
             let to = if i + 1 == splits.len() {
@@ -120,7 +116,7 @@ impl Reduce {
             } else {
                 &self.levels[i]
             };
-            reduce_segments(rec, kernel, from, split, to)?;
+            reduce_segments(rec, &kernel, from, split, to)?;
         }
         Ok(())
     }

@@ -4,7 +4,7 @@
 use super::check_len;
 use super::scratch::grown_level;
 use super::segments::{reduce_segments, ScanPush, Split};
-use crate::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use crate::gpu::{Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{DEFAULT_WORKGROUP_SIZE, REDUCE_OP_SUM};
 
@@ -22,11 +22,10 @@ pub fn exclusive_scan_cpu(input: &[u32]) -> (Vec<u32>, u32) {
     (out, running)
 }
 
-/// GPU exclusive scan. Keeps its scratch (one buffer per recursion level) between calls.
+/// GPU exclusive scan. Keeps its scratch (one buffer per recursion level) between calls; its
+/// kernels come from the device's kernel cache when it records.
 pub struct Scan {
     gpu: Gpu,
-    reduce: Kernel,
-    scan: Kernel,
     levels: Vec<GpuBuffer<u32>>,
     /// Words per invocation; `None` picks by device type (long on CPU devices, 16 on GPUs).
     /// Set it to test or tune the other policy.
@@ -35,17 +34,10 @@ pub struct Scan {
 }
 
 impl Scan {
-    /// Builds the kernels.
+    /// A scan for `gpu`, without scratch yet.
     pub fn new(gpu: &Gpu) -> GpuResult<Scan> {
         Ok(Scan {
             gpu: gpu.clone(),
-            reduce: Kernel::with_constants(
-                gpu,
-                &prims::REDUCE_SEGMENTS,
-                DEFAULT_WORKGROUP_SIZE,
-                &[(1, REDUCE_OP_SUM)],
-            )?,
-            scan: Kernel::new(gpu, &prims::SCAN_SEGMENTS)?,
             levels: Vec::new(),
             segment_length: None,
             unused_total: GpuBuffer::new(gpu, "scan total (unused)", 1)?,
@@ -105,9 +97,15 @@ impl Scan {
         total: Option<&GpuBuffer<u32>>,
     ) -> GpuResult<()> {
         let split = Split::new(n, self.gpu.info(), self.segment_length);
+        let scan = self.gpu.kernel(&prims::SCAN_SEGMENTS)?;
         let carries = if split.segments > 1 {
             let totals = &self.levels[level];
-            reduce_segments(rec, &self.reduce, src, &split, totals)?;
+            let reduce = self.gpu.kernel_with(
+                &prims::REDUCE_SEGMENTS,
+                DEFAULT_WORKGROUP_SIZE,
+                &[(1, REDUCE_OP_SUM)],
+            )?;
+            reduce_segments(rec, &reduce, src, &split, totals)?;
             self.record_level(rec, level + 1, totals, totals, split.segments, None)?;
             Some(totals)
         } else {
@@ -130,12 +128,7 @@ impl Scan {
                 ("Carries", carries.unwrap_or(total_buffer).arg()),
                 ("Total", total_buffer.arg()),
             ];
-            rec.dispatch(
-                &self.scan,
-                split.groups(&self.scan, words),
-                &bindings,
-                &push,
-            )?;
+            rec.dispatch(&scan, split.groups(&scan, words), &bindings, &push)?;
         }
         Ok(())
     }

@@ -2,8 +2,9 @@
 //! the voxel evaluated on the CPU.
 
 use super::error::StoreError;
-use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer};
 use crate::hash::morton_decode;
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 
 /// The colour (RGBA8, red in the low byte) of each voxel a store is built from or extended by.
@@ -42,15 +43,15 @@ crate::push_block! {
 /// Writes the colours of `keys` into `dst[offset..offset + keys.len]`.
 pub(crate) fn fill_colours(
     gpu: &Gpu,
-    fill: &Kernel,
     keys: &VoxelKeys,
     source: &ColourSource<'_>,
     resolution: u32,
-    dst: &GpuBuffer<u32>,
+    dst: &mut GpuBuffer<u32>,
     offset: usize,
 ) -> Result<(), StoreError> {
     match source {
         ColourSource::Marble { seed } => {
+            let fill = gpu.kernel(&store::FILL_MARBLE)?;
             gpu.submit(|rec| {
                 let push = FillPush {
                     keys: keys.keys.address(),
@@ -59,7 +60,7 @@ pub(crate) fn fill_colours(
                     resolution,
                     seed: *seed,
                 };
-                rec.dispatch(fill, fill.groups_for(keys.len as u64), &[], &push)
+                rec.dispatch(&fill, fill.groups_for(keys.len as u64), &[], &push)
             })?;
         }
         ColourSource::Fn(f) => {

@@ -13,6 +13,7 @@ use crate::hash::{
     fastmod_multiplier, morton_decode, HashError, KeyLayout, RobinHoodConfig, RobinHoodTable,
     Universe,
 };
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use glam::Vec3;
 use std::sync::Arc;
@@ -83,16 +84,8 @@ impl HashStore {
         check_keys(NAME, &keys.read()?, resolution)?;
         let gpu = kernels.gpu.clone();
         let n = keys.len;
-        let buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
-        fill_colours(
-            &gpu,
-            &kernels.fill_marble,
-            keys,
-            colours,
-            resolution,
-            &buffer,
-            0,
-        )?;
+        let mut buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
+        fill_colours(&gpu, keys, colours, resolution, &mut buffer, 0)?;
         let indices: Vec<u32> = (0..n as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         let table =
@@ -165,16 +158,11 @@ impl SparseStore for HashStore {
             ));
             grown = Some(bigger);
         }
-        let target = grown.as_ref().unwrap_or(&self.colours);
-        fill_colours(
-            &gpu,
-            &self.kernels.fill_marble,
-            keys,
-            colours,
-            self.resolution,
-            target,
-            old,
-        )?;
+        let target = match grown.as_mut() {
+            Some(bigger) => bigger,
+            None => &mut self.colours,
+        };
+        fill_colours(&gpu, keys, colours, self.resolution, target, old)?;
         let indices: Vec<u32> = (old as u32..(old + n) as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         match self.table.insert(&keys.keys, &payloads, n) {
@@ -222,7 +210,8 @@ impl SparseStore for HashStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        let groups = k.hash_lookup.groups_for(points.len() as u64);
+        let kernel = k.gpu.kernel(&store::HASH_LOOKUP)?;
+        let groups = kernel.groups_for(points.len() as u64);
         let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
         Ok(prepare_lookup(k, points, &[], move |rec, a| {
             let push = LookupPush {
@@ -232,7 +221,7 @@ impl SparseStore for HashStore {
                 n,
                 mode,
             };
-            rec.dispatch(&k.hash_lookup, groups, &[], &push)
+            rec.dispatch(&kernel, groups, &[], &push)
         })?)
     }
 }

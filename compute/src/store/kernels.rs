@@ -1,51 +1,29 @@
-//! The kernels of every store, built once per device and shared (lavapipe compiles a pipeline
-//! at its first dispatch, so stores must not rebuild them).
+//! What the stores share on one device: their kernels come from the device's kernel cache at
+//! their first use (a store never builds the pipelines of another kind); the hash contexts
+//! and the sort + unique step keep their scratch here between builds.
 
-use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::hash::perfect::PerfectKernels;
 use crate::hash::HashKernels;
-use crate::kernels::store;
 use crate::voxel::SortUnique;
 use glam::{Vec3, Vec4};
 use std::sync::{Arc, Mutex};
 
-/// Every store kernel, plus the hash kernels and the sort + unique step they use.
+/// The stores' shared context on one device.
 pub struct StoreKernels {
     pub(crate) gpu: Gpu,
     pub(crate) hash: Arc<HashKernels>,
     pub(crate) perfect: Arc<PerfectKernels>,
-    pub(crate) perfect_lookup: Kernel,
-    pub(crate) fill_marble: Kernel,
-    pub(crate) hash_lookup: Kernel,
-    pub(crate) octree_nodes: Kernel,
-    pub(crate) octree_link: Kernel,
-    pub(crate) octree_average: Kernel,
-    pub(crate) octree_lookup: Kernel,
-    pub(crate) tiletree_texels: Kernel,
-    pub(crate) tiletree_dilate: Kernel,
-    pub(crate) tiletree_scatter: Kernel,
-    pub(crate) tiletree_lookup: Kernel,
     pub(crate) unique: Mutex<SortUnique>,
 }
 
 impl StoreKernels {
-    /// Builds every kernel for `gpu`.
+    /// The context for `gpu`; builds no pipeline.
     pub fn new(gpu: &Gpu) -> GpuResult<Arc<StoreKernels>> {
         Ok(Arc::new(StoreKernels {
             gpu: gpu.clone(),
             hash: HashKernels::new(gpu)?,
             perfect: PerfectKernels::new(gpu)?,
-            perfect_lookup: Kernel::new(gpu, &store::PERFECT_LOOKUP)?,
-            fill_marble: Kernel::new(gpu, &store::FILL_MARBLE)?,
-            hash_lookup: Kernel::new(gpu, &store::HASH_LOOKUP)?,
-            octree_nodes: Kernel::new(gpu, &store::OCTREE_NODES)?,
-            octree_link: Kernel::new(gpu, &store::OCTREE_LINK)?,
-            octree_average: Kernel::new(gpu, &store::OCTREE_AVERAGE)?,
-            octree_lookup: Kernel::new(gpu, &store::OCTREE_LOOKUP)?,
-            tiletree_texels: Kernel::new(gpu, &store::TILETREE_TEXELS)?,
-            tiletree_dilate: Kernel::new(gpu, &store::TILETREE_DILATE)?,
-            tiletree_scatter: Kernel::new(gpu, &store::TILETREE_SCATTER)?,
-            tiletree_lookup: Kernel::new(gpu, &store::TILETREE_LOOKUP)?,
             unique: Mutex::new(SortUnique::new(gpu)?),
         }))
     }

@@ -33,7 +33,9 @@ pub use kernels::{StoreKernels, TimedLookup};
 pub use lookup_cpu::{
     nearest_cpu, nearest_voxel, trilinear_cpu, trilinear_footprint, unpack_rgba8,
 };
-pub use marble::marble_rgba8;
+pub use marble::{
+    marble_band, marble_band_at, marble_rgba8, MARBLE_BAND_ONE, MARBLE_BASE_FREQUENCY,
+};
 pub use octree::{OctreeConfig, OctreeParams, OctreeStore, MAX_OCTREE_LEVELS};
 pub use octree_cpu::OctreeCpu;
 pub use perfect_store::{PerfectStore, PerfectStoreParams};

@@ -12,7 +12,8 @@ use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::{Filter, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
-use crate::prims::Scan;
+use crate::kernels::store;
+use crate::prims::{RadixSort, Scan};
 use crate::voxel::{VoxelGrid, VoxelKeys};
 use glam::{Vec3, Vec4};
 use std::sync::Arc;
@@ -197,7 +198,10 @@ pub struct OctreeStore {
     levels: Vec<Level>,
     len: u64,
     resolution: u32,
+    /// Scratch of the new-node scan and of the level sort, kept between levels and inserts.
     scan: Scan,
+    /// Boxed: its scratch buffers would make every store value large.
+    sort: Box<RadixSort>,
 }
 
 impl OctreeStore {
@@ -240,6 +244,7 @@ impl OctreeStore {
             len: 0,
             resolution,
             scan: Scan::new(&gpu)?,
+            sort: Box::new(RadixSort::new(&gpu)?),
         };
         let report = store.insert(keys, colours)?;
         Ok((store, report))
@@ -280,16 +285,8 @@ impl OctreeStore {
         source: &ColourSource<'_>,
     ) -> Result<GpuBuffer<u32>, StoreError> {
         let gpu = &self.kernels.gpu;
-        let buffer = GpuBuffer::<u32>::new(gpu, "octree new colours", keys.len)?;
-        fill_colours(
-            gpu,
-            &self.kernels.fill_marble,
-            keys,
-            source,
-            self.resolution,
-            &buffer,
-            0,
-        )?;
+        let mut buffer = GpuBuffer::<u32>::new(gpu, "octree new colours", keys.len)?;
+        fill_colours(gpu, keys, source, self.resolution, &mut buffer, 0)?;
         if let ColourSource::Fn(_) = source {
             let colours = buffer.read_range(0, keys.len)?;
             if let Some(i) = colours.iter().position(|c| c >> 24 < 2) {
@@ -308,14 +305,25 @@ impl OctreeStore {
 
     /// A push block whose parent level is `level` (searching its keys, or the root).
     fn parent_push(&self, level: usize) -> BuildPush<'_> {
+        Self::parent_push_of(&self.pool, self.config.levels[level], &self.levels, level)
+    }
+
+    /// [`Self::parent_push`] from the fields it reads, so that a caller may borrow the others
+    /// mutably meanwhile.
+    fn parent_push_of<'a>(
+        pool: &'a GpuBuffer<u32>,
+        span: u32,
+        levels: &'a [Level],
+        level: usize,
+    ) -> BuildPush<'a> {
         let mut p = BuildPush {
-            pool: self.pool.address(),
-            span: self.config.levels[level],
+            pool: pool.address(),
+            span,
             root_parent: (level == 0) as u32,
             ..Default::default()
         };
         if level > 0 {
-            let l = &self.levels[level - 1];
+            let l = &levels[level - 1];
             p.search_keys = l.keys.address();
             p.search_addrs = l.addrs.address();
             p.search_count = l.count as u32;
@@ -336,8 +344,8 @@ impl OctreeStore {
             mode,
             ..self.parent_push(last)
         };
-        let k = &self.kernels.octree_link;
-        gpu.submit(|rec| rec.dispatch(k, k.groups_for(keys.len as u64), &[], &push))?;
+        let k = gpu.kernel(&store::OCTREE_LINK)?;
+        gpu.submit(|rec| rec.dispatch(&k, k.groups_for(keys.len as u64), &[], &push))?;
         let c = counter.read()?;
         Ok([c[0], c[1]])
     }
@@ -347,7 +355,7 @@ impl OctreeStore {
     fn add_level(&mut self, l: usize, keys: &VoxelKeys) -> Result<Option<String>, StoreError> {
         let gpu = self.kernels.gpu.clone();
         let n = keys.len;
-        let nodes_k = &self.kernels.octree_nodes;
+        let nodes_k = gpu.kernel(&store::OCTREE_NODES)?;
         // Candidate node keys: the nodes containing the voxels, sorted and unique.
         let tmp = GpuBuffer::<u64>::new(&gpu, "octree candidate nodes", n)?;
         let push = BuildPush {
@@ -358,7 +366,7 @@ impl OctreeStore {
             mode: 0,
             ..Default::default()
         };
-        gpu.submit(|rec| rec.dispatch(nodes_k, nodes_k.groups_for(n as u64), &[], &push))?;
+        gpu.submit(|rec| rec.dispatch(&nodes_k, nodes_k.groups_for(n as u64), &[], &push))?;
         let key_bits = self.key_bits();
         let cand =
             self.kernels
@@ -382,7 +390,7 @@ impl OctreeStore {
             ..Default::default()
         };
         gpu.submit(|rec| {
-            rec.dispatch(nodes_k, nodes_k.groups_for(m as u64), &[], &search)?;
+            rec.dispatch(&nodes_k, nodes_k.groups_for(m as u64), &[], &search)?;
             self.scan.record(rec, &flags, &flags, m, Some(&total))
         })?;
         let added = total.read()?[0] as usize;
@@ -430,15 +438,15 @@ impl OctreeStore {
             aux: addrs_out.address_at(old)?,
             n: added as u32,
             mode: 0,
-            ..self.parent_push(l - 1)
+            ..Self::parent_push_of(&self.pool, self.config.levels[l - 1], &self.levels, l - 1)
         };
-        let link_k = &self.kernels.octree_link;
-        let mut sort = crate::prims::RadixSort::new(&gpu)?;
+        let link_k = gpu.kernel(&store::OCTREE_LINK)?;
+        let sort = &mut self.sort;
         gpu.submit(|rec: &mut Recorder<'_>| {
-            rec.dispatch(nodes_k, nodes_k.groups_for(m as u64), &[], &scatter)?;
+            rec.dispatch(&nodes_k, nodes_k.groups_for(m as u64), &[], &scatter)?;
             rec.copy(&level.keys, 0, &keys_out, 0, old)?;
             rec.copy(&level.addrs, 0, &addrs_out, 0, old)?;
-            rec.dispatch(link_k, link_k.groups_for(added as u64), &[], &link)?;
+            rec.dispatch(&link_k, link_k.groups_for(added as u64), &[], &link)?;
             sort.record_u64(rec, &keys_out, Some(&addrs_out), count, key_bits)
         })?;
         self.levels[l - 1] = Level {
@@ -452,7 +460,7 @@ impl OctreeStore {
 
     /// Recomputes every node's average colour, deepest level first.
     fn average(&self) -> GpuResult<()> {
-        let k = &self.kernels.octree_average;
+        let k = self.kernels.gpu.kernel(&store::OCTREE_AVERAGE)?;
         self.kernels.gpu.submit(|rec| {
             for l in (0..self.config.levels.len()).rev() {
                 let (addrs, n) = if l == 0 {
@@ -468,7 +476,7 @@ impl OctreeStore {
                     cells_per_axis: self.config.levels[l],
                     root: (l == 0) as u32,
                 };
-                rec.dispatch(k, k.groups_for(n as u64), &[], &push)?;
+                rec.dispatch(&k, k.groups_for(n as u64), &[], &push)?;
             }
             Ok(())
         })
@@ -592,7 +600,8 @@ impl OctreeStore {
     /// The lookup kernel in `mode` (0 nearest, 1 trilinear, 2 + depth MIP) at `points`.
     fn prepare(&self, points: &[Vec3], mode: u32) -> GpuResult<TimedLookup<'_>> {
         let k = &self.kernels;
-        let groups = k.octree_lookup.groups_for(points.len() as u64);
+        let kernel = k.gpu.kernel(&store::OCTREE_LOOKUP)?;
+        let groups = kernel.groups_for(points.len() as u64);
         let n = points.len() as u32;
         prepare_lookup(k, points, &[], move |rec, a| {
             let push = LookupPush {
@@ -602,7 +611,7 @@ impl OctreeStore {
                 n,
                 mode,
             };
-            rec.dispatch(&k.octree_lookup, groups, &[], &push)
+            rec.dispatch(&kernel, groups, &[], &push)
         })
     }
 }

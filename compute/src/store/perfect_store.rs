@@ -21,6 +21,7 @@ use crate::hash::perfect::{
     PerfectParams,
 };
 use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
+use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use glam::Vec3;
 use std::sync::Arc;
@@ -132,16 +133,8 @@ impl PerfectStore {
         let host_keys = keys.read()?;
         check_keys(NAME, &host_keys, resolution)?;
         let gpu = kernels.gpu.clone();
-        let buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(
-            &gpu,
-            &kernels.fill_marble,
-            keys,
-            colours,
-            resolution,
-            &buffer,
-            0,
-        )?;
+        let mut buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        fill_colours(&gpu, keys, colours, resolution, &mut buffer, 0)?;
         let host_colours = buffer.read_range(0, keys.len)?;
         let mut store = PerfectStore {
             kernels: kernels.clone(),
@@ -271,16 +264,8 @@ impl SparseStore for PerfectStore {
         let new_keys = keys.read()?;
         check_keys(NAME, &new_keys, self.resolution)?;
         let gpu = self.kernels.gpu.clone();
-        let fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(
-            &gpu,
-            &self.kernels.fill_marble,
-            keys,
-            colours,
-            self.resolution,
-            &fresh,
-            0,
-        )?;
+        let mut fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
+        fill_colours(&gpu, keys, colours, self.resolution, &mut fresh, 0)?;
         let new_colours = fresh.read_range(0, keys.len)?;
         // Merge by key so the union stays sorted, as the voxelizer's sets are.
         let mut pairs: Vec<(u64, u32)> = self
@@ -353,7 +338,8 @@ impl SparseStore for PerfectStore {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         let k = &self.kernels;
-        let groups = k.perfect_lookup.groups_for(points.len() as u64);
+        let kernel = k.gpu.kernel(&store::PERFECT_LOOKUP)?;
+        let groups = kernel.groups_for(points.len() as u64);
         let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
         Ok(prepare_lookup(k, points, &[], move |rec, a| {
             let push = LookupPush {
@@ -363,7 +349,7 @@ impl SparseStore for PerfectStore {
                 n,
                 mode,
             };
-            rec.dispatch(&k.perfect_lookup, groups, &[], &push)
+            rec.dispatch(&kernel, groups, &[], &push)
         })?)
     }
 }

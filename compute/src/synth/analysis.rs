@@ -48,7 +48,7 @@ impl Default for AnalysisParams {
 }
 
 /// What synthesis needs of one stack level.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct LevelAnalysis {
     /// Coordinate spacing `h_l = 2^(L−l)` of this level, in exemplar pixels.
     pub spacing: u32,
@@ -64,7 +64,7 @@ pub struct LevelAnalysis {
 }
 
 /// The analysed exemplar.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ExemplarAnalysis {
     /// Exemplar width.
     pub width: u32,

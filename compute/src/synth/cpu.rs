@@ -7,6 +7,7 @@ use super::error::SynthResult;
 use super::jitter::jitter;
 use super::neighbourhood::{neighbourhood_distance, shifted, synthesized_neighbourhood};
 use super::params::SynthParams;
+use super::period::{period_reach, spans_period};
 use super::plan::{plan_regions, Region, SUBPASSES};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
 
@@ -63,14 +64,16 @@ pub fn upsample_jitter(
 
 /// One correction subpass: every pixel of parity `class` not on the region's border gets the
 /// candidate whose exemplar neighbourhood best matches its synthesized one (the 4-diagonal,
-/// 3-prediction neighbourhood of `neighbourhood.rs`; ties keep the current coordinate, then go
-/// to the smallest packed coordinate).
+/// 3-prediction neighbourhood of `neighbourhood.rs`, plus `period_penalty` for a candidate
+/// that would make its coherent patch span an exemplar period, `period.rs`; ties keep the
+/// current coordinate, then go to the smallest packed coordinate).
 pub fn correct_subpass(
     analysis: &ExemplarAnalysis,
     level: u32,
     region: Region,
     coords: &mut [u32],
     class: [i32; 2],
+    period_penalty: u32,
 ) {
     let lv: &LevelAnalysis = &analysis.levels[level as usize];
     let (w, h, k) = (analysis.width, analysis.height, analysis.k as usize);
@@ -79,6 +82,8 @@ pub fn correct_subpass(
         let (x, y) = unpack(c);
         lv.appearance[(y * w + x) as usize]
     };
+    let reach = period_reach(lv.spacing, w, h);
+    let penalize = period_penalty != 0 && reach != [0, 0];
     let rw = region.size[0] as usize;
     for iy in 1..region.size[1] as i32 - 1 {
         for ix in 1..region.size[0] as i32 - 1 {
@@ -99,10 +104,13 @@ pub fn correct_subpass(
                 let base = (y * w + x) as usize;
                 for &candidate in &lv.coherence[base * k..][..k] {
                     let (cx, cy) = unpack(candidate);
-                    let d = neighbourhood_distance(
+                    let mut d = neighbourhood_distance(
                         &synthesized,
                         &lv.neighbourhoods[(cy * w + cx) as usize],
                     );
+                    if penalize && spans_period(candidate, &around, s, w, h, reach) {
+                        d += period_penalty;
+                    }
                     let rank = if candidate == current {
                         0
                     } else {
@@ -138,7 +146,14 @@ pub fn synthesize_cpu(
         let mut coords = upsample_jitter(analysis, params, l, region, levels.last());
         for _ in 0..params.passes[l as usize] {
             for class in CLASSES {
-                correct_subpass(analysis, l, region, &mut coords, class);
+                correct_subpass(
+                    analysis,
+                    l,
+                    region,
+                    &mut coords,
+                    class,
+                    params.period_penalty,
+                );
             }
         }
         levels.push(LevelCoords { region, coords });

@@ -14,6 +14,7 @@ use super::error::{SynthError, SynthResult};
 use super::exemplar::Exemplar;
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth;
+use std::sync::Arc;
 
 /// Radius of the compared neighbourhoods (7×7).
 pub const ENERGY_RADIUS: u32 = 3;
@@ -161,7 +162,7 @@ fn pack_rgb(p: &[u8; 3]) -> u32 {
 /// The energy kernel, built once.
 pub struct EnergyKernel {
     gpu: Gpu,
-    kernel: Kernel,
+    kernel: Arc<Kernel>,
 }
 
 impl EnergyKernel {
@@ -172,7 +173,7 @@ impl EnergyKernel {
     pub fn new(gpu: &Gpu) -> SynthResult<EnergyKernel> {
         Ok(EnergyKernel {
             gpu: gpu.clone(),
-            kernel: Kernel::new(gpu, &synth::ENERGY)?,
+            kernel: gpu.kernel(&synth::ENERGY)?,
         })
     }
 

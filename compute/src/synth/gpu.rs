@@ -6,10 +6,12 @@ use super::cpu::CLASSES;
 use super::error::SynthResult;
 use super::neighbourhood::pack_i8_words;
 use super::params::SynthParams;
+use super::period::period_reach;
 use super::plan::{plan_regions, Region};
 use super::synthesis::{check_window, LevelCoords, Synthesis};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth;
+use std::sync::Arc;
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -44,6 +46,8 @@ crate::push_block! {
         exemplar: [u32; 2],
         spacing: u32,
         k: u32,
+        reach: [u32; 2],
+        penalty: u32,
     }
 }
 
@@ -72,8 +76,8 @@ struct GpuLevel {
 /// An exemplar analysis on the GPU, ready to synthesize any number of windows.
 pub struct GpuSynthesizer {
     gpu: Gpu,
-    upsample: Kernel,
-    correct: Kernel,
+    upsample: Arc<Kernel>,
+    correct: Arc<Kernel>,
     levels: Vec<GpuLevel>,
     width: u32,
     height: u32,
@@ -126,8 +130,8 @@ impl GpuSynthesizer {
             .collect::<SynthResult<Vec<_>>>()?;
         Ok(GpuSynthesizer {
             gpu: gpu.clone(),
-            upsample: Kernel::new(gpu, &synth::UPSAMPLE_JITTER)?,
-            correct: Kernel::new(gpu, &synth::CORRECT)?,
+            upsample: gpu.kernel(&synth::UPSAMPLE_JITTER)?,
+            correct: gpu.kernel(&synth::CORRECT)?,
             levels,
             width: analysis.width,
             height: analysis.height,
@@ -181,6 +185,7 @@ impl GpuSynthesizer {
         let mut parent: Option<(Region, GpuBuffer<u32>)> = None;
         for (l, &region) in regions.iter().enumerate() {
             let lv = &self.levels[l];
+            let reach = period_reach(lv.spacing, self.width, self.height);
             let coords = GpuBuffer::<u32>::new(
                 &self.gpu,
                 format!("synth coords level {l}"),
@@ -227,6 +232,12 @@ impl GpuSynthesizer {
                             exemplar,
                             spacing: lv.spacing,
                             k: self.k,
+                            reach,
+                            penalty: if reach == [0, 0] {
+                                0
+                            } else {
+                                params.period_penalty
+                            },
                         };
                         let k = &self.correct;
                         rec.dispatch(k, k.groups_for(cx as u64 * cy as u64), &[], &push)?;

@@ -10,7 +10,9 @@
 //! See `docs/synthesis.md`.
 
 mod analysis;
+mod analysis_cache;
 mod appearance;
+pub mod cache;
 mod coherence;
 mod coords;
 mod cpu;
@@ -22,6 +24,7 @@ mod jitter;
 mod neighbourhood;
 mod params;
 mod pat;
+mod period;
 mod plan;
 mod repetition;
 pub mod solid;
@@ -32,7 +35,12 @@ pub use analysis::{
     analyze, AnalysisParams, ExemplarAnalysis, LevelAnalysis, DEFAULT_COHERENCE_K,
     DEFAULT_COHERENCE_SPREAD, MAX_COHERENCE_K, MAX_COHERENCE_SPREAD,
 };
+pub use analysis_cache::{
+    analysis_key, analyze_cached, decode_analysis, encode_analysis, ANALYSIS_CACHE_KIND,
+    ANALYSIS_FORMAT_VERSION,
+};
 pub use appearance::{appearance_distance, APPEARANCE_DIMS, APPEARANCE_QUANT_MAX};
+pub use cache::{CacheOutcome, DiskCache};
 pub use coherence::MAX_POOL;
 pub use coords::{pack, unpack};
 pub use cpu::{correct_subpass, synthesize_cpu, upsample_jitter};
@@ -49,10 +57,11 @@ pub use neighbourhood::{
 };
 pub use params::{
     default_jitter, default_passes, jitter_or_default, passes_or_default, SynthParams,
-    DEFAULT_COARSE_JITTER, DEFAULT_FINEST_PASSES, DEFAULT_FINE_JITTER, DEFAULT_PASSES, JITTER_ONE,
-    MAX_PASSES,
+    DEFAULT_COARSE_JITTER, DEFAULT_FINEST_PASSES, DEFAULT_FINE_JITTER, DEFAULT_PASSES,
+    DEFAULT_PERIOD_PENALTY, JITTER_ONE, MAX_PASSES, MAX_PERIOD_PENALTY,
 };
 pub use pat::{decode_pattern, Pattern};
+pub use period::{period_reach, spans_period, PERIOD_TOLERANCE};
 pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};
 pub use repetition::{period_repetition, REPETITION_TOLERANCE};
 pub use synthesis::{check_window, LevelCoords, Synthesis, MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};

@@ -31,6 +31,17 @@ pub const DEFAULT_COARSE_JITTER: [f32; 4] = [0.6, 0.5, 0.4, 0.3];
 /// Default jitter strength of the levels finer than those of [`DEFAULT_COARSE_JITTER`].
 pub const DEFAULT_FINE_JITTER: f32 = 0.2;
 
+/// Largest period penalty: above every correction distance (at most 32 · (2 · 3 · 127)² ≈
+/// 1.9·10⁷ < 2²⁵), so the largest penalty ranks a penalized candidate behind every other,
+/// and distance plus penalty stays inside `u32`.
+pub const MAX_PERIOD_PENALTY: u32 = 1 << 25;
+
+/// Default period penalty (`period.rs`): off. Ranking period-spanning candidates last lowered
+/// the mean period repetition at 256² (seeds 3–4) on leather, terra, brick and GIMP's granite
+/// but raised it on walnut and the energy on four of the five (docs/synthesis.md, "Period
+/// penalty"), so it is a parameter, not yet a default.
+pub const DEFAULT_PERIOD_PENALTY: u32 = 0;
+
 /// The default jitter strengths of a pyramid of `levels` levels, coarsest first.
 pub fn default_jitter(levels: u32) -> Vec<f32> {
     (0..levels as usize)
@@ -85,6 +96,9 @@ pub struct SynthParams {
     pub passes: Vec<u32>,
     /// Jitter strength of every level `0..=L`, in 1/[`JITTER_ONE`] steps of the level spacing.
     pub jitter: Vec<u32>,
+    /// Added to the distance of a candidate whose coherent patch would span an exemplar period
+    /// (`period.rs`); 0 turns the test off.
+    pub period_penalty: u32,
 }
 
 impl SynthParams {
@@ -134,6 +148,25 @@ impl SynthParams {
             seed,
             passes,
             jitter,
+            period_penalty: DEFAULT_PERIOD_PENALTY,
+        })
+    }
+
+    /// The same parameters with another period penalty.
+    ///
+    /// # Errors
+    /// [`SynthError::Parameter`] for a penalty above [`MAX_PERIOD_PENALTY`].
+    pub fn with_period_penalty(self, penalty: u32) -> SynthResult<SynthParams> {
+        if penalty > MAX_PERIOD_PENALTY {
+            return Err(SynthError::Parameter {
+                name: "period penalty",
+                value: penalty.to_string(),
+                limit: format!("must be at most {MAX_PERIOD_PENALTY}"),
+            });
+        }
+        Ok(SynthParams {
+            period_penalty: penalty,
+            ..self
         })
     }
 }

@@ -13,6 +13,7 @@ use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::voxel;
 use crate::prims::{Scan, MAX_ELEMENTS};
 use glam::Vec3;
+use std::sync::Arc;
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -61,9 +62,9 @@ crate::push_block! {
 /// The GPU voxelizer; keeps its kernels and scratch between meshes.
 pub struct Voxelizer {
     gpu: Gpu,
-    columns: Kernel,
-    hits: Kernel,
-    dilate: Kernel,
+    columns: Arc<Kernel>,
+    hits: Arc<Kernel>,
+    dilate: Arc<Kernel>,
     scan: Scan,
     unique: SortUnique,
 }
@@ -73,9 +74,9 @@ impl Voxelizer {
     pub fn new(gpu: &Gpu) -> Result<Voxelizer, VoxelError> {
         Ok(Voxelizer {
             gpu: gpu.clone(),
-            columns: Kernel::new(gpu, &voxel::COLUMNS)?,
-            hits: Kernel::new(gpu, &voxel::HITS)?,
-            dilate: Kernel::new(gpu, &voxel::DILATE)?,
+            columns: gpu.kernel(&voxel::COLUMNS)?,
+            hits: gpu.kernel(&voxel::HITS)?,
+            dilate: gpu.kernel(&voxel::DILATE)?,
             scan: Scan::new(gpu)?,
             unique: SortUnique::new(gpu)?,
         })

@@ -1,7 +1,7 @@
 //! Sorted unique `u64` keys on the GPU: what the voxelizers return and the stores build from,
 //! and the sort + unique step that produces them.
 
-use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult, Kernel};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult};
 use crate::kernels::voxel;
 use crate::prims::{RadixSort, Scan};
 
@@ -62,17 +62,16 @@ crate::push_block! {
 /// Sort + unique of `u64` keys with the radix sort and the scan.
 pub struct SortUnique {
     gpu: Gpu,
-    unique: Kernel,
     scan: Scan,
     sort: RadixSort,
 }
 
 impl SortUnique {
-    /// Builds the kernels.
+    /// The step for `gpu`, without scratch yet; its kernels come from the device's kernel cache
+    /// when it runs.
     pub fn new(gpu: &Gpu) -> GpuResult<SortUnique> {
         Ok(SortUnique {
             gpu: gpu.clone(),
-            unique: Kernel::new(gpu, &voxel::UNIQUE)?,
             scan: Scan::new(gpu)?,
             sort: RadixSort::new(gpu)?,
         })
@@ -88,6 +87,7 @@ impl SortUnique {
         name: &str,
     ) -> GpuResult<VoxelKeys> {
         let gpu = self.gpu.clone();
+        let unique = gpu.kernel(&voxel::UNIQUE)?;
         let flags = GpuBuffer::<u32>::new(&gpu, format!("{name}: run heads"), n)?;
         let total = GpuBuffer::<u32>::zeroed(&gpu, format!("{name}: distinct count"), 1)?;
         gpu.submit(|rec| {
@@ -99,7 +99,7 @@ impl SortUnique {
                 n: n as u32,
                 write: 0,
             };
-            rec.dispatch(&self.unique, self.unique.groups_for(n as u64), &[], &push)?;
+            rec.dispatch(&unique, unique.groups_for(n as u64), &[], &push)?;
             self.scan.record(rec, &flags, &flags, n, Some(&total))
         })?;
         let len = total.read()?[0] as usize;
@@ -112,7 +112,7 @@ impl SortUnique {
                 n: n as u32,
                 write: 1,
             };
-            rec.dispatch(&self.unique, self.unique.groups_for(n as u64), &[], &push)
+            rec.dispatch(&unique, unique.groups_for(n as u64), &[], &push)
         })?;
         Ok(VoxelKeys { keys: dst, len })
     }

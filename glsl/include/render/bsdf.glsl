@@ -70,12 +70,39 @@ bool bsdf_refract(vec3 wo, vec3 n, float eta, out vec3 wi) {
     return true;
 }
 
-// Probability that plastic samples its coat rather than its base: the coat's Fresnel
-// reflectance against the light the base can send back.
-float plastic_specular_probability(float fo, vec3 albedo) {
-    float d = (1.0 - fo) * (albedo.x + albedo.y + albedo.z) * (1.0 / 3.0);
-    float s = fo + d;
-    return s > 0.0 ? fo / s : 1.0;
+// Plastic: a diffuse base of albedo rho under a dielectric coat of index eta, smooth or GGX.
+// The smooth coat is the usual smooth plastic (Mitsuba's with its nonlinear internal
+// scattering); a rough coat transmits what its GGX lobe does not reflect, as in the coupled
+// model of Kelemen and Szirmay-Kalos (2001). Light the coat does not reflect, 1 - E(cos),
+// enters, is scattered by the base and leaves through the coat after any number of internal
+// bounces:
+//   f_base cos_i = rho (1 - E(cos_o)) (1 - E(cos_i)) cos_i / (pi eta^2 (1 - rho F_in)),
+// where E is the coat's directional albedo (Fresnel for a smooth coat, the tabulated
+// single-scattering GGX reflectance for a rough one) and F_in = 1 - (1/eta^2) int (1 - E) 2 mu
+// dmu is the share of the base's diffuse light that the coat sends back down. With rho = 1 the
+// coat and base together reflect exactly 1: what the coat does not reflect, the base returns.
+// Host side (tables, F_in): renderer/src/shading/coat.rs.
+
+// Directional albedo of the coat seen at cos_theta (>= 0).
+float plastic_coat_albedo(Material m, float cos_theta) {
+    if (bsdf_is_smooth(m)) {
+        return fresnel_dielectric(cos_theta, m.ior);
+    }
+    uint last = uint(PLASTIC_COAT_KNOTS) - 1u;
+    float x = sqrt(clamp(cos_theta, 0.0, 1.0)) * float(last);
+    uint i = min(uint(x), last - 1u);
+    uint j = i + 1u;
+    float a = m.coat_albedo[i >> 2u][i & 3u];
+    float b = m.coat_albedo[j >> 2u][j & 3u];
+    return a + (b - a) * (x - float(i));
+}
+
+// Probability that plastic samples its coat rather than its base: the coat's reflectance
+// against the light the base can send back.
+float plastic_specular_probability(float coat, vec3 albedo) {
+    float d = (1.0 - coat) * (albedo.x + albedo.y + albedo.z) * (1.0 / 3.0);
+    float s = coat + d;
+    return s > 0.0 ? coat / s : 1.0;
 }
 
 // ---- Opaque lobes, for wo.z > 0 (the caller mirrors the frame) ----
@@ -127,9 +154,9 @@ vec3 plastic_eval(Material m, vec3 albedo, vec3 wo, vec3 wi) {
     if (wi.z <= 0.0) {
         return vec3(0.0);
     }
-    float fo = fresnel_dielectric(wo.z, m.ior);
-    float fi = fresnel_dielectric(wi.z, m.ior);
-    vec3 f = albedo * ((1.0 - fo) * (1.0 - fi) * wi.z * INV_PI);
+    float to = 1.0 - plastic_coat_albedo(m, wo.z);
+    float ti = 1.0 - plastic_coat_albedo(m, wi.z);
+    vec3 f = albedo * (to * ti * wi.z * INV_PI / (m.ior * m.ior)) / (1.0 - albedo * m.coat_internal);
     float alpha = bsdf_alpha(m);
     if (alpha >= GGX_MIN_ALPHA) {
         vec3 h = normalize(wo + wi);
@@ -143,7 +170,7 @@ float plastic_pdf(Material m, vec3 albedo, vec3 wo, vec3 wi) {
     if (wi.z <= 0.0) {
         return 0.0;
     }
-    float p = plastic_specular_probability(fresnel_dielectric(wo.z, m.ior), albedo);
+    float p = plastic_specular_probability(plastic_coat_albedo(m, wo.z), albedo);
     float pdf = (1.0 - p) * wi.z * INV_PI;
     float alpha = bsdf_alpha(m);
     if (alpha >= GGX_MIN_ALPHA) {
@@ -154,13 +181,13 @@ float plastic_pdf(Material m, vec3 albedo, vec3 wo, vec3 wi) {
 }
 
 bool plastic_sample(Material m, vec3 albedo, vec3 wo, vec3 u, inout BsdfSample s) {
-    float fo = fresnel_dielectric(wo.z, m.ior);
-    float p = plastic_specular_probability(fo, albedo);
+    float coat = plastic_coat_albedo(m, wo.z);
+    float p = plastic_specular_probability(coat, albedo);
     float alpha = bsdf_alpha(m);
     if (u.z < p) {
         if (alpha < GGX_MIN_ALPHA) {
             s.wi = bsdf_mirror(wo);
-            s.weight = vec3(fo / p);
+            s.weight = vec3(coat / p);
             s.pdf = p;
             s.specular = true;
             return true;

@@ -1,4 +1,4 @@
-// The GPU material: one record per scene material, std430/scalar layout, 80 bytes. Must match
+// The GPU material: one record per scene material, std430/scalar layout, 160 bytes. Must match
 // renderer/src/shading/material.rs (GpuMaterial). Kinds are the MATERIAL_* and TEXTURE_*
 // constants of compute/src/shader_constants.rs.
 #ifndef LAZYSOLID_RENDER_MATERIAL_GLSL
@@ -15,6 +15,9 @@ struct Material {
     uint texture_kind; // TEXTURE_*
     vec3 tex_color_b;
     float tex_scale;   // features per unit of object space
+    vec4 coat_albedo[PLASTIC_COAT_KNOTS / 4];  // plastic: the coat's reflectance per knot
+    float coat_internal;  // plastic: the coat's reflectance to diffuse light from below
+    float pad0, pad1, pad2;
 };
 
 #endif

@@ -1,15 +1,18 @@
-// Procedural solid textures evaluated at rest-pose object-space points. The noise is gradient
-// noise whose lattice gradients come from an integer hash of the cell coordinates, so that the
-// CPU twin (renderer/src/shading/reference/texture.rs) reproduces it to float rounding.
+// Procedural solid textures evaluated at rest-pose object-space points. Marble is the stores'
+// integer marble (store/marble.glsl, exact on every device). Wood's noise is gradient noise
+// whose lattice gradients come from an integer hash of the cell coordinates, so that the CPU
+// twin (renderer/src/shading/reference/texture.rs) reproduces it to float rounding.
 #ifndef LAZYSOLID_RENDER_SOLID_TEXTURE_GLSL
 #define LAZYSOLID_RENDER_SOLID_TEXTURE_GLSL
 
 #include "render/math.glsl"
 #include "render/material.glsl"
+#include "store/marble.glsl"
 
-// Octaves of the marble turbulence and of the wood perturbation.
-const int TEXTURE_MARBLE_OCTAVES = 5;
+// Octaves of the wood perturbation.
 const int TEXTURE_WOOD_OCTAVES = 3;
+// Noise seed of the marble texture.
+const uint TEXTURE_MARBLE_SEED = 0u;
 
 // A 32-bit integer mixer (xor-shift-multiply, constants from Wellons' hash-prospector search).
 uint texture_hash(uint x) {
@@ -51,27 +54,27 @@ float texture_noise(vec3 p) {
     return y0 + w.z * (y1 - y0);
 }
 
-// Sum of octaves of |noise| (turbulence, sharp creases for veins) or of noise (smooth fbm).
-float texture_fractal(vec3 p, int octaves, bool absolute) {
+// Sum of octaves of noise (smooth fbm).
+float texture_fractal(vec3 p, int octaves) {
     float sum = 0.0;
     float amplitude = 1.0;
     for (int o = 0; o < octaves; o++) {
         float n = texture_noise(p);
-        sum += amplitude * (absolute ? abs(n) : n);
+        sum += amplitude * n;
         p *= 2.0;
         amplitude *= 0.5;
     }
     return sum;
 }
 
-// Blend weight of colour b at p (scaled to features): marble veins, wood rings or checks.
+// Blend weight of colour b at p (scaled to features): marble veins (colour b), wood rings or
+// checks.
 float solid_texture_blend(uint kind, vec3 p) {
     if (kind == TEXTURE_MARBLE) {
-        float t = texture_fractal(p, TEXTURE_MARBLE_OCTAVES, true);
-        return 0.5 + 0.5 * sin(TWO_PI * (p.x + t));
+        return 1.0 - float(marble_band_at(p, TEXTURE_MARBLE_SEED)) / float(MARBLE_BAND_ONE);
     }
     if (kind == TEXTURE_WOOD) {
-        float r = sqrt(p.x * p.x + p.z * p.z) + 0.5 * texture_fractal(p, TEXTURE_WOOD_OCTAVES, false);
+        float r = sqrt(p.x * p.x + p.z * p.z) + 0.5 * texture_fractal(p, TEXTURE_WOOD_OCTAVES);
         float ring = 0.5 + 0.5 * cos(TWO_PI * r);
         return ring * ring * (3.0 - 2.0 * ring);
     }

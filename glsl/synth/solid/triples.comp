@@ -2,8 +2,11 @@
 // Crossbar ranking of one role's candidates: for every pixel p, all S x S triples of p with
 // its S strip matches in each other role, scored by the full crossbar error (the two match
 // distances plus the distance between the two matches' strips along the axis their roles
-// share), the `kept` best by (error, i * S + j). CPU reference:
-// compute/src/synth/solid/candidates.rs (triples_cpu).
+// share), the `kept` best by (error, i * S + j). One dispatch ranks the rows i = first_row ..
+// first_row + rows and folds them into the list of earlier dispatches, kept in `errors` and
+// `keys` (llvmpipe stops an invocation's loops after 65535 iterations in all; the host sizes
+// the rows, compute/src/synth/solid/candidates_gpu.rs); the last dispatch writes the triples.
+// CPU reference: compute/src/synth/solid/candidates.rs (triples_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
 
@@ -15,7 +18,8 @@ layout(push_constant, scalar) uniform Push {
     uint64_t m2_pixels;   // S matches of p in f2
     uint64_t m2_distances;
     uint64_t triples;     // out: kept x 3 packed coordinates per pixel
-    uint64_t errors;      // out: kept crossbar errors per pixel
+    uint64_t errors;      // in/out: kept crossbar errors per pixel
+    uint64_t keys;        // in/out: their i * S + j
     uint64_t counts;      // out: valid slots per pixel
     uint shift;
     uint axis1;           // image axis of the f1/f2 shared world axis in f1
@@ -24,9 +28,10 @@ layout(push_constant, scalar) uniform Push {
     uint spacing;
     uint s;
     uint kept;
-    uint role;            // e
-    uint role1;           // f1
+    uint role1;           // f1 (the ranked role e is the third)
     uint role2;           // f2
+    uint first_row;       // first i this dispatch ranks
+    uint rows;            // rows it ranks
 } pc;
 
 void main() {
@@ -39,11 +44,13 @@ void main() {
     uint best_e[SOLID_KEPT];
     uint best_k[SOLID_KEPT];
     for (uint k = 0; k < pc.kept; k++) {
-        best_e[k] = 0xffffffffu;
-        best_k[k] = 0xffffffffu;
+        uint slot = p * pc.kept + k;
+        best_e[k] = pc.first_row == 0u ? 0xffffffffu : U32Ptr(pc.errors).v[slot];
+        best_k[k] = pc.first_row == 0u ? 0xffffffffu : U32Ptr(pc.keys).v[slot];
     }
-    uint worst = 0xffffffffu;
-    for (uint i = 0; i < pc.s; i++) {
+    uint worst = best_e[pc.kept - 1u];
+    uint last_row = min(pc.first_row + pc.rows, pc.s);
+    for (uint i = pc.first_row; i < last_row; i++) {
         uint q1 = U32Ptr(pc.m1_pixels).v[p * pc.s + i];
         uint d1 = U32Ptr(pc.m1_distances).v[p * pc.s + i];
         uint strip1[SOLID_MAX_STRIP];
@@ -54,11 +61,14 @@ void main() {
         for (uint j = 0; j < pc.s; j++) {
             uint q2 = U32Ptr(pc.m2_pixels).v[p * pc.s + j];
             uint e = d1 + U32Ptr(pc.m2_distances).v[p * pc.s + j];
+            // Partial sums only grow: stop once the triple cannot enter the list.
             for (uint t = 0; t < pc.strip && e < worst; t++) {
                 int o = (int(t) - half_n) * int(pc.spacing);
                 e += solid_rgb_distance(strip1[t],
                     U32Ptr(pc.colours2).v[solid_along(q2, pc.axis2, o, pc.shift)]);
             }
+            // Keys come in increasing order, so an equal error never displaces an earlier
+            // entry: the ranking is (error, key).
             if (e < worst) {
                 uint key = i * pc.s + j;
                 uint k = pc.kept - 1u;
@@ -73,11 +83,20 @@ void main() {
             }
         }
     }
+    if (last_row < pc.s) {
+        for (uint k = 0; k < pc.kept; k++) {
+            uint slot = p * pc.kept + k;
+            U32Ptr(pc.errors).v[slot] = best_e[k];
+            U32Ptr(pc.keys).v[slot] = best_k[k];
+        }
+        return;
+    }
+    uint role = 3u - pc.role1 - pc.role2;
     for (uint k = 0; k < pc.kept; k++) {
         uint i = best_k[k] / pc.s;
         uint j = best_k[k] - i * pc.s;
         uint t[3];
-        t[pc.role] = solid_pack_pixel(p, pc.shift);
+        t[role] = solid_pack_pixel(p, pc.shift);
         t[pc.role1] = solid_pack_pixel(U32Ptr(pc.m1_pixels).v[p * pc.s + i], pc.shift);
         t[pc.role2] = solid_pack_pixel(U32Ptr(pc.m2_pixels).v[p * pc.s + j], pc.shift);
         uint slot = p * pc.kept + k;

@@ -3,9 +3,10 @@
 
 use super::device::DeviceBvh;
 use super::gpu_types::{GpuRay, GpuRayHit};
+use crate::kernels::render::TRACE_RAYS;
+use crate::shader_constants::CWBVH_WORKGROUP_SIZE;
 use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
-use lazysolid_compute::kernels::render::TRACE_RAYS;
-use lazysolid_compute::shader_constants::CWBVH_WORKGROUP_SIZE;
+use std::sync::Arc;
 
 lazysolid_compute::push_block! {
     /// Push block of `trace_rays.comp`.
@@ -28,7 +29,7 @@ pub enum QueryKind {
 
 /// The ray-query kernel.
 pub struct RayQueries {
-    kernel: Kernel,
+    kernel: Arc<Kernel>,
 }
 
 impl RayQueries {
@@ -38,7 +39,7 @@ impl RayQueries {
     /// Pipeline creation failures.
     pub fn new(gpu: &Gpu) -> GpuResult<RayQueries> {
         Ok(RayQueries {
-            kernel: Kernel::with_constants(gpu, &TRACE_RAYS, CWBVH_WORKGROUP_SIZE, &[])?,
+            kernel: gpu.kernel_with(&TRACE_RAYS, CWBVH_WORKGROUP_SIZE, &[])?,
         })
     }
 

@@ -5,13 +5,14 @@ use super::error::RenderError;
 use super::frame::GpuFrame;
 use super::stores::{BakedStoreInfo, SceneStores};
 use crate::accel::{DeviceBvh, SceneBvh};
+use crate::kernels::render::PATH_TRACE;
 use crate::output::Film;
-use crate::scene::{Environment, RenderSettings, Scene};
+use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
+use crate::shader_constants::CWBVH_WORKGROUP_SIZE;
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
 use bytemuck::Zeroable;
 use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
-use lazysolid_compute::kernels::render::PATH_TRACE;
-use lazysolid_compute::shader_constants::CWBVH_WORKGROUP_SIZE;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 lazysolid_compute::push_block! {
@@ -51,7 +52,7 @@ pub struct RenderStats {
 /// A scene on the device with its film.
 pub struct PathTracer {
     gpu: Gpu,
-    kernel: Kernel,
+    kernel: Arc<Kernel>,
     bvh: DeviceBvh,
     frame: GpuFrame,
     frame_buf: GpuBuffer<GpuFrame>,
@@ -103,7 +104,7 @@ impl PathTracer {
         };
         Ok(PathTracer {
             gpu: gpu.clone(),
-            kernel: Kernel::with_constants(gpu, &PATH_TRACE, CWBVH_WORKGROUP_SIZE, &[])?,
+            kernel: gpu.kernel_with(&PATH_TRACE, CWBVH_WORKGROUP_SIZE, &[])?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
             materials: GpuBuffer::from_slice(gpu, "render materials", &materials)?,
             lights: GpuBuffer::from_slice(gpu, "render lights", &light_records)?,
@@ -139,6 +140,7 @@ impl PathTracer {
             first_pixel: 0,
             pixel_count: invocations as u32,
         };
+        self.ray_count.write(0, &[0])?;
         let [b0, b1, b2, b3, b4] = self.bvh.bindings();
         let [s0, s1] = self.stores.bindings();
         let bindings = [
@@ -157,7 +159,6 @@ impl PathTracer {
             ("Aovs", self.aovs.arg()),
             ("RayCount", self.ray_count.arg()),
         ];
-        self.ray_count.write(0, &[0])?;
         self.gpu.submit(|rec| {
             rec.dispatch(
                 &self.kernel,
@@ -247,10 +248,16 @@ fn check_scene(scene: &Scene) -> Result<(), RenderError> {
     let file = scene.source.display();
     let bad = |problem: String| Err(RenderError::Settings(format!("{file}: {problem}")));
     let s = &scene.render;
-    if s.width == 0 || s.height == 0 || s.spp == 0 || s.max_depth == 0 {
+    if s.width == 0 || s.height == 0 || s.spp == 0 {
         return bad(format!(
-            "render settings {}x{}, {} spp, depth {} (each must be at least 1)",
-            s.width, s.height, s.spp, s.max_depth
+            "render settings {}x{}, {} spp (each must be at least 1)",
+            s.width, s.height, s.spp
+        ));
+    }
+    if s.max_depth > MAX_DEPTH {
+        return bad(format!(
+            "render max_depth {} is more than {MAX_DEPTH}",
+            s.max_depth
         ));
     }
     if s.width as u64 * s.height as u64 > 1 << 26 {

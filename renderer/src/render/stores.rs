@@ -7,14 +7,14 @@
 use super::error::RenderError;
 use crate::output::encode8;
 use crate::scene::{Scene, StoreFilter, StoreKind};
+use crate::shader_constants::{
+    STORE_FILTER_NEAREST, STORE_FILTER_TRILINEAR, STORE_KIND_HASH, STORE_KIND_OCTREE,
+};
 use crate::shading::reference::solid_texture_albedo;
 use crate::shading::GpuMaterial;
 use glam::Vec3;
 use lazysolid_compute::gpu::{BufferArg, DeviceRecords, Gpu, GpuBuffer};
 use lazysolid_compute::hash::RobinHoodConfig;
-use lazysolid_compute::shader_constants::{
-    STORE_FILTER_NEAREST, STORE_FILTER_TRILINEAR, STORE_KIND_HASH, STORE_KIND_OCTREE,
-};
 use lazysolid_compute::store::{
     ColourSource, HashStore, HashStoreParams, OctreeConfig, OctreeParams, OctreeStore, SparseStore,
     StoreKernels,

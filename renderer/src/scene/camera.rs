@@ -10,9 +10,9 @@ use toml::Spanned;
 pub const MAX_IMAGE_SIDE: u32 = 8192;
 /// Largest sample count per pixel (2^20).
 pub const MAX_SPP: u32 = 1 << 20;
-/// Largest path depth.
+/// Largest path depth: the most bounces (scattering events) a path may make.
 pub const MAX_DEPTH: u32 = 64;
-/// Default path depth.
+/// Default path depth (bounces).
 pub const DEFAULT_MAX_DEPTH: u32 = 8;
 /// Default depth from which Russian roulette may end paths.
 pub const DEFAULT_RR_DEPTH: u32 = 3;
@@ -92,7 +92,7 @@ pub(super) fn render(doc: &Doc, raw: &RawRender) -> Result<RenderSettings, Scene
         None => Ok(default),
     };
     let max_depth = match &raw.max_depth {
-        Some(v) => doc.integer(v, "render.max_depth", 1..=MAX_DEPTH)?,
+        Some(v) => doc.integer(v, "render.max_depth", 0..=MAX_DEPTH)?,
         None => DEFAULT_MAX_DEPTH,
     };
     Ok(RenderSettings {

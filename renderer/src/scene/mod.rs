@@ -10,7 +10,7 @@
 //!   to the view direction), `fov_y` (vertical, in (0, 180)); optionally `aperture_radius`
 //!   and `focus_distance` together (both > 0) for a thin lens, otherwise a pinhole.
 //! - `[render]` (required): `width`, `height` (1..=8192), `spp` (1..=1 048 576), `max_depth`
-//!   (1..=64, default 8), `rr_depth` (0..=64, default 3; Russian roulette never starts when it
+//!   (0..=64 bounces, default 8; 0 shows only emitters), `rr_depth` (0..=64, default 3; Russian roulette never starts when it
 //!   is ≥ `max_depth`), `seed` (default 0).
 //! - `[[mesh]]`: a unique `name` and either `path` (an `.obj` or `.off` file, scaled into the
 //!   unit cube [0, 1]^3 by [`Mesh::normalize_to_unit_cube`](crate::mesh::Mesh) unless

@@ -73,7 +73,8 @@ pub struct RenderSettings {
     pub height: u32,
     /// Samples per pixel.
     pub spp: u32,
-    /// Maximum number of bounces (path vertices after the camera).
+    /// Most scattering events (bounces) on a path: 0 sees emitters only, 1 adds direct
+    /// lighting, k counts every path of up to k bounces once.
     pub max_depth: u32,
     /// Depth from which Russian roulette may end paths.
     pub rr_depth: u32,

@@ -3,8 +3,8 @@
 
 use super::error::ShadingError;
 use crate::scene::Environment;
+use crate::shader_constants::{ENVIRONMENT_CONSTANT, ENVIRONMENT_LATLONG};
 use glam::Vec3;
-use lazysolid_compute::shader_constants::{ENVIRONMENT_CONSTANT, ENVIRONMENT_LATLONG};
 use std::path::{Path, PathBuf};
 
 /// Most texels a map may have: indices of the RGB data stay far below 2³², and the float CDFs

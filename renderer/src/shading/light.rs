@@ -1,8 +1,8 @@
 //! The light record of the GPU (`Light` in `glsl/include/render/lights.glsl`).
 
 use crate::scene::Light;
+use crate::shader_constants::{LIGHT_QUAD, LIGHT_SPHERE};
 use bytemuck::{Pod, Zeroable};
-use lazysolid_compute::shader_constants::{LIGHT_QUAD, LIGHT_SPHERE};
 
 /// One analytic light as the kernels read it: scalar layout, field for field the GLSL struct.
 /// Spheres use `p` and `radius`; quads `p`, `u`, `v` and `two_sided`.

@@ -1,11 +1,12 @@
 //! The material record of the GPU (`Material` in `glsl/include/render/material.glsl`).
 
+use super::coat::{coat_terms, COAT_KNOTS};
 use crate::scene::{Material, MaterialKind, SolidTextureKind};
-use bytemuck::{Pod, Zeroable};
-use lazysolid_compute::shader_constants::{
+use crate::shader_constants::{
     MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_EMISSIVE, MATERIAL_LAMBERTIAN,
     MATERIAL_PLASTIC, TEXTURE_CHECKER, TEXTURE_MARBLE, TEXTURE_NONE, TEXTURE_WOOD,
 };
+use bytemuck::{Pod, Zeroable};
 
 /// One material as the kernels read it: scalar layout, field for field the GLSL struct, so a
 /// `&[GpuMaterial]` uploads as is.
@@ -32,9 +33,32 @@ pub struct GpuMaterial {
     pub tex_color_b: [f32; 3],
     /// Solid texture features per unit of object space.
     pub tex_scale: f32,
+    /// Plastic: the coat's directional albedo at the knots of [`coat_terms`].
+    pub coat_albedo: [f32; COAT_KNOTS],
+    /// Plastic: the share of the base's diffuse light that the coat reflects back down.
+    pub coat_internal: f32,
+    /// Keeps the record a multiple of 16 bytes.
+    pub pad: [f32; 3],
 }
 
-const _: () = assert!(size_of::<GpuMaterial>() == 80);
+const _: () = assert!(size_of::<GpuMaterial>() == 160);
+
+impl GpuMaterial {
+    /// The same material with the coat terms a plastic of its roughness and index needs
+    /// (other kinds keep zeros): for records built field by field rather than from a scene
+    /// material.
+    pub fn with_coat(self) -> Self {
+        if self.kind != MATERIAL_PLASTIC {
+            return self;
+        }
+        let coat = coat_terms(self.roughness, self.ior);
+        GpuMaterial {
+            coat_albedo: coat.albedo,
+            coat_internal: coat.internal,
+            ..self
+        }
+    }
+}
 
 /// The GPU code of a material kind.
 pub(crate) fn material_kind_code(kind: MaterialKind) -> u32 {
@@ -71,7 +95,9 @@ impl From<&Material> for GpuMaterial {
             texture_kind: texture_kind_code(texture.map(|t| t.kind)),
             tex_color_b: texture.map_or([0.0; 3], |t| t.color_b.to_array()),
             tex_scale: texture.map_or(0.0, |t| t.scale),
+            ..Default::default()
         }
+        .with_coat()
     }
 }
 
@@ -114,5 +140,7 @@ mod tests {
         assert_eq!(std::mem::offset_of!(GpuMaterial, ior), 44);
         assert_eq!(std::mem::offset_of!(GpuMaterial, texture_kind), 60);
         assert_eq!(std::mem::offset_of!(GpuMaterial, tex_scale), 76);
+        assert_eq!(std::mem::offset_of!(GpuMaterial, coat_internal), 144);
+        assert_eq!(g.coat_albedo, coat_terms(0.25, 1.5).albedo);
     }
 }

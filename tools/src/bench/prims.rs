@@ -6,7 +6,7 @@ use super::CommonArgs;
 use crate::cli::GlobalArgs;
 use anyhow::ensure;
 use clap::Args;
-use lazysolid_compute::gpu::{Gpu, GpuBuffer, Kernel, Recorder};
+use lazysolid_compute::gpu::{Gpu, GpuBuffer, Recorder};
 use lazysolid_compute::kernels;
 use lazysolid_compute::prims::{
     compact_cpu, exclusive_scan_cpu,
@@ -68,8 +68,8 @@ pub fn run(args: &PrimsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let input: Vec<u32> = (0..n).map(|_| rng.random_range(0..1000)).collect();
     let src = GpuBuffer::from_slice(&gpu, "bench input", &input)?;
     let dst = GpuBuffer::<u32>::new(&gpu, "bench output", n)?;
-    let copy_quads = Kernel::new(&gpu, &kernels::prims::COPY_QUADS)?;
-    let copy_addr = Kernel::new(&gpu, &kernels::prims::COPY_VEC4)?;
+    let copy_quads = gpu.kernel(&kernels::prims::COPY_QUADS)?;
+    let copy_addr = gpu.kernel(&kernels::prims::COPY_VEC4)?;
     let bytes = 8 * n as u64;
     let chunk = (gpu.info().max_storage_buffer_range as usize / 4) & !3;
     let case = "copy (read + write)";

@@ -1,6 +1,6 @@
 //! `lazysolid device`: what each Vulkan device offers that lazysolid relies on.
 
-use lazysolid_compute::gpu::{DeviceInfo, Gpu, GpuOptions};
+use lazysolid_compute::gpu::{DeviceInfo, Gpu, GpuOptions, REQUIRED_FEATURES};
 
 fn mib(bytes: u64) -> String {
     if bytes == u64::MAX {
@@ -50,7 +50,7 @@ fn print_device(d: &DeviceInfo, chosen: bool) {
         }
     );
     let missing = d.missing_requirements();
-    let rows: Vec<(&str, String)> = vec![
+    let mut rows: Vec<(&str, String)> = vec![
         ("type", d.device_type.clone()),
         ("driver", d.driver.clone()),
         ("Vulkan API", d.api_version.clone()),
@@ -70,22 +70,7 @@ fn print_device(d: &DeviceInfo, chosen: bool) {
         ("maxMemoryAllocationSize", mib(d.max_memory_allocation_size)),
         ("maxBufferSize", mib(d.max_buffer_size)),
         ("subgroup size", d.subgroup_size.to_string()),
-        (
-            "subgroup arithmetic/ballot/shuffle",
-            yes(d.subgroup_ops).into(),
-        ),
-        ("64-bit buffer atomics", yes(d.int64_atomics).into()),
-        ("buffer device address", yes(d.buffer_device_address).into()),
-        ("scalar block layout", yes(d.scalar_block_layout).into()),
-        ("push descriptors", yes(d.push_descriptor).into()),
-        (
-            "timestamps",
-            format!(
-                "{} (period {} ns)",
-                yes(d.timestamps),
-                d.timestamp_period_ns
-            ),
-        ),
+        ("timestamp period", format!("{} ns", d.timestamp_period_ns)),
         (
             "compute shared memory",
             format!("{} KiB", d.max_shared_memory / 1024),
@@ -104,6 +89,15 @@ fn print_device(d: &DeviceInfo, chosen: bool) {
             },
         ),
     ];
+    // Every feature the device is created with, as the device choice checks them, before
+    // the verdict.
+    let verdict = rows.len() - 1;
+    rows.splice(
+        verdict..verdict,
+        REQUIRED_FEATURES
+            .iter()
+            .map(|f| (f.name(), yes(d.has(*f)).to_string())),
+    );
     for (k, v) in rows {
         println!("  {k:<36} {v}");
     }

@@ -10,7 +10,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidate_slab, CandidateParams, GpuCandidates, GpuSolidSynthesizer,
+    analyze_solid, candidate_slab, check_box, CandidateParams, GpuCandidates, GpuSolidSynthesizer,
     SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
@@ -306,6 +306,16 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "--size {}: the cube side must be one of {SOLID_SIZES:?} voxels",
         args.size
     );
+    check_box(VolumeBox {
+        origin: args.offset,
+        size: [args.size; 3],
+    })
+    .with_context(|| {
+        format!(
+            "--offset {},{},{}",
+            args.offset[0], args.offset[1], args.offset[2]
+        )
+    })?;
     let exemplars = load_exemplars(
         &args.exemplar,
         args.ex.as_deref(),

@@ -4,13 +4,13 @@
 use super::output::{check_writable, write_atomically};
 use super::resolution::Resolution;
 use super::{assets, GlobalArgs};
-use anyhow::ensure;
+use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::synth::{
-    analyze, histogram_distance, jitter_or_default, passes_or_default, period_repetition, unpack,
-    AnalysisParams, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
-    DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD,
+    analyze_cached, histogram_distance, jitter_or_default, passes_or_default, period_repetition,
+    unpack, AnalysisParams, DiskCache, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer,
+    Region, SynthParams, DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -48,6 +48,10 @@ pub struct SynthArgs {
     /// The exemplar does not tile: clamp at its borders instead of wrapping.
     #[arg(long)]
     pub clamp: bool,
+    /// Neither read nor write the on-disk cache of exemplar analyses (kept in
+    /// LAZYSOLID_CACHE_DIR, else in the user's cache folder, e.g. ~/.cache/lazysolid).
+    #[arg(long)]
+    pub no_cache: bool,
     /// Most output pixels the neighbourhood energy evaluates (a regular subgrid beyond that).
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -108,13 +112,18 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     check_writable("-o", &coords_path(&args.output))?;
     let exemplar_path = assets::exemplar("EXEMPLAR", &args.exemplar, None)?;
     let exemplar = Exemplar::load(&exemplar_path)?;
+    let cache = if args.no_cache {
+        None
+    } else {
+        Some(DiskCache::user().context("the analysis cache (--no-cache runs without it)")?)
+    };
     let start = Instant::now();
     let analysis_params = AnalysisParams {
         k: args.k,
         spread: args.spread,
         toroidal: !args.clamp,
     };
-    let analysis = analyze(&exemplar, &analysis_params)?;
+    let (analysis, cached) = analyze_cached(&exemplar, &analysis_params, cache.as_ref())?;
     let analysis_s = start.elapsed().as_secs_f64();
     let levels = analysis.levels.len() as u32;
     let params = SynthParams::new(
@@ -177,7 +186,15 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "window {}x{} at ({}, {}), seed {}, passes {:?}",
         w, h, args.offset.0, args.offset.1, args.seed, params.passes
     );
-    println!("analysis (CPU)   {:8.3} s", analysis_s);
+    println!(
+        "analysis (CPU)   {:8.3} s (cache {}{})",
+        analysis_s,
+        cached.label(),
+        cache
+            .as_ref()
+            .map(|c| format!(", {}", c.dir().display()))
+            .unwrap_or_default()
+    );
     println!("synthesis (GPU)  {:8.3} s", synth_s);
     println!("energy (GPU)     {:8.3} s", energy_s);
     println!(

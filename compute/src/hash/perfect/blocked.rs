@@ -253,8 +253,8 @@ impl BlockedPerfectHash {
                 block: self.layout.block,
                 resolution: self.layout.resolution,
             };
-            let k = &kernels.blocked_query;
-            rec.dispatch(k, k.groups_for(n as u64), &[], &push)
+            let k = gpu.kernel(&crate::kernels::hash::PERFECT_BLOCKED_QUERY)?;
+            rec.dispatch(&k, k.groups_for(n as u64), &[], &push)
         })?;
         let v = out.read()?;
         Ok((0..n)

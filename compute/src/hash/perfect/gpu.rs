@@ -19,6 +19,7 @@ use super::kernels::PerfectKernels;
 use super::sizes::PerfectSizes;
 use super::table::{PerfectAccess, PerfectAttempt, PerfectConfig, PerfectHash, PerfectReport};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
+use crate::kernels::hash;
 use crate::prims::{CompactOutput, Keep};
 use crate::shader_constants::HASH_NOT_FOUND;
 use std::sync::Arc;
@@ -51,8 +52,12 @@ crate::push_block! {
         pub dimensions: u32,
         /// Bits per offset component.
         pub component_bits: u32,
-        /// Universe extents.
-        pub dims: [u32; 3],
+        /// Universe extent along x.
+        pub dims_x: u32,
+        /// Universe extent along y.
+        pub dims_y: u32,
+        /// Universe extent along z.
+        pub dims_z: u32,
         /// Payload words per slot: 1, or (b+1)³ for blocked tables.
         pub block_words: u32,
     }
@@ -70,7 +75,9 @@ crate::push_block! {
         key_count: u64,
         n: u32,
         layout_id: u32,
-        dims: [u32; 3],
+        dims_x: u32,
+        dims_y: u32,
+        dims_z: u32,
         dimensions: u32,
         axis_bits: u32,
         h: u32,
@@ -400,13 +407,16 @@ impl PerfectBuilder {
                     key_count: universe.key_count(),
                     n: n as u32,
                     layout_id: layout_id(universe.layout),
-                    dims: universe.dims,
+                    dims_x: universe.dims[0],
+                    dims_y: universe.dims[1],
+                    dims_z: universe.dims[2],
                     dimensions: d,
                     axis_bits: universe.axis_bits(),
                     h: sizes.h,
                     phi: sizes.phi,
                 };
-                rec.dispatch(&k.prepare, k.prepare.groups_for(n as u64), &[], &push)?;
+                let kernel = k.gpu.kernel(&hash::PERFECT_PREPARE)?;
+                rec.dispatch(&kernel, kernel.groups_for(n as u64), &[], &push)?;
             }
             scan.record(rec, &counts, &starts, nb, None)?;
             if n > 0 {
@@ -419,7 +429,8 @@ impl PerfectBuilder {
                     member_h0: member_h0.address(),
                     n: n as u32,
                 };
-                rec.dispatch(&k.scatter, k.scatter.groups_for(n as u64), &[], &push)?;
+                let kernel = k.gpu.kernel(&hash::PERFECT_SCATTER)?;
+                rec.dispatch(&kernel, kernel.groups_for(n as u64), &[], &push)?;
             }
             let push = ClassesPush {
                 counts: counts.address(),
@@ -433,7 +444,8 @@ impl PerfectBuilder {
                 entries: nb as u32,
                 classes: CLASSES,
             };
-            rec.dispatch(&k.classes, k.classes.groups_for(nb as u64), &[], &push)
+            let kernel = k.gpu.kernel(&hash::PERFECT_CLASSES)?;
+            rec.dispatch(&kernel, kernel.groups_for(nb as u64), &[], &push)
         })?;
         drop(scan);
         let s = status.read()?;
@@ -514,7 +526,8 @@ impl PerfectBuilder {
                         entries: nb as u32,
                         classes: CLASSES,
                     };
-                    rec.dispatch(&k.order, k.order.groups_for(nb as u64), &[], &push)?;
+                    let kernel = k.gpu.kernel(&hash::PERFECT_ORDER)?;
+                    rec.dispatch(&kernel, kernel.groups_for(nb as u64), &[], &push)?;
                 }
                 rec.fill(&pending, 0);
                 if first_pass {
@@ -564,6 +577,7 @@ impl PerfectBuilder {
             PerfectAccess::Unconstrained => Some(buf("perfect tags", slots as usize)?),
             PerfectAccess::Constrained => None,
         };
+        let free_count = k.gpu.kernel(&hash::PERFECT_FREE_COUNT)?;
         let mut scan = k.scan.lock().unwrap();
         let mut compact = k.compact.lock().unwrap();
         gpu.submit(|rec| {
@@ -582,12 +596,7 @@ impl PerfectBuilder {
                 words: words as u32,
                 slots,
             };
-            rec.dispatch(
-                &k.free_count,
-                k.free_count.groups_for(words as u64),
-                &[],
-                &push,
-            )?;
+            rec.dispatch(&free_count, free_count.groups_for(words as u64), &[], &push)?;
             scan.record(rec, &free_ranks, &free_ranks, words, None)?;
             let push = AssignPush {
                 occupied: occupied.address(),
@@ -602,7 +611,8 @@ impl PerfectBuilder {
                 h: sizes.h,
                 dimensions: d,
             };
-            rec.dispatch(&k.assign, k.assign.groups_for(words as u64), &[], &push)?;
+            let kernel = k.gpu.kernel(&hash::PERFECT_ASSIGN)?;
+            rec.dispatch(&kernel, kernel.groups_for(words as u64), &[], &push)?;
             rec.fill(&table_words, 0);
             rec.fill(&data, 0);
             if let Some(t) = &tags {
@@ -616,7 +626,8 @@ impl PerfectBuilder {
                 dimensions: d,
                 component_bits: sizes.component_bits,
             };
-            rec.dispatch(&k.pack, k.pack.groups_for(nb as u64), &[], &push)?;
+            let kernel = k.gpu.kernel(&hash::PERFECT_PACK)?;
+            rec.dispatch(&kernel, kernel.groups_for(nb as u64), &[], &push)?;
             if n > 0 {
                 let push = FillPush {
                     buckets: buckets.address(),
@@ -632,7 +643,8 @@ impl PerfectBuilder {
                     h: sizes.h,
                     dimensions: d,
                 };
-                rec.dispatch(&k.fill, k.fill.groups_for(n as u64), &[], &push)?;
+                let kernel = k.gpu.kernel(&hash::PERFECT_FILL)?;
+                rec.dispatch(&kernel, kernel.groups_for(n as u64), &[], &push)?;
             }
             Ok(())
         })?;
@@ -692,7 +704,8 @@ impl PerfectBuilder {
             dimensions: sizes.dimensions,
             budget: BUDGET,
         };
-        rec.dispatch(&k.propose, k.propose.groups_for(count as u64), &[], &push)?;
+        let kernel = k.gpu.kernel(&hash::PERFECT_PROPOSE)?;
+        rec.dispatch(&kernel, kernel.groups_for(count as u64), &[], &push)?;
         let largest = &a.largest[iteration as usize % 2];
         rec.fill(largest, 0);
         let push = VerifyPush {
@@ -713,7 +726,8 @@ impl PerfectBuilder {
             h: sizes.h,
             dimensions: sizes.dimensions,
         };
-        rec.dispatch(&k.verify, k.verify.groups_for(count as u64), &[], &push)
+        let kernel = k.gpu.kernel(&hash::PERFECT_VERIFY)?;
+        rec.dispatch(&kernel, kernel.groups_for(count as u64), &[], &push)
     }
 }
 
@@ -792,7 +806,9 @@ impl PerfectHashGpu {
             phi: self.sizes.phi,
             dimensions: self.sizes.dimensions,
             component_bits: self.sizes.component_bits,
-            dims: self.universe.dims,
+            dims_x: self.universe.dims[0],
+            dims_y: self.universe.dims[1],
+            dims_z: self.universe.dims[2],
             block_words: self.block_words,
         }
     }
@@ -836,8 +852,8 @@ impl PerfectHashGpu {
             axis_bits: self.universe.axis_bits(),
             checked: (self.access == PerfectAccess::Unconstrained) as u32,
         };
-        let q = &self.kernels.query;
-        rec.dispatch(q, q.groups_for(n as u64), &[], &push)
+        let q = self.kernels.gpu.kernel(&hash::PERFECT_QUERY)?;
+        rec.dispatch(&q, q.groups_for(n as u64), &[], &push)
     }
 
     /// Queries `keys` and reads the results back.

@@ -4,6 +4,7 @@
 use super::plan::Plan;
 use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
+use crate::kernels::store;
 use crate::store::colours::fill_colours;
 use crate::store::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use crate::store::{ColourSource, Filter, SparseStore, StoreError, StoreReport};
@@ -146,16 +147,17 @@ impl TileTree {
             keys: GpuBuffer::new(gpu, "tiletree texel voxels", n)?,
             len: n,
         };
-        let texel_colours = GpuBuffer::<u32>::new(gpu, "tiletree texel colours", n)?;
+        let mut texel_colours = GpuBuffer::<u32>::new(gpu, "tiletree texel colours", n)?;
         let filled_a = GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?;
         let filled_b = GpuBuffer::<u32>::new(gpu, "tiletree filled texels", n)?;
-        let push = FillPush {
+        // The texel kernel writes keys only; the colours are filled in between.
+        let texel_push = FillPush {
             tiles: tiles.address(),
             triangles: tris.address(),
             positions: positions.address(),
             indices: indices.address(),
             keys: keys.keys.address(),
-            colours: texel_colours.address(),
+            colours: DeviceAddress::NULL,
             filled_in: filled_b.address(),
             filled_out: filled_a.address(),
             map: self.map.address(),
@@ -165,20 +167,18 @@ impl TileTree {
             map_width: plan.stats.map_width,
             mode: 0,
         };
-        let k = &self.kernels;
-        let groups = k.tiletree_texels.groups_for(n as u64);
-        gpu.submit(|rec| rec.dispatch(&k.tiletree_texels, groups, &[], &push))?;
+        let texels = gpu.kernel(&store::TILETREE_TEXELS)?;
+        let dilate = gpu.kernel(&store::TILETREE_DILATE)?;
+        let scatter = gpu.kernel(&store::TILETREE_SCATTER)?;
+        let groups = texels.groups_for(n as u64);
+        gpu.submit(|rec| rec.dispatch(&texels, groups, &[], &texel_push))?;
         // The colour source sees the texel voxels like any store's keys (not sorted: it maps
         // each key to its colour independently).
-        fill_colours(
-            gpu,
-            &k.fill_marble,
-            &keys,
-            colours,
-            plan.resolution,
-            &texel_colours,
-            0,
-        )?;
+        fill_colours(gpu, &keys, colours, plan.resolution, &mut texel_colours, 0)?;
+        let push = FillPush {
+            colours: texel_colours.address(),
+            ..texel_push
+        };
         let rows = FillPush {
             filled_in: filled_a.address(),
             filled_out: filled_b.address(),
@@ -192,9 +192,9 @@ impl TileTree {
             ..push
         };
         gpu.submit(|rec| {
-            rec.dispatch(&k.tiletree_dilate, groups, &[], &rows)?;
-            rec.dispatch(&k.tiletree_dilate, groups, &[], &columns)?;
-            rec.dispatch(&k.tiletree_scatter, groups, &[], &push)
+            rec.dispatch(&dilate, groups, &[], &rows)?;
+            rec.dispatch(&dilate, groups, &[], &columns)?;
+            rec.dispatch(&scatter, groups, &[], &push)
         })?;
         Ok(())
     }
@@ -353,7 +353,8 @@ impl SparseStore for TileTree {
     ) -> Result<TimedLookup<'_>, StoreError> {
         check_normals(points, normals)?;
         let k = &self.kernels;
-        let groups = k.tiletree_lookup.groups_for(points.len() as u64);
+        let kernel = k.gpu.kernel(&store::TILETREE_LOOKUP)?;
+        let groups = kernel.groups_for(points.len() as u64);
         let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
         Ok(prepare_lookup(k, points, normals, move |rec, a| {
             let push = LookupPush {
@@ -364,7 +365,7 @@ impl SparseStore for TileTree {
                 n,
                 mode,
             };
-            rec.dispatch(&k.tiletree_lookup, groups, &[], &push)
+            rec.dispatch(&kernel, groups, &[], &push)
         })?)
     }
 }

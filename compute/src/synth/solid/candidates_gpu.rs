@@ -5,13 +5,15 @@
 use super::analysis::{SolidAnalysis, SolidLevel};
 use super::candidates::{
     filter_and_cut, image_key, others, search_key, CandidateParams, CandidateSets, LevelReport,
-    SearchKey, SolidCandidates,
+    SearchKey, SolidCandidates, MAX_CANDIDATES,
 };
+use super::loop_budget::{items_per_dispatch, loop_cost, LOOP_BUDGET};
 use super::roles::{image_axis, shared_axis, ROLES};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth_solid;
 use crate::synth::SynthResult;
 use std::collections::HashMap;
+use std::sync::Arc;
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -31,13 +33,34 @@ crate::push_block! {
     }
 }
 
-/// Target pixels one strip-search dispatch compares (llvmpipe stops an invocation's loops
-/// after 65535 iterations in all; a target costs up to 1 + N of them).
-const TARGETS_PER_DISPATCH: u32 = 4096;
+/// Target pixels one strip-search dispatch compares: each costs the outer loop's pass, the
+/// strip's samples and the insertion into the `S` best; the query strip is loaded and the list
+/// loaded and stored once per dispatch (`strip_search.comp`).
+fn targets_per_dispatch(budget: u32, params: &CandidateParams) -> SynthResult<u32> {
+    let per_target = 1 + loop_cost(params.strip) + loop_cost(params.s - 1);
+    let overhead = 1 + loop_cost(params.strip) + 2 * loop_cost(params.s);
+    items_per_dispatch(budget, per_target, overhead)
+}
 
-/// Candidates one coherence dispatch tests per pixel (each costs up to 2 · 4 · 100 loop
-/// iterations).
-const COHERENCE_CHUNK: u32 = 8;
+/// Rows `i` of the `S × S` crossbar pairs one ranking dispatch takes: a row loads one strip
+/// and, per `j`, compares a strip and inserts into the kept list (`triples.comp`); the list is
+/// loaded and stored, and the last dispatch writes the kept triples.
+fn rows_per_dispatch(budget: u32, params: &CandidateParams) -> SynthResult<u32> {
+    let kept = params.kept() as u32;
+    let per_j = 1 + loop_cost(params.strip) + loop_cost(kept - 1);
+    let per_row = 1 + loop_cost(params.strip) + 1 + params.s * per_j;
+    let overhead = 1 + 2 * loop_cost(kept) + kept * loop_cost(3);
+    items_per_dispatch(budget, per_row, overhead)
+}
+
+/// Candidates of every pixel one coherence dispatch tests: a candidate looks through the
+/// `slots` candidates of 4 neighbours for each of its two other coordinates and may be copied
+/// (`coherence.comp`); a small or fallen-back set is copied once.
+fn coherence_chunk(budget: u32, slots: u32) -> SynthResult<u32> {
+    let per_candidate = 1 + 2 * (loop_cost(4) + 4 * loop_cost(slots)) + loop_cost(3);
+    let overhead = 1 + loop_cost(MAX_CANDIDATES as u32) * (1 + loop_cost(3));
+    items_per_dispatch(budget, per_candidate, overhead)
+}
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -50,6 +73,7 @@ crate::push_block! {
         m2_distances: DeviceAddress<'a>,
         triples: DeviceAddress<'a>,
         errors: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
         counts: DeviceAddress<'a>,
         shift: u32,
         axis1: u32,
@@ -58,9 +82,10 @@ crate::push_block! {
         spacing: u32,
         s: u32,
         kept: u32,
-        role: u32,
         role1: u32,
         role2: u32,
+        first_row: u32,
+        rows: u32,
     }
 }
 
@@ -93,9 +118,10 @@ struct Matches {
 /// The candidate kernels of one device.
 pub struct GpuCandidates {
     gpu: Gpu,
-    search: Kernel,
-    triples: Kernel,
-    coherence: Kernel,
+    search: Arc<Kernel>,
+    triples: Arc<Kernel>,
+    coherence: Arc<Kernel>,
+    budget: u32,
 }
 
 impl GpuCandidates {
@@ -106,9 +132,24 @@ impl GpuCandidates {
     pub fn new(gpu: &Gpu) -> SynthResult<GpuCandidates> {
         Ok(GpuCandidates {
             gpu: gpu.clone(),
-            search: Kernel::new(gpu, &synth_solid::STRIP_SEARCH)?,
-            triples: Kernel::new(gpu, &synth_solid::TRIPLES)?,
-            coherence: Kernel::new(gpu, &synth_solid::COHERENCE)?,
+            search: gpu.kernel(&synth_solid::STRIP_SEARCH)?,
+            triples: gpu.kernel(&synth_solid::TRIPLES)?,
+            coherence: gpu.kernel(&synth_solid::COHERENCE)?,
+            budget: LOOP_BUDGET,
+        })
+    }
+
+    /// The same kernels planned to `budget` loop iterations per dispatch instead of
+    /// [`LOOP_BUDGET`]: a smaller budget splits every search into more dispatches with the
+    /// same result (how the tests exercise the folding of dispatches on small exemplars).
+    ///
+    /// # Errors
+    /// A budget above [`LOOP_BUDGET`] (checked when computing, against the parameters), or a
+    /// GPU failure.
+    pub fn with_loop_budget(gpu: &Gpu, budget: u32) -> SynthResult<GpuCandidates> {
+        Ok(GpuCandidates {
+            budget,
+            ..GpuCandidates::new(gpu)?
         })
     }
 
@@ -197,11 +238,12 @@ impl GpuCandidates {
             first_target: 0,
             target_count: 0,
         };
+        let chunk = targets_per_dispatch(self.budget, params)?;
         self.gpu.submit(|rec| {
             let kernel = &self.search;
-            for first in (0..pixels as u32).step_by(TARGETS_PER_DISPATCH as usize) {
+            for first in (0..pixels as u32).step_by(chunk as usize) {
                 push.first_target = first;
-                push.target_count = TARGETS_PER_DISPATCH.min(pixels as u32 - first);
+                push.target_count = chunk.min(pixels as u32 - first);
                 rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)?;
             }
             Ok(())
@@ -224,10 +266,11 @@ impl GpuCandidates {
         let kept = params.kept();
         let triples = GpuBuffer::<[u32; 3]>::new(&self.gpu, "solid triples", pixels * kept)?;
         let errors = GpuBuffer::<u32>::new(&self.gpu, "solid crossbar errors", pixels * kept)?;
+        let keys = GpuBuffer::<u32>::new(&self.gpu, "solid crossbar keys", pixels * kept)?;
         let counts = GpuBuffer::<u32>::new(&self.gpu, "solid candidate counts", pixels)?;
         let [f1, f2] = others(e);
         let a = shared_axis(f1, f2);
-        let push = TriplesPush {
+        let mut push = TriplesPush {
             colours1: colours[f1].address(),
             colours2: colours[f2].address(),
             m1_pixels: m1.pixels.address(),
@@ -236,6 +279,7 @@ impl GpuCandidates {
             m2_distances: m2.distances.address(),
             triples: triples.address(),
             errors: errors.address(),
+            keys: keys.address(),
             counts: counts.address(),
             shift,
             axis1: image_axis(f1, a).unwrap() as u32,
@@ -244,13 +288,20 @@ impl GpuCandidates {
             spacing: level.spacing,
             s: params.s,
             kept: kept as u32,
-            role: e as u32,
             role1: f1 as u32,
             role2: f2 as u32,
+            first_row: 0,
+            rows: 0,
         };
+        let rows = rows_per_dispatch(self.budget, params)?;
         self.gpu.submit(|rec| {
             let kernel = &self.triples;
-            rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)
+            for first in (0..params.s).step_by(rows as usize) {
+                push.first_row = first;
+                push.rows = rows;
+                rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)?;
+            }
+            Ok(())
         })?;
         Ok(CandidateSets {
             slots: kept,
@@ -295,11 +346,11 @@ impl GpuCandidates {
             role1: f1 as u32,
             role2: f2 as u32,
             first: 0,
-            chunk: COHERENCE_CHUNK,
+            chunk: coherence_chunk(self.budget, sets.slots as u32)?,
         };
         g.submit(|rec| {
             let kernel = &self.coherence;
-            for first in (0..sets.slots as u32).step_by(COHERENCE_CHUNK as usize) {
+            for first in (0..sets.slots as u32).step_by(push.chunk as usize) {
                 push.first = first;
                 rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)?;
             }

@@ -12,6 +12,7 @@ use crate::kernels::synth_solid;
 use crate::synth::gpu::class_span;
 use crate::synth::neighbourhood::pack_i8_words;
 use crate::synth::{LevelTimes, SynthParams, SynthResult};
+use std::sync::Arc;
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -65,8 +66,8 @@ struct GpuLevel {
 /// Analysis and candidates on the GPU, ready to synthesize any number of boxes.
 pub struct GpuSolidSynthesizer {
     gpu: Gpu,
-    upsample: Kernel,
-    correct: Kernel,
+    upsample: Arc<Kernel>,
+    correct: Arc<Kernel>,
     levels: Vec<GpuLevel>,
     side: u32,
 }
@@ -122,8 +123,8 @@ impl GpuSolidSynthesizer {
         }
         Ok(GpuSolidSynthesizer {
             gpu: gpu.clone(),
-            upsample: Kernel::new(gpu, &synth_solid::UPSAMPLE_JITTER)?,
-            correct: Kernel::new(gpu, &synth_solid::CORRECT)?,
+            upsample: gpu.kernel(&synth_solid::UPSAMPLE_JITTER)?,
+            correct: gpu.kernel(&synth_solid::CORRECT)?,
             levels,
             side: analysis.side,
         })

@@ -10,6 +10,7 @@ pub(crate) mod candidates_gpu;
 mod cpu;
 pub(crate) mod gpu;
 mod jitter;
+mod loop_budget;
 mod plan;
 mod roles;
 mod slab;
@@ -26,6 +27,7 @@ pub use candidates_gpu::GpuCandidates;
 pub use cpu::{correct_subpass_3d, synthesize_solid_cpu, upsample_jitter_3d};
 pub use gpu::GpuSolidSynthesizer;
 pub use jitter::jitter3;
+pub use loop_budget::{LOOP_BUDGET, LOOP_LIMIT};
 pub use plan::{plan_boxes, VolumeBox, SUBPASSES_3D};
 pub use roles::{
     image_axis, project, shared_axis, SolidExemplars, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLES,

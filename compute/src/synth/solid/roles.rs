@@ -30,9 +30,9 @@ pub const ROLE_AXES: [[usize; 2]; ROLES] = [[1, 2], [0, 2], [0, 1]];
 /// Smallest exemplar side of solid synthesis (as in 2D: at least 5 pyramid levels).
 pub const MIN_SOLID_SIDE: u32 = 16;
 
-/// Largest exemplar side: the candidate search compares every strip with every strip in one
-/// shader loop, and llvmpipe stops a loop after 65535 iterations; 128² = 16384 strips per
-/// exemplar also keeps the brute force to seconds.
+/// Largest exemplar side: the candidate search compares every strip with every strip, so its
+/// time grows with the fourth power of the side (128²: 16384 × 16384 strip pairs per search
+/// and level).
 pub const MAX_SOLID_SIDE: u32 = 128;
 
 /// The world-space offset `d` seen in the image plane of `role`: its `(u, v)` components.
@@ -131,7 +131,7 @@ fn check_side(e: &Exemplar) -> SynthResult<()> {
             name: "solid exemplar size",
             value: format!("{} is {}x{}", e.source.display(), e.width, e.height),
             limit: format!(
-                "solid synthesis needs square exemplars with a power-of-two side in {MIN_SOLID_SIDE}..={MAX_SOLID_SIDE} (the pyramid levels halve the side exactly; the candidate search loops over every pixel once, below llvmpipe's 65535-iteration loop limit)"
+                "solid synthesis needs square exemplars with a power-of-two side in {MIN_SOLID_SIDE}..={MAX_SOLID_SIDE} (the pyramid levels halve the side exactly; the brute-force candidate search grows with the fourth power of the side)"
             ),
         });
     }

@@ -5,11 +5,11 @@
 use super::fresnel::{fresnel_conductor, fresnel_dielectric};
 use super::microfacet::{ggx_d, ggx_g1, ggx_g2, ggx_sample_vndf, GGX_MIN_ALPHA};
 use super::sampling::{pdf_cosine_hemisphere, sample_cosine_hemisphere};
-use crate::shading::GpuMaterial;
-use glam::{Vec2, Vec3};
-use lazysolid_compute::shader_constants::{
+use crate::shader_constants::{
     MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_LAMBERTIAN, MATERIAL_PLASTIC,
 };
+use crate::shading::{coat_albedo_at, GpuMaterial};
+use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// A sampled direction.
@@ -74,11 +74,19 @@ fn refract(wo: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
     Some(-wo / eta + (c / eta - (1.0 - s2).sqrt()) * n)
 }
 
-fn plastic_specular_probability(fo: f32, albedo: Vec3) -> f32 {
-    let d = (1.0 - fo) * (albedo.x + albedo.y + albedo.z) * (1.0 / 3.0);
-    let s = fo + d;
+/// Directional albedo of a plastic's coat at `cos_theta`: Fresnel when smooth, else the table.
+fn plastic_coat_albedo(m: &GpuMaterial, alpha: Option<f32>, cos_theta: f32) -> f32 {
+    match alpha {
+        None => fresnel_dielectric(cos_theta, m.ior),
+        Some(_) => coat_albedo_at(&m.coat_albedo, cos_theta),
+    }
+}
+
+fn plastic_specular_probability(coat: f32, albedo: Vec3) -> f32 {
+    let d = (1.0 - coat) * (albedo.x + albedo.y + albedo.z) * (1.0 / 3.0);
+    let s = coat + d;
     if s > 0.0 {
-        fo / s
+        coat / s
     } else {
         1.0
     }
@@ -131,10 +139,13 @@ fn eval_pdf(m: &GpuMaterial, model: &Model, albedo: Vec3, wo: Vec3, wi: Vec3) ->
             if wi.z <= 0.0 {
                 return (Vec3::ZERO, 0.0);
             }
-            let fo = fresnel_dielectric(wo.z, m.ior);
-            let fi = fresnel_dielectric(wi.z, m.ior);
-            let p = plastic_specular_probability(fo, albedo);
-            let mut f = albedo * ((1.0 - fo) * (1.0 - fi) * wi.z * FRAC_1_PI);
+            let coat = plastic_coat_albedo(m, alpha, wo.z);
+            let (to, ti) = (1.0 - coat, 1.0 - plastic_coat_albedo(m, alpha, wi.z));
+            let p = plastic_specular_probability(coat, albedo);
+            // Light that crosses the coat, meets the base and leaves after any number of
+            // reflections under the coat (see render/bsdf.glsl).
+            let mut f = albedo * (to * ti * wi.z * FRAC_1_PI / (m.ior * m.ior))
+                / (Vec3::ONE - albedo * m.coat_internal);
             let mut pdf = (1.0 - p) * wi.z * FRAC_1_PI;
             if let Some(alpha) = alpha {
                 let (h, lobe) = reflection_lobe(wo, wi, alpha);
@@ -258,11 +269,11 @@ pub fn bsdf_sample(m: &GpuMaterial, albedo: Vec3, wo: Vec3, u: Vec3) -> Option<B
             })
         }
         Model::Plastic { alpha } => {
-            let fo = fresnel_dielectric(wo.z, m.ior);
-            let p = plastic_specular_probability(fo, albedo);
+            let coat = plastic_coat_albedo(m, alpha, wo.z);
+            let p = plastic_specular_probability(coat, albedo);
             let wi = if u.z < p {
                 match alpha {
-                    None => return Some(delta(mirror(wo), Vec3::splat(fo / p), p)),
+                    None => return Some(delta(mirror(wo), Vec3::splat(coat / p), p)),
                     Some(alpha) => reflect(wo, ggx_sample_vndf(wo, alpha, uv)),
                 }
             } else {

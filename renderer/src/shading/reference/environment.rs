@@ -2,9 +2,9 @@
 //! documents the lat-long convention).
 
 use super::sampling::sample_uniform_sphere;
+use crate::shader_constants::ENVIRONMENT_CONSTANT;
 use crate::shading::EnvironmentMap;
 use glam::{Vec2, Vec3};
-use lazysolid_compute::shader_constants::ENVIRONMENT_CONSTANT;
 use std::f32::consts::{FRAC_1_PI, PI, TAU};
 
 /// A sampled environment direction.

@@ -1,9 +1,9 @@
 //! Analytic area lights (twin of `render/lights.glsl`).
 
 use super::sampling::make_frame;
+use crate::shader_constants::LIGHT_SPHERE;
 use crate::shading::GpuLight;
 use glam::{Vec2, Vec3};
-use lazysolid_compute::shader_constants::LIGHT_SPHERE;
 use std::f32::consts::TAU;
 
 /// A direction towards a light.

@@ -1,14 +1,17 @@
-//! Procedural solid textures (twin of `render/solid_texture.glsl`): gradient noise on an
-//! integer lattice whose gradients come from an integer hash, so no result depends on how a
-//! device rounds a float hash.
+//! Procedural solid textures (twin of `render/solid_texture.glsl`): the stores' integer marble
+//! (`lazysolid_compute::store::marble_band_at`, exact on every device), and for wood, gradient
+//! noise on an integer lattice whose gradients come from an integer hash, so no result depends
+//! on how a device rounds a float hash.
 
+use crate::shader_constants::{TEXTURE_MARBLE, TEXTURE_NONE, TEXTURE_WOOD};
 use crate::shading::GpuMaterial;
 use glam::{IVec3, Vec3};
-use lazysolid_compute::shader_constants::{TEXTURE_MARBLE, TEXTURE_NONE, TEXTURE_WOOD};
+use lazysolid_compute::store::{marble_band_at, MARBLE_BAND_ONE};
 use std::f32::consts::TAU;
 
-const MARBLE_OCTAVES: u32 = 5;
 const WOOD_OCTAVES: u32 = 3;
+/// Noise seed of the marble texture (`TEXTURE_MARBLE_SEED` in GLSL).
+const MARBLE_SEED: u32 = 0;
 
 fn mix32(mut x: u32) -> u32 {
     x ^= x >> 16;
@@ -42,27 +45,26 @@ pub fn texture_noise(p: Vec3) -> f32 {
     lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z)
 }
 
-fn fractal(mut p: Vec3, octaves: u32, absolute: bool) -> f32 {
+fn fractal(mut p: Vec3, octaves: u32) -> f32 {
     let mut sum = 0.0;
     let mut amplitude = 1.0;
     for _ in 0..octaves {
         let n = texture_noise(p);
-        sum += amplitude * if absolute { n.abs() } else { n };
+        sum += amplitude * n;
         p *= 2.0;
         amplitude *= 0.5;
     }
     sum
 }
 
-/// Weight of colour b at `p` already scaled to features.
+/// Weight of colour b at `p` already scaled to features (marble: b is the veins' colour).
 fn blend(kind: u32, p: Vec3) -> f32 {
     match kind {
         TEXTURE_MARBLE => {
-            let t = fractal(p, MARBLE_OCTAVES, true);
-            0.5 + 0.5 * (TAU * (p.x + t)).sin()
+            1.0 - marble_band_at(p.to_array(), MARBLE_SEED) as f32 / MARBLE_BAND_ONE as f32
         }
         TEXTURE_WOOD => {
-            let r = (p.x * p.x + p.z * p.z).sqrt() + 0.5 * fractal(p, WOOD_OCTAVES, false);
+            let r = (p.x * p.x + p.z * p.z).sqrt() + 0.5 * fractal(p, WOOD_OCTAVES);
             let ring = 0.5 + 0.5 * (TAU * r).cos();
             ring * ring * (3.0 - 2.0 * ring)
         }
@@ -85,7 +87,7 @@ pub fn solid_texture_albedo(m: &GpuMaterial, p_object: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use lazysolid_compute::shader_constants::TEXTURE_CHECKER;
+    use crate::shader_constants::TEXTURE_CHECKER;
 
     #[test]
     fn noise_vanishes_on_the_lattice_and_stays_bounded() {

@@ -1,0 +1,66 @@
+//! Constants shared by the renderer's Rust code and its GLSL (`glsl/render/`,
+//! `glsl/include/render/`), defined once here.
+//!
+//! `build.rs` reads this file (after `lazysolid_compute::shader_constants`, whose constants the
+//! store includes use) and passes every `pub const NAME: u32 = LITERAL;` line to the GLSL
+//! compiler as `#define NAME VALUE`. Only plain `u32` literals are allowed on such lines.
+
+/// Workgroup width of kernels that trace rays through `render/cwbvh.glsl`: their traversal
+/// stacks (32 entries of 8 bytes per invocation) fill lavapipe's 32 KiB of shared memory.
+pub const CWBVH_WORKGROUP_SIZE: u32 = 128;
+/// Material kinds of the path tracer (`renderer::scene::MaterialKind`), as stored in the
+/// GPU material's `kind` field.
+pub const MATERIAL_LAMBERTIAN: u32 = 0;
+/// See [`MATERIAL_LAMBERTIAN`].
+pub const MATERIAL_CONDUCTOR: u32 = 1;
+/// See [`MATERIAL_LAMBERTIAN`].
+pub const MATERIAL_PLASTIC: u32 = 2;
+/// See [`MATERIAL_LAMBERTIAN`].
+pub const MATERIAL_DIELECTRIC: u32 = 3;
+/// See [`MATERIAL_LAMBERTIAN`].
+pub const MATERIAL_EMISSIVE: u32 = 4;
+
+/// Knots of a plastic coat's directional-albedo table in the GPU material: knot i holds the
+/// coat's reflectance at cos θ = (i / (knots − 1))², denser towards grazing where it changes
+/// fastest.
+pub const PLASTIC_COAT_KNOTS: u32 = 16;
+
+/// Solid texture kinds of a GPU material: none means the albedo is the material's colour.
+pub const TEXTURE_NONE: u32 = 0;
+/// See [`TEXTURE_NONE`].
+pub const TEXTURE_MARBLE: u32 = 1;
+/// See [`TEXTURE_NONE`].
+pub const TEXTURE_WOOD: u32 = 2;
+/// See [`TEXTURE_NONE`].
+pub const TEXTURE_CHECKER: u32 = 3;
+
+/// Analytic light kinds of a GPU light.
+pub const LIGHT_SPHERE: u32 = 0;
+/// See [`LIGHT_SPHERE`].
+pub const LIGHT_QUAD: u32 = 1;
+
+/// Environment kinds: the same radiance everywhere, or a lat-long HDR map.
+pub const ENVIRONMENT_CONSTANT: u32 = 0;
+/// See [`ENVIRONMENT_CONSTANT`].
+pub const ENVIRONMENT_LATLONG: u32 = 1;
+
+/// What `glsl/render/shading_test.comp` evaluates for each case: the BSDF entry points, the
+/// solid textures, the lights, the environment, or the random numbers and warps.
+pub const SHADING_TEST_BSDF: u32 = 0;
+/// See [`SHADING_TEST_BSDF`].
+pub const SHADING_TEST_TEXTURE: u32 = 1;
+/// See [`SHADING_TEST_BSDF`].
+pub const SHADING_TEST_LIGHT: u32 = 2;
+/// See [`SHADING_TEST_BSDF`].
+pub const SHADING_TEST_ENVIRONMENT: u32 = 3;
+/// See [`SHADING_TEST_BSDF`].
+pub const SHADING_TEST_RNG: u32 = 4;
+
+/// Sparse stores a renderer record may describe.
+pub const STORE_KIND_HASH: u32 = 0;
+/// See [`STORE_KIND_HASH`].
+pub const STORE_KIND_OCTREE: u32 = 1;
+/// Nearest-texel store reads.
+pub const STORE_FILTER_NEAREST: u32 = 0;
+/// Trilinear store reads (the store holds the interpolation voxels).
+pub const STORE_FILTER_TRILINEAR: u32 = 1;
