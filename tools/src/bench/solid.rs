@@ -62,6 +62,11 @@ pub struct SolidArgs {
     /// Seed of the jitter.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
+    /// Correction passes, one for all levels or one per level, coarsest first [default: as
+    /// `lazysolid synth`]. Each pass pads every level's box by 8 voxels a side, so fewer
+    /// passes make a small run possible on a slow device.
+    #[arg(long, value_delimiter = ',')]
+    pub passes: Vec<u32>,
     /// Most pixels of each slice the energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -278,7 +283,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                         exemplars.clone(),
                         &CandidateParams::default(),
                         args.seed,
-                        &[],
+                        &args.passes,
                         &[],
                         n,
                         [0; 3],
@@ -317,7 +322,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     ..CandidateParams::default()
                 },
                 args.seed,
-                &[],
+                &args.passes,
                 &[],
                 n,
                 [0; 3],
