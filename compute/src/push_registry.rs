@@ -55,6 +55,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<prims_push::RadixScatterPush>(&prims::RADIX_SCATTER),
         of::<segments::ReducePush>(&prims::REDUCE_SEGMENTS),
         of::<segments::ScanPush>(&prims::SCAN_SEGMENTS),
+        of::<colours::ByKeyPush>(&store::COLOURS_BY_KEY),
         of::<colours::FillPush>(&store::FILL_MARBLE),
         of::<hash_store::LookupPush>(&store::HASH_LOOKUP),
         of::<octree::AveragePush>(&store::OCTREE_AVERAGE),

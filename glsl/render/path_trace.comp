@@ -16,6 +16,8 @@
 #include "render/environment.glsl"
 #include "store/hash.glsl"
 #include "store/octree.glsl"
+#include "store/perfect.glsl"
+#include "store/tiletree.glsl"
 
 struct Frame {
     vec3 eye;
@@ -49,6 +51,8 @@ struct StoreRecord {
     uint filtering;  // STORE_FILTER_*
     HashStoreParams hash;
     OctreeParams octree;
+    PerfectStoreParams perfect;
+    TileTreeParams tiletree;
 };
 layout(binding = 12, scalar) readonly buffer StoreRecords { StoreRecord store_records[]; };
 layout(binding = 13, scalar) readonly buffer InstanceStores { uint instance_stores[]; };
@@ -83,6 +87,7 @@ struct SurfaceHit {
     vec3 ns;       // world shading normal, on the same side as ng
     vec3 p_object; // rest-pose object position (where solid textures live)
     vec3 p_surface_object;  // the hit point itself in object space (where stores are read)
+    vec3 n_object;          // the geometric normal in object space (a TileTree picks its face)
     uint material;
     uint instance;
 };
@@ -91,18 +96,25 @@ float srgb_to_linear(float c) {
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
-// Albedo of a store-baked texture at an object-space surface point. A point whose voxels are not
-// stored (never expected on the surface) shows magenta, so a hole is seen, not hidden.
-vec3 store_albedo(uint slot, vec3 pos) {
+// Albedo of a store-baked texture at an object-space surface point with its object-space
+// geometric normal. A point whose voxels are not stored (never expected on the surface) shows
+// magenta, so a hole is seen, not hidden.
+vec3 store_albedo(uint slot, vec3 pos, vec3 normal) {
     uint kind = store_records[slot].kind;
-    uint filter_ = store_records[slot].filtering;
+    bool nearest = store_records[slot].filtering == STORE_FILTER_NEAREST;
     vec4 c;
     if (kind == STORE_KIND_HASH) {
         HashStoreParams p = store_records[slot].hash;
-        c = filter_ == STORE_FILTER_NEAREST ? store_hash_nearest(p, pos) : store_hash_trilinear(p, pos);
-    } else {
+        c = nearest ? store_hash_nearest(p, pos) : store_hash_trilinear(p, pos);
+    } else if (kind == STORE_KIND_OCTREE) {
         OctreeParams p = store_records[slot].octree;
-        c = filter_ == STORE_FILTER_NEAREST ? store_octree_nearest(p, pos) : store_octree_trilinear(p, pos);
+        c = nearest ? store_octree_nearest(p, pos) : store_octree_trilinear(p, pos);
+    } else if (kind == STORE_KIND_PERFECT) {
+        PerfectStoreParams p = store_records[slot].perfect;
+        c = nearest ? store_perfect_nearest(p, pos) : store_perfect_trilinear(p, pos);
+    } else {
+        TileTreeParams p = store_records[slot].tiletree;
+        c = nearest ? store_tiletree_nearest(p, pos, normal) : store_tiletree_bilinear(p, pos, normal);
     }
     if (c.a <= 0.0) {
         return vec3(1.0, 0.0, 1.0);
@@ -129,6 +141,7 @@ SurfaceHit surface_of(TraceHit h) {
     float n_len = length(n_object);
     s.p_object = n_len > 0.0 ? p_surface - n_object * (1e-5 / n_len) : p_surface;
     s.p_surface_object = p_surface;
+    s.n_object = n_object;
     s.instance = h.instance;
     // Rigid transforms with uniform scale: the linear part maps normals too.
     s.ng = normalize(cwbvh_transform_vector(o2w, cross(v1 - v0, v2 - v0)));
@@ -252,7 +265,7 @@ void main() {
                 Material m = materials[s.material];
                 uint store_slot = instance_stores[s.instance];
                 vec3 albedo = store_slot == 0xffffffffu ? solid_texture_albedo(m, s.p_object)
-                                                        : store_albedo(store_slot, s.p_surface_object);
+                                                        : store_albedo(store_slot, s.p_surface_object, s.n_object);
                 if (depth == 0u) {
                     aov_albedo = m.kind == MATERIAL_EMISSIVE ? m.emission / max(max3(m.emission), 1e-6) : albedo;
                     aov_normal = s.ns;

@@ -60,6 +60,10 @@ pub const SHADING_TEST_RNG: u32 = 4;
 pub const STORE_KIND_HASH: u32 = 0;
 /// See [`STORE_KIND_HASH`].
 pub const STORE_KIND_OCTREE: u32 = 1;
+/// See [`STORE_KIND_HASH`].
+pub const STORE_KIND_PERFECT: u32 = 2;
+/// See [`STORE_KIND_HASH`].
+pub const STORE_KIND_TILETREE: u32 = 3;
 /// Nearest-texel store reads.
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).

@@ -886,4 +886,41 @@ fn textures_baked_into_stores() {
         e.contains("scenes/t.toml:15") && e.contains("kd_tree"),
         "{e}"
     );
+    // Every structure has a name; the error for an unknown one lists them.
+    for name in ["coherent_hash", "octree", "perfect_hash", "tiletree"] {
+        assert!(e.contains(&format!("`{name}`")), "{e}");
+        for (filter, want) in [
+            ("nearest", StoreFilter::Nearest),
+            ("trilinear", StoreFilter::Trilinear),
+        ] {
+            let s = parse(&tex(&format!(
+                ", store = \"{name}\", resolution = 128, filter = \"{filter}\""
+            )))
+            .unwrap();
+            let spec = s.materials[0].texture.unwrap().store.unwrap();
+            assert_eq!((spec.kind.name(), spec.filter), (name, want));
+        }
+    }
+    assert_eq!(
+        parse(&tex(", store = \"tiletree\", resolution = 64"))
+            .unwrap()
+            .materials[0]
+            .texture
+            .unwrap()
+            .store
+            .unwrap()
+            .kind,
+        StoreKind::TileTree
+    );
+    expect(
+        &tex(", store = \"tiletree\", resolution = 100"),
+        15,
+        "material \"white\".texture.resolution: 100 cannot be a tiletree resolution",
+    );
+    assert!(parse(&tex(", store = \"perfect_hash\", resolution = 100")).is_ok());
+    expect(
+        &tex(", store = \"perfect_hash\", resolution = 64, filter = \"cubic\""),
+        15,
+        "material \"white\".texture.filter: unknown variant `cubic`",
+    );
 }

@@ -29,12 +29,16 @@ fn building_stores_again_creates_no_pipelines() {
         assert_eq!(octree(&kernels), keys.len as u64);
         let first = gpu.pipelines_created();
         assert!(first > voxelizer_only, "the octree needs pipelines");
-        // An octree build needs no hash kernel: the context builds kernels when they are used.
+        // An octree build needs no hash kernel but the key check every store applies: the
+        // context builds kernels when they are used.
         let names = gpu.cached_kernels();
         assert!(
-            names.iter().all(|n| !n.starts_with("hash/")),
+            names
+                .iter()
+                .all(|n| !n.starts_with("hash/") || *n == "hash/check_keys.comp"),
             "an octree build built hash kernels: {names:?}"
         );
+        assert!(names.contains(&"hash/check_keys.comp"), "{names:?}");
         assert!(names.contains(&"store/octree_link.comp"), "{names:?}");
 
         // The same store again, from the same context and from a fresh one: no new pipeline.

@@ -2,10 +2,14 @@
 //! against reference images of the test scenes (FLIP).
 
 use glam::{Affine3A, Vec3};
+use lazysolid_compute::gpu::push_bytes;
+use lazysolid_compute::hash::morton_encode;
+use lazysolid_compute::store::{ColourSource, SparseStore};
+use lazysolid_compute::voxel::VoxelKeys;
 use lazysolid_renderer::diff::flip_images;
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_renderer::output::{write_exr, write_png, Film, Operator, ToneMap};
-use lazysolid_renderer::render::PathTracer;
+use lazysolid_renderer::render::{PathTracer, SceneStore, SceneStores};
 use lazysolid_renderer::scene::{
     Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
     SceneMesh, StoreFilter, StoreKind, StoreSpec,
@@ -336,30 +340,31 @@ fn render_with_stores(scene: &Scene) -> (Film, usize) {
     })
 }
 
-/// The textured test scene with its wood baked into each store: the coherent hash and the N³
-/// tree hold the same texels, so their nearest reads render bit-identical images; those look
-/// like the procedural texture they were baked from; trilinear reads find every texel.
+/// The textured test scene with its wood baked into each of the four stores: the coherent
+/// hash, the N³ tree and the perfect hash hold the same texels, so their nearest reads render
+/// bit-identical images; those look like the procedural texture they were baked from; the
+/// TileTree (texels projected onto tiles) stays within a FLIP bound of them; trilinear reads
+/// find every texel, and the four trilinear renders stay within a FLIP bound of each other.
 #[test]
 fn store_baked_textures_render_like_the_procedural_texture() {
     let procedural = Scene::load(&test_scene("textured")).unwrap();
     let reference = render(&procedural);
-    let mut hash = procedural.clone();
-    with_store(
-        &mut hash,
-        StoreKind::CoherentHash,
-        256,
-        StoreFilter::Nearest,
-    );
-    let mut octree = procedural.clone();
-    with_store(&mut octree, StoreKind::Octree, 256, StoreFilter::Nearest);
-    let (hash_film, baked) = render_with_stores(&hash);
-    assert_eq!(baked, 1, "one (mesh, material) pair has a texture");
-    let (octree_film, _) = render_with_stores(&octree);
-    assert_eq!(
-        hash_film.color(),
-        octree_film.color(),
-        "hash and octree stores must read the same texels"
-    );
+    let baked = |kind, resolution, filter| {
+        let mut scene = procedural.clone();
+        with_store(&mut scene, kind, resolution, filter);
+        let (film, baked) = render_with_stores(&scene);
+        assert_eq!(baked, 1, "one (mesh, material) pair has a texture");
+        film
+    };
+    let hash_film = baked(StoreKind::CoherentHash, 256, StoreFilter::Nearest);
+    for kind in [StoreKind::Octree, StoreKind::PerfectHash] {
+        let film = baked(kind, 256, StoreFilter::Nearest);
+        assert_eq!(
+            hash_film.color(),
+            film.color(),
+            "hash and {kind:?} stores must read the same texels"
+        );
+    }
     let flip = flip_images(&to_rgb8(&reference), &to_rgb8(&hash_film)).unwrap();
     println!("store vs procedural: FLIP mean {:.4}", flip.mean);
     assert!(
@@ -367,13 +372,18 @@ fn store_baked_textures_render_like_the_procedural_texture() {
         "store render differs from the procedural one: {}",
         flip.mean
     );
-    for (kind, name) in [
-        (StoreKind::CoherentHash, "hash"),
-        (StoreKind::Octree, "octree"),
+    let tile = baked(StoreKind::TileTree, 256, StoreFilter::Nearest);
+    let flip = flip_images(&to_rgb8(&hash_film), &to_rgb8(&tile)).unwrap();
+    println!("tiletree vs hash, nearest: FLIP mean {:.4}", flip.mean);
+    assert!(flip.mean < 0.02, "tiletree nearest: {}", flip.mean);
+    let mut first: Option<Film> = None;
+    for kind in [
+        StoreKind::CoherentHash,
+        StoreKind::Octree,
+        StoreKind::PerfectHash,
+        StoreKind::TileTree,
     ] {
-        let mut tri = procedural.clone();
-        with_store(&mut tri, kind, 128, StoreFilter::Trilinear);
-        let (film, _) = render_with_stores(&tri);
+        let film = baked(kind, 128, StoreFilter::Trilinear);
         let magenta = film
             .albedo()
             .unwrap()
@@ -382,13 +392,79 @@ fn store_baked_textures_render_like_the_procedural_texture() {
             .count();
         assert_eq!(
             magenta, 0,
-            "{name}: {magenta} primary hits found no stored texel"
+            "{kind:?}: {magenta} primary hits found no stored texel"
         );
         let flip = flip_images(&to_rgb8(&reference), &to_rgb8(&film)).unwrap();
         println!(
-            "{name} trilinear R=128 vs procedural: FLIP mean {:.4}",
+            "{kind:?} trilinear R=128 vs procedural: FLIP mean {:.4}",
             flip.mean
         );
-        assert!(flip.mean < 0.02, "{name} trilinear: {}", flip.mean);
+        assert!(flip.mean < 0.02, "{kind:?} trilinear: {}", flip.mean);
+        match &first {
+            None => first = Some(film),
+            Some(hash) => {
+                let flip = flip_images(&to_rgb8(hash), &to_rgb8(&film)).unwrap();
+                println!("{kind:?} vs hash, trilinear: FLIP mean {:.4}", flip.mean);
+                assert!(
+                    flip.mean < 0.01,
+                    "{kind:?} vs hash trilinear: {}",
+                    flip.mean
+                );
+            }
+        }
+    }
+}
+
+/// A store grown after the renderer recorded it (new voxels far from the bunny make the hash
+/// reallocate its colours; a TileTree re-plans for a new patch): after a refresh the records
+/// hold the stores' new buffers and the render is the one before the insert, bit for bit.
+#[test]
+fn store_records_follow_inserts() {
+    let mut scene = Scene::load(&test_scene("textured")).unwrap();
+    scene.render.spp = 2;
+    for kind in [StoreKind::CoherentHash, StoreKind::TileTree] {
+        with_store(&mut scene, kind, 64, StoreFilter::Nearest);
+        with_gpu(|gpu| {
+            let mut t = PathTracer::new(gpu, &scene).unwrap();
+            let before = t.render(|_| {}).unwrap();
+            let stores = t.scene_stores_mut();
+            // The records borrow the stores: compare their bytes across the insert.
+            fn record_bytes(stores: &SceneStores) -> Vec<Vec<u8>> {
+                stores.records().iter().map(push_bytes).collect()
+            }
+            let old = record_bytes(stores);
+            let source = ColourSource::Marble { seed: 3 };
+            match stores.store_mut(0).unwrap() {
+                SceneStore::Hash(s) => {
+                    // A 4³ block of voxels in the grid's far corner, off the bunny.
+                    let mut keys: Vec<u64> = (0..64u32)
+                        .map(|i| morton_encode([60 + i % 4, 60 + i / 4 % 4, 60 + i / 16], 3))
+                        .collect();
+                    keys.sort_unstable();
+                    let keys = VoxelKeys::from_sorted(gpu, "far voxels", &keys).unwrap();
+                    let report = s.insert(&keys, &source).unwrap();
+                    assert!(!report.reallocations.is_empty(), "{report:?}");
+                }
+                SceneStore::TileTree(s) => {
+                    let patch = [
+                        Vec3::new(0.95, 0.95, 0.99),
+                        Vec3::new(0.99, 0.95, 0.99),
+                        Vec3::new(0.95, 0.99, 0.99),
+                    ];
+                    let report = s.insert_surface(&patch, &[[0, 1, 2]], &source).unwrap();
+                    assert!(!report.reallocations.is_empty(), "{report:?}");
+                }
+                _ => unreachable!(),
+            }
+            stores.refresh().unwrap();
+            assert_ne!(
+                old,
+                record_bytes(stores),
+                "{kind:?}: the insert moved the store's buffers"
+            );
+            t.restart().unwrap();
+            let t2 = t.render(|_| {}).unwrap();
+            assert_eq!(before.color(), t2.color(), "{kind:?}");
+        });
     }
 }

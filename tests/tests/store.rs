@@ -4,7 +4,7 @@
 
 use glam::{Vec3, Vec4};
 use lazysolid_compute::hash::perfect::{table_bytes, PerfectAccess};
-use lazysolid_compute::hash::{morton_decode, RobinHoodConfig};
+use lazysolid_compute::hash::{morton_decode, morton_encode, RobinHoodConfig};
 use lazysolid_compute::store::*;
 use lazysolid_compute::voxel::VoxelGrid;
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
@@ -255,10 +255,12 @@ fn perfect_store_matches_its_reference_in_both_layouts_and_grows_by_rebuilds() {
         }
         let e = PerfectStore::build_blocked(&kernels, r, &cells, &source, Some(5));
         assert!(e.is_err());
+        // The blocked layout grows by cells (tested with device colours below); cells it
+        // holds are refused.
         let mut blocked = blocked;
         assert!(matches!(
-            blocked.insert(&k2, &source),
-            Err(StoreError::Unsupported { .. })
+            blocked.insert(&cells, &source),
+            Err(StoreError::AlreadyStored { .. })
         ));
     });
 }
@@ -415,5 +417,251 @@ fn measure_store_sizes() {
                 }
             }
         }
+    });
+}
+
+/// Uploads the colours of `keys` as a kernel would leave them: a device buffer parallel to the
+/// keys.
+fn device_colours(
+    gpu: &lazysolid_compute::gpu::Gpu,
+    keys: &[u64],
+) -> lazysolid_compute::gpu::GpuBuffer<u32> {
+    let colours: Vec<u32> = keys
+        .iter()
+        .map(|&k| voxel_colour(morton_decode(k, 3)))
+        .collect();
+    lazysolid_compute::gpu::GpuBuffer::from_slice(gpu, "synthesized colours", &colours).unwrap()
+}
+
+/// Lookups of a store grown by an insert against the store built from the union: nearest and
+/// trilinear results identical at every stored voxel and at the test points.
+fn same_lookups<S: SparseStore, T: SparseStore>(grown: &S, union: &T, all: &[u64], pts: &[Vec3]) {
+    let r = grown.resolution();
+    let what = grown.name();
+    for (points, filters) in [
+        (centres(all, r), &[Filter::Nearest][..]),
+        (pts.to_vec(), &[Filter::Nearest, Filter::Trilinear][..]),
+    ] {
+        for &filter in filters {
+            let a = grown.lookup(&points, filter).unwrap();
+            let b = union.lookup(&points, filter).unwrap();
+            let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+            assert_eq!(differ, 0, "{what} {filter:?}: {differ} lookups differ");
+        }
+    }
+}
+
+/// Every volume store, built from half of the bunny's interpolation voxels with colours from a
+/// device buffer (a subset of the buffer's keys: looked up on the device), then grown by the
+/// other half (the buffer's own keys: copied), reads exactly like the store built from all
+/// voxels with a CPU function, and like the CPU reference. The blocked perfect hash grows by
+/// interpolation cells the same way.
+#[test]
+fn stores_grown_from_device_colours_equal_stores_built_from_the_union() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let m = unit_mesh("bunny00.off");
+        let r = 64;
+        let (all, first, second) = voxel_sets(&mut v, &m, r);
+        let f = voxel_colour;
+        let function = ColourSource::Fn(&f);
+        let all_keys = VoxelKeys::from_sorted(gpu, "all", &all).unwrap();
+        let all_colours = device_colours(gpu, &all);
+        let from_all = ColourSource::Buffer {
+            keys: &all_keys,
+            colours: &all_colours,
+        };
+        let k1 = VoxelKeys::from_sorted(gpu, "first", &first).unwrap();
+        let k2 = VoxelKeys::from_sorted(gpu, "second", &second).unwrap();
+        let c2 = device_colours(gpu, &second);
+        let own = ColourSource::Buffer {
+            keys: &k2,
+            colours: &c2,
+        };
+        // The CPU twin of the device lookup gives every voxel of the subset its colour.
+        let host_colours = all_colours.read().unwrap();
+        let by_key = colours_by_key_cpu(&first, &all, &host_colours, None);
+        assert!(first
+            .iter()
+            .zip(&by_key)
+            .all(|(&k, c)| *c == Some(f(morton_decode(k, 3)))));
+        let map = colour_map(&all);
+        let texel = |p| map.get(&p).copied();
+        let pts = points(&m, r, 21);
+
+        let mut hash = HashStore::build(&kernels, r, &k1, &from_all, Default::default()).unwrap();
+        hash.insert(&k2, &own).unwrap();
+        let union =
+            HashStore::build(&kernels, r, &all_keys, &function, Default::default()).unwrap();
+        same_lookups(&hash, &union, &all, &pts);
+        check_lookups(&hash, texel, &all, &pts);
+
+        let config = OctreeConfig::for_resolution(r).unwrap();
+        let (mut octree, _) =
+            OctreeStore::build(&kernels, r, &k1, &from_all, config.clone()).unwrap();
+        octree.insert(&k2, &own).unwrap();
+        let (union, _) = OctreeStore::build(&kernels, r, &all_keys, &function, config).unwrap();
+        same_lookups(&octree, &union, &all, &pts);
+        check_lookups(&octree, texel, &all, &pts);
+
+        let access = PerfectAccess::Unconstrained;
+        let mut perfect = PerfectStore::build(&kernels, r, &k1, &from_all, access).unwrap();
+        let report = perfect.insert(&k2, &own).unwrap();
+        assert!(report.reallocations[0].contains("rebuilt"), "{report:?}");
+        let union = PerfectStore::build(&kernels, r, &all_keys, &function, access).unwrap();
+        same_lookups(&perfect, &union, &all, &pts);
+        check_lookups(&perfect, texel, &all, &pts);
+
+        // Blocked layout: cells, whose corners are the interpolation voxels.
+        let grid = VoxelGrid::cells(r).unwrap();
+        let cells = v
+            .cells(&m.positions, &m.triangles, grid)
+            .unwrap()
+            .read()
+            .unwrap();
+        let (c1, c2): (Vec<u64>, Vec<u64>) = cells.iter().copied().partition(|&c| c % 4 != 1);
+        let c1 = VoxelKeys::from_sorted(gpu, "cells 1", &c1).unwrap();
+        let c2 = VoxelKeys::from_sorted(gpu, "cells 2", &c2).unwrap();
+        let every = VoxelKeys::from_sorted(gpu, "cells", &cells).unwrap();
+        let mut blocked =
+            PerfectStore::build_blocked(&kernels, r, &c1, &from_all, Some(2)).unwrap();
+        assert_eq!(blocked.insert_unit(), InsertUnit::Cells);
+        let report = blocked.insert(&c2, &from_all).unwrap();
+        assert!(
+            report.reallocations[0].contains("blocked perfect hash (b = 2) rebuilt"),
+            "{report:?}"
+        );
+        let union = PerfectStore::build_blocked(&kernels, r, &every, &function, Some(2)).unwrap();
+        let surface = &pts[..m.triangles.len().div_ceil(5)];
+        for filter in [Filter::Nearest, Filter::Trilinear] {
+            let a = blocked.lookup(surface, filter).unwrap();
+            assert_eq!(
+                a,
+                union.lookup(surface, filter).unwrap(),
+                "blocked {filter:?}"
+            );
+            for (p, got) in surface.iter().zip(&a) {
+                let want = match filter {
+                    Filter::Nearest => unpack_rgba8(nearest_cpu(texel, *p, r)),
+                    Filter::Trilinear => trilinear_cpu(texel, *p, r),
+                };
+                assert!(
+                    (*got - want).abs().max_element() <= TRILINEAR_TOLERANCE,
+                    "{p}"
+                );
+            }
+        }
+        // Cells stored already are refused, and the store is unchanged.
+        assert!(matches!(
+            blocked.insert(&c2, &from_all),
+            Err(StoreError::AlreadyStored { .. })
+        ));
+        assert_eq!(
+            blocked.lookup(surface, Filter::Trilinear).unwrap(),
+            union.lookup(surface, Filter::Trilinear).unwrap()
+        );
+        // A volume store refuses surface triangles and says what it takes instead.
+        let e = hash.insert_surface(&m.positions, &m.triangles, &function);
+        assert!(
+            matches!(e, Err(StoreError::Unsupported { .. })),
+            "{:?}",
+            e.err()
+        );
+        assert_eq!(hash.insert_unit(), InsertUnit::Voxels);
+    });
+}
+
+/// Device colour sources that lack a voxel, or hold fewer colours than keys, and keys outside
+/// the grid (checked on the device) are refused by every store with the store, the voxel and
+/// the limit named; a refused insert changes nothing.
+#[test]
+fn bad_keys_and_device_colours_are_named() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let r = 100;
+        let voxels: Vec<[u32; 3]> = (0..40).map(|i| [i, 2 * i % r, (7 * i) % r]).collect();
+        let mut keys: Vec<u64> = voxels.iter().map(|&p| morton_encode(p, 3)).collect();
+        keys.sort_unstable();
+        let k = VoxelKeys::from_sorted(gpu, "keys", &keys).unwrap();
+        // The source lacks the smallest key.
+        let partial = VoxelKeys::from_sorted(gpu, "partial", &keys[1..]).unwrap();
+        let partial_colours = device_colours(gpu, &keys[1..]);
+        let lacking = ColourSource::Buffer {
+            keys: &partial,
+            colours: &partial_colours,
+        };
+        let short =
+            lazysolid_compute::gpu::GpuBuffer::from_slice(gpu, "short", &[0u32; 3]).unwrap();
+        let too_few = ColourSource::Buffer {
+            keys: &k,
+            colours: &short,
+        };
+        // Keys outside the 100³ grid: x = 100 and y = 127 (inside the Morton cube of 128).
+        let mut outside = keys.clone();
+        outside.push(morton_encode([100, 0, 0], 3));
+        outside.push(morton_encode([3, 127, 0], 3));
+        outside.sort_unstable();
+        let first_out = key_outside_grid(&outside, r).expect("a key outside");
+        let out = VoxelKeys::from_sorted(gpu, "outside", &outside).unwrap();
+        let fine = ColourSource::Marble { seed: 1 };
+        let missing = |e: Result<(), StoreError>, what: &str| match e {
+            Err(StoreError::MissingColour { voxel, count, .. }) => {
+                assert_eq!((voxel, count), (morton_decode(keys[0], 3), 1), "{what}")
+            }
+            e => panic!("{what}: {e:?}"),
+        };
+        let few = |e: Result<(), StoreError>, what: &str| {
+            let e = e.unwrap_err().to_string();
+            assert!(e.contains("3 colours for 40 keys"), "{what}: {e}");
+        };
+        let grid = |e: Result<(), StoreError>, what: &str, limit: u32| match e {
+            Err(StoreError::KeyOutsideGrid {
+                key, resolution, ..
+            }) => assert_eq!((key, resolution), (first_out, limit), "{what}"),
+            e => panic!("{what}: {e:?}"),
+        };
+        let hash = |s: &ColourSource<'_>, k: &VoxelKeys| {
+            HashStore::build(&kernels, r, k, s, Default::default()).map(drop)
+        };
+        missing(hash(&lacking, &k), "hash");
+        few(hash(&too_few, &k), "hash");
+        grid(hash(&fine, &out), "hash", r);
+        let octree = |s: &ColourSource<'_>, k: &VoxelKeys| {
+            let config = OctreeConfig::for_resolution(r).unwrap();
+            OctreeStore::build(&kernels, r, k, s, config).map(drop)
+        };
+        missing(octree(&lacking, &k), "octree");
+        few(octree(&too_few, &k), "octree");
+        grid(octree(&fine, &out), "octree", r);
+        let perfect = |s: &ColourSource<'_>, k: &VoxelKeys| {
+            PerfectStore::build(&kernels, r, k, s, PerfectAccess::Constrained).map(drop)
+        };
+        missing(perfect(&lacking, &k), "perfect");
+        few(perfect(&too_few, &k), "perfect");
+        grid(perfect(&fine, &out), "perfect", r);
+        // The blocked layout checks cells against the shifted grid of R + 1.
+        let cells_out =
+            VoxelKeys::from_sorted(gpu, "cells", &[morton_encode([101, 0, 0], 3)]).unwrap();
+        let e = PerfectStore::build_blocked(&kernels, r, &cells_out, &fine, None).map(drop);
+        match e {
+            Err(StoreError::KeyOutsideGrid {
+                resolution, voxel, ..
+            }) => {
+                assert_eq!((resolution, voxel), (r + 1, [101, 0, 0]))
+            }
+            e => panic!("blocked: {e:?}"),
+        }
+        // An insert with a lacking source changes nothing.
+        let mut store = HashStore::build(&kernels, r, &partial, &fine, Default::default()).unwrap();
+        let first = VoxelKeys::from_sorted(gpu, "first", &keys[..1]).unwrap();
+        missing(store.insert(&first, &lacking).map(drop), "hash insert");
+        assert_eq!(store.len(), keys.len() as u64 - 1);
+        assert_eq!(
+            store
+                .lookup(&centres(&keys[..1], r), Filter::Nearest)
+                .unwrap(),
+            [Vec4::ZERO]
+        );
     });
 }

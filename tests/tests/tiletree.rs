@@ -106,7 +106,7 @@ fn gpu_fill_and_lookups_equal_the_cpu_references() {
             let plan = tree.plan();
             assert_eq!(report.texels, plan.stats.tile_texels);
             let map = tree.map_words().unwrap();
-            let want = tiletree::fill_cpu(plan, &source);
+            let want = tiletree::fill_cpu(plan, &source.to_host().unwrap());
             let diff = map.iter().zip(&want).filter(|(a, b)| a != b).count();
             assert_eq!(diff, 0, "{name} R={r}: {diff} tile-map words differ");
             assert!(map.iter().all(|&w| w == 0 || w >> 24 == 255));
@@ -506,4 +506,130 @@ fn folds_split_leaves_until_each_face_projects_injectively() {
     };
     let kept = Plan::new(&positions, &triangles, 64, coarse).unwrap();
     assert!(kept.stats.folded_leaves > 0);
+}
+
+/// New surface (the bunny's ears, as the caps of a cut would be) inserted into the TileTree of
+/// the rest gets tiles: the re-planned tree equals the tree of the whole surface — same plan,
+/// same tile map word for word, the CPU reference's map — with the marble, and with colours
+/// from a device buffer (the surface voxels of the whole mesh, looked up on the device); the
+/// buffer's tree equals its CPU reference too. A voxel insert is refused, and a bad triangle
+/// leaves the tree as it was.
+#[test]
+fn inserted_surface_gets_tiles_like_the_tree_of_the_whole_surface() {
+    with_gpu(|gpu| {
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let m = unit_mesh("bunny00.off");
+        let r = 64;
+        let high = |t: &&[u32; 3]| t.iter().map(|&i| m.positions[i as usize].y).sum::<f32>() > 2.1;
+        let ears: Vec<[u32; 3]> = m.triangles.iter().filter(high).copied().collect();
+        let rest: Vec<[u32; 3]> = m.triangles.iter().filter(|t| !high(t)).copied().collect();
+        assert!(
+            ears.len() > 100 && rest.len() > 1000,
+            "{} {}",
+            ears.len(),
+            rest.len()
+        );
+        let whole: Vec<[u32; 3]> = rest.iter().chain(&ears).copied().collect();
+        let mut v = lazysolid_compute::voxel::Voxelizer::new(gpu).unwrap();
+        let keys = v.surface(&m.positions, &whole, r).unwrap();
+        let host_keys = keys.read().unwrap();
+        let colours: Vec<u32> = host_keys
+            .iter()
+            .map(|&k| marble_rgba8(lazysolid_compute::hash::morton_decode(k, 3), r, 5))
+            .collect();
+        let colours =
+            lazysolid_compute::gpu::GpuBuffer::from_slice(gpu, "colours", &colours).unwrap();
+        let buffer = ColourSource::Buffer {
+            keys: &keys,
+            colours: &colours,
+        };
+        let (pts, nrm) = surface_points(&m, 5, 1, 31);
+        for (name, source) in [
+            ("marble", ColourSource::Marble { seed: 5 }),
+            ("buffer", buffer),
+        ] {
+            let (mut tree, _) = build_with(&kernels, &m.positions, &rest, r, &source);
+            let before = tree.stats().clone();
+            let report = tree.insert_surface(&m.positions, &ears, &source).unwrap();
+            assert!(
+                report.reallocations[0].contains("re-planned"),
+                "{name}: {report:?}"
+            );
+            let (union, _) = build_with(&kernels, &m.positions, &whole, r, &source);
+            assert_eq!(tree.stats(), union.stats(), "{name}");
+            assert!(tree.stats().tiles > before.tiles, "{name}: new tiles");
+            assert_eq!(report.texels, union.stats().tile_texels);
+            let map = tree.map_words().unwrap();
+            assert!(
+                map == union.map_words().unwrap(),
+                "{name}: tile maps differ"
+            );
+            let want = tiletree::fill_cpu(union.plan(), &source.to_host().unwrap());
+            let diff = map.iter().zip(&want).filter(|(a, b)| a != b).count();
+            assert_eq!(
+                diff, 0,
+                "{name}: {diff} words differ from the CPU reference"
+            );
+            for filter in [Filter::Nearest, Filter::Trilinear] {
+                let a = tree.lookup_with_normals(&pts, &nrm, filter).unwrap();
+                assert_eq!(a, union.lookup_with_normals(&pts, &nrm, filter).unwrap());
+                // A buffer source colours only texels that meet the surface: texels that
+                // neither meet it nor are reached by the dilation stay 0 (undefined), where
+                // the marble colours them from the voxel at the middle of the slab.
+                let holes = a.iter().filter(|c| c.w < 0.99).count();
+                println!(
+                    "{name} {filter:?}: {holes} of {} surface points read undefined texels",
+                    a.len()
+                );
+                let allowed = if name == "buffer" { a.len() / 1000 } else { 0 };
+                assert!(
+                    holes <= allowed,
+                    "{name}: {holes} surface points are not stored"
+                );
+            }
+        }
+        // Refusals.
+        let source = ColourSource::Marble { seed: 5 };
+        let (mut tree, _) = build_with(&kernels, &m.positions, &rest, r, &source);
+        assert_eq!(tree.insert_unit(), InsertUnit::Surface);
+        let e = tree.insert(&keys, &source).unwrap_err().to_string();
+        assert!(e.contains("insert_surface"), "{e}");
+        let map = tree.map_words().unwrap();
+        let e = tree
+            .insert_surface(&m.positions[..3], &[[0, 1, 3]], &source)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("indexes past the 3 inserted vertices"), "{e}");
+        let e = tree
+            .insert_surface(
+                &[Vec3::splat(0.5), Vec3::splat(1.5), Vec3::ZERO],
+                &[[0, 1, 2]],
+                &source,
+            )
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("outside the unit cube"), "{e}");
+        assert!(
+            tree.map_words().unwrap() == map,
+            "refused inserts change nothing"
+        );
+    });
+}
+
+fn build_with(
+    kernels: &std::sync::Arc<StoreKernels>,
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    r: u32,
+    source: &ColourSource<'_>,
+) -> (TileTree, StoreReport) {
+    TileTree::build(
+        kernels,
+        positions,
+        triangles,
+        r,
+        source,
+        TileTreeConfig::default(),
+    )
+    .unwrap()
 }

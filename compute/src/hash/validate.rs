@@ -4,7 +4,7 @@
 use super::error::HashError;
 use super::kernels::HashKernels;
 use super::keys::Universe;
-use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Recorder};
 use crate::kernels::hash;
 
 /// What the check found: the largest key and the duplicates.
@@ -61,6 +61,49 @@ crate::push_block! {
         counters: DeviceAddress<'a>,
         key_count: u64,
         n: u32,
+        resolution: u32,
+    }
+}
+
+/// The counters `check_keys.comp` accumulates: duplicates, the smallest duplicate, keys
+/// outside, the largest and the smallest of them.
+pub(crate) struct CheckCounters(GpuBuffer<u64>);
+
+impl CheckCounters {
+    pub(crate) fn new(gpu: &Gpu) -> GpuResult<CheckCounters> {
+        Ok(CheckCounters(GpuBuffer::from_slice(
+            gpu,
+            "key check counters",
+            &[0, u64::MAX, 0, 0, u64::MAX],
+        )?))
+    }
+
+    /// Records the check of `sorted[..n]` against `key_count` and, when `resolution` > 0,
+    /// against the `resolution`³ grid of Morton keys.
+    pub(crate) fn record(
+        &self,
+        rec: &mut Recorder<'_>,
+        gpu: &Gpu,
+        sorted: &GpuBuffer<u64>,
+        n: usize,
+        key_count: u64,
+        resolution: u32,
+    ) -> GpuResult<()> {
+        let push = CheckPush {
+            sorted: sorted.address(),
+            counters: self.0.address(),
+            key_count,
+            n: n as u32,
+            resolution,
+        };
+        let k = gpu.kernel(&hash::CHECK_KEYS)?;
+        rec.dispatch(&k, k.groups_for(n as u64), &[], &push)
+    }
+
+    /// [duplicates, smallest duplicate, outside, largest outside, smallest outside].
+    pub(crate) fn read(&self) -> GpuResult<[u64; 5]> {
+        let c = self.0.read()?;
+        Ok([c[0], c[1], c[2], c[3], c[4]])
     }
 }
 
@@ -80,25 +123,16 @@ pub(crate) fn validate_keys_gpu(
             first_duplicate: None,
         });
     }
-    let check_keys = kernels.kernel(&hash::CHECK_KEYS)?;
     let copy = GpuBuffer::<u64>::new(gpu, "key check copy", n)?;
-    let counters = GpuBuffer::<u64>::from_slice(gpu, "key check counters", &[0, u64::MAX, 0, 0])?;
+    let counters = CheckCounters::new(gpu)?;
     let mut sort = kernels.sort.lock().unwrap();
     gpu.submit(|rec| {
         rec.copy(keys, 0, &copy, 0, n)?;
         sort.record_u64(rec, &copy, None, n, universe.key_bits())?;
-        let push = CheckPush {
-            sorted: copy.address(),
-            counters: counters.address(),
-            key_count: universe.key_count(),
-            n: n as u32,
-        };
-        rec.dispatch(&check_keys, check_keys.groups_for(n as u64), &[], &push)
+        counters.record(rec, gpu, &copy, n, universe.key_count(), 0)
     })?;
     drop(sort);
-    let [duplicates, first, outside, max_outside] = counters.read()?[..] else {
-        unreachable!()
-    };
+    let [duplicates, first, outside, max_outside, _] = counters.read()?;
     // Inside the universe the sort was complete, so the largest key is the last one.
     let max_key = if outside > 0 {
         max_outside

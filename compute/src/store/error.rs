@@ -28,6 +28,16 @@ pub enum StoreError {
         /// How many were.
         count: u64,
     },
+    /// A device colour source lacks a voxel the store needs.
+    #[error("{store} store: the colour source has no colour for voxel {voxel:?} ({count} voxel(s) the store needs are missing from its keys)")]
+    MissingColour {
+        /// The store.
+        store: &'static str,
+        /// The smallest missing voxel's position.
+        voxel: [u32; 3],
+        /// How many are missing.
+        count: u64,
+    },
     /// A colour uses an alpha value the store reserves for its own tags.
     #[error("{store} store: voxel {voxel:?} has colour {rgba:#010x} whose alpha {alpha} is below {min_alpha}, which the store reserves for its tags")]
     ReservedAlpha {

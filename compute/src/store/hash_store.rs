@@ -4,10 +4,11 @@
 //! reserves the all-ones payload, so the colour itself does not fit; the index does.)
 //! Nearest = one query; trilinear = 8 queries over the interpolation voxels.
 
-use super::colours::{check_keys, fill_colours, ColourSource};
+use super::colours::{fill_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
-use super::{Filter, SparseStore, StoreReport};
+use super::keys::check_keys;
+use super::{Filter, InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::{
     fastmod_multiplier, morton_decode, HashError, KeyLayout, RobinHoodConfig, RobinHoodTable,
@@ -81,11 +82,19 @@ impl HashStore {
             });
         }
         let universe = universe(resolution)?;
-        check_keys(NAME, &keys.read()?, resolution)?;
+        check_keys(kernels, NAME, keys, resolution)?;
         let gpu = kernels.gpu.clone();
         let n = keys.len;
         let mut buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
-        fill_colours(&gpu, keys, colours, resolution, &mut buffer, 0)?;
+        fill_colours(
+            &gpu,
+            NAME,
+            keys,
+            colours,
+            resolution,
+            (&mut buffer, 0),
+            None,
+        )?;
         let indices: Vec<u32> = (0..n as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         let table =
@@ -133,12 +142,16 @@ impl SparseStore for HashStore {
         self.len
     }
 
+    fn insert_unit(&self) -> InsertUnit {
+        InsertUnit::Voxels
+    }
+
     fn insert(
         &mut self,
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<StoreReport, StoreError> {
-        check_keys(NAME, &keys.read()?, self.resolution)?;
+        check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let gpu = self.kernels.gpu.clone();
         let n = keys.len;
         let old = self.len as usize;
@@ -162,7 +175,15 @@ impl SparseStore for HashStore {
             Some(bigger) => bigger,
             None => &mut self.colours,
         };
-        fill_colours(&gpu, keys, colours, self.resolution, target, old)?;
+        fill_colours(
+            &gpu,
+            NAME,
+            keys,
+            colours,
+            self.resolution,
+            (target, old),
+            None,
+        )?;
         let indices: Vec<u32> = (old as u32..(old + n) as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         match self.table.insert(&keys.keys, &payloads, n) {

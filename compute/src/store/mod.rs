@@ -19,6 +19,7 @@ pub(crate) mod colours;
 mod error;
 pub(crate) mod hash_store;
 mod kernels;
+mod keys;
 mod lookup_cpu;
 mod marble;
 pub(crate) mod octree;
@@ -26,10 +27,11 @@ mod octree_cpu;
 pub(crate) mod perfect_store;
 pub mod tiletree;
 
-pub use colours::ColourSource;
+pub use colours::{colours_by_key_cpu, ColourSource, HostColours};
 pub use error::StoreError;
 pub use hash_store::{HashStore, HashStoreParams};
 pub use kernels::{StoreKernels, TimedLookup};
+pub use keys::key_outside_grid;
 pub use lookup_cpu::{
     nearest_cpu, nearest_voxel, trilinear_cpu, trilinear_footprint, unpack_rgba8,
 };
@@ -66,6 +68,21 @@ pub struct StoreReport {
     pub reallocations: Vec<String>,
 }
 
+/// What a store's inserts add. Volume stores are sets of voxels (or of interpolation cells)
+/// and grow by keys; a surface store's texels follow a mesh, so it grows by triangles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InsertUnit {
+    /// Voxel keys of the R³ grid ([`SparseStore::insert`]).
+    Voxels,
+    /// Interpolation cells (keys of the grid shifted by half a voxel, as
+    /// [`crate::voxel::VoxelGrid::cells`]), for the blocked perfect hash
+    /// ([`SparseStore::insert`]).
+    Cells,
+    /// Surface triangles in unit-cube coordinates ([`SparseStore::insert_surface`]): the
+    /// TileTree.
+    Surface,
+}
+
 /// A sparse RGBA8 texture over the voxels of an R³ grid.
 pub trait SparseStore {
     /// The record a kernel receives (device addresses and sizes), laid out as the GLSL struct
@@ -89,13 +106,35 @@ pub trait SparseStore {
         self.len() == 0
     }
 
-    /// Adds the voxels `keys` (none of which may be stored yet) with their colours: lazy
-    /// synthesis adds texels as cuts appear.
+    /// What [`SparseStore::insert`] or [`SparseStore::insert_surface`] takes.
+    fn insert_unit(&self) -> InsertUnit;
+
+    /// Adds the voxels (or cells, see [`SparseStore::insert_unit`]) `keys`, none of which may
+    /// be stored yet, with their colours: lazy synthesis adds texels as cuts appear. A store
+    /// that outgrows its buffers reallocates or rebuilds (reported). Surface stores refuse
+    /// ([`StoreError::Unsupported`]): use [`SparseStore::insert_surface`].
     fn insert(
         &mut self,
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<StoreReport, StoreError>;
+
+    /// Adds surface triangles (unit-cube coordinates, outward-facing, indices into
+    /// `positions`), e.g. the caps of a cut, with the colours of their voxels. Volume stores
+    /// refuse ([`StoreError::Unsupported`]): insert the triangles' surface or interpolation
+    /// voxels with [`SparseStore::insert`].
+    fn insert_surface(
+        &mut self,
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        colours: &ColourSource<'_>,
+    ) -> Result<StoreReport, StoreError> {
+        let _ = (positions, triangles, colours);
+        Err(StoreError::Unsupported {
+            store: self.name(),
+            what: "insert of surface triangles (a volume store grows by voxel keys: insert the triangles' voxels)",
+        })
+    }
 
     /// Exact GPU bytes the store keeps allocated.
     fn bytes(&self) -> u64;

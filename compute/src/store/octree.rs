@@ -6,14 +6,15 @@
 //! searches; a full pool is reallocated at double size (reported) and, pointers being
 //! absolute addresses, copied as is. Layout: `glsl/include/store/octree.glsl`.
 
-use super::colours::{check_keys, fill_colours, ColourSource};
+use super::colours::{fill_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
-use super::{Filter, SparseStore, StoreReport};
+use super::keys::check_keys;
+use super::{Filter, InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
 use crate::hash::morton_decode;
 use crate::kernels::store;
-use crate::prims::{RadixSort, Scan};
+use crate::prims::{RadixSort, ReduceOp, Scan};
 use crate::voxel::{VoxelGrid, VoxelKeys};
 use glam::{Vec3, Vec4};
 use std::sync::Arc;
@@ -286,10 +287,25 @@ impl OctreeStore {
     ) -> Result<GpuBuffer<u32>, StoreError> {
         let gpu = &self.kernels.gpu;
         let mut buffer = GpuBuffer::<u32>::new(gpu, "octree new colours", keys.len)?;
-        fill_colours(gpu, keys, source, self.resolution, &mut buffer, 0)?;
-        if let ColourSource::Fn(_) = source {
-            let colours = buffer.read_range(0, keys.len)?;
-            if let Some(i) = colours.iter().position(|c| c >> 24 < 2) {
+        fill_colours(
+            gpu,
+            NAME,
+            keys,
+            source,
+            self.resolution,
+            (&mut buffer, 0),
+            None,
+        )?;
+        if !matches!(source, ColourSource::Marble { .. }) && keys.len > 0 {
+            // Alpha is the high byte, so the smallest word has the smallest alpha: one
+            // reduction on the device, and only a refused colour is read back to be named.
+            let least = GpuBuffer::<u32>::new(gpu, "octree least colour", 1)?;
+            let mut reduce = self.kernels.hash.reduce.lock().unwrap();
+            gpu.submit(|rec| reduce.record(rec, &buffer, keys.len, ReduceOp::Min, &least))?;
+            drop(reduce);
+            if least.read()?[0] >> 24 < 2 {
+                let colours = buffer.read_range(0, keys.len)?;
+                let i = colours.iter().position(|c| c >> 24 < 2).unwrap_or(0);
                 let key = keys.keys.read_range(i, 1)?[0];
                 return Err(StoreError::ReservedAlpha {
                     store: NAME,
@@ -493,7 +509,7 @@ impl OctreeStore {
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<(), StoreError> {
-        check_keys(NAME, &keys.read()?, self.resolution)?;
+        check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let buffer = self.colours_for(keys, colours)?;
         let [_, absent] = self.leaves(keys, &buffer, 3)?;
         if absent > 0 {
@@ -524,12 +540,16 @@ impl SparseStore for OctreeStore {
         self.len
     }
 
+    fn insert_unit(&self) -> InsertUnit {
+        InsertUnit::Voxels
+    }
+
     fn insert(
         &mut self,
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<StoreReport, StoreError> {
-        check_keys(NAME, &keys.read()?, self.resolution)?;
+        check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let buffer = self.colours_for(keys, colours)?;
         let [present, _] = self.leaves(keys, &buffer, 1)?;
         if present > 0 {

@@ -9,12 +9,15 @@
 //!   texels with duplicated borders, so one offset read and one block serve a trilinear lookup
 //!   (built from the interpolation *cells*).
 //!
-//! The hash is static: inserting further voxels rebuilds it over all of them (reported).
+//! The hash is static: inserting further voxels (or cells) rebuilds it over all of them,
+//! reported in the [`StoreReport`]. The stored keys (and, for the blocked layout, the blocks)
+//! are kept on the host for that rebuild; device memory stays the hash's.
 
-use super::colours::{check_keys, fill_colours, ColourSource};
+use super::colours::{fill_colours, ColourSource, HostColours};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
-use super::{Filter, SparseStore, StoreReport};
+use super::keys::check_keys;
+use super::{Filter, InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::perfect::{
     BlockedPerfectHash, PerfectAccess, PerfectConfig, PerfectConstruction, PerfectHashGpu,
@@ -24,6 +27,7 @@ use crate::hash::{morton_decode, HashError, KeyLayout, Universe};
 use crate::kernels::store;
 use crate::voxel::VoxelKeys;
 use glam::Vec3;
+use std::collections::HashMap;
 use std::sync::Arc;
 
 crate::push_block! {
@@ -63,9 +67,12 @@ pub struct PerfectStore {
     construction: PerfectConstruction,
     block: u32,
     resolution: u32,
-    /// Host copies of the keys and colours (texel layout), for rebuilds on insert.
+    /// Host copies of the keys and colours (texel layout) or of the cells (blocked layout), for
+    /// rebuilds on insert.
     keys: Vec<u64>,
     colours: Vec<u32>,
+    /// The blocked layout's host table (its blocks hold the texels a rebuild keeps).
+    blocked: Option<BlockedPerfectHash>,
     len: u64,
 }
 
@@ -130,11 +137,19 @@ impl PerfectStore {
         access: PerfectAccess,
         construction: PerfectConstruction,
     ) -> Result<PerfectStore, StoreError> {
+        check_keys(kernels, NAME, keys, resolution)?;
         let host_keys = keys.read()?;
-        check_keys(NAME, &host_keys, resolution)?;
         let gpu = kernels.gpu.clone();
         let mut buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(&gpu, keys, colours, resolution, &mut buffer, 0)?;
+        fill_colours(
+            &gpu,
+            NAME,
+            keys,
+            colours,
+            resolution,
+            (&mut buffer, 0),
+            None,
+        )?;
         let host_colours = buffer.read_range(0, keys.len)?;
         let mut store = PerfectStore {
             kernels: kernels.clone(),
@@ -145,6 +160,7 @@ impl PerfectStore {
             resolution,
             keys: host_keys,
             colours: host_colours,
+            blocked: None,
             len: keys.len as u64,
         };
         store.len = store.keys.len() as u64;
@@ -192,14 +208,10 @@ impl PerfectStore {
         block: Option<u32>,
     ) -> Result<PerfectStore, StoreError> {
         universe(resolution)?;
+        check_keys(kernels, NAME, cells, resolution + 1)?;
         let host_cells = cells.read()?;
-        check_keys(NAME, &host_cells, resolution + 1)?;
-        let blocked = BlockedPerfectHash::build(
-            &host_cells,
-            resolution,
-            |v| colours.colour(v, resolution),
-            block,
-        )?;
+        let host = colours.to_host()?;
+        let blocked = blocked_table(&host_cells, resolution, &HashMap::new(), &host, block)?;
         let table = blocked.upload(&kernels.perfect)?;
         Ok(PerfectStore {
             kernels: kernels.clone(),
@@ -208,9 +220,10 @@ impl PerfectStore {
             construction: PerfectConstruction::Cpu,
             block: blocked.layout.block,
             resolution,
-            keys: Vec::new(),
+            keys: host_cells,
             colours: Vec::new(),
             len: blocked.table.sizes.slots() as u64 * blocked.layout.block_words() as u64,
+            blocked: Some(blocked),
         })
     }
 
@@ -229,6 +242,124 @@ impl PerfectStore {
     pub fn block(&self) -> Option<u32> {
         (self.block != 0).then_some(self.block)
     }
+
+    /// The blocked layout's insert: a rebuild over the union of the cells with the same b.
+    fn insert_cells(
+        &mut self,
+        cells: &VoxelKeys,
+        colours: &ColourSource<'_>,
+    ) -> Result<StoreReport, StoreError> {
+        check_keys(&self.kernels, NAME, cells, self.resolution + 1)?;
+        let new_cells = cells.read()?;
+        let old = self
+            .blocked
+            .as_ref()
+            .expect("a blocked store keeps its table");
+        let mut union: Vec<u64> = self.keys.iter().chain(&new_cells).copied().collect();
+        union.sort_unstable();
+        if let Some(w) = union.windows(2).find(|w| w[0] == w[1]) {
+            let count = union.windows(2).filter(|w| w[0] == w[1]).count() as u64;
+            return Err(StoreError::AlreadyStored {
+                store: NAME,
+                voxel: morton_decode(w[0], 3),
+                count,
+            });
+        }
+        let kept = corner_colours(old, &self.keys);
+        let host = colours.to_host()?;
+        let blocked = blocked_table(&union, self.resolution, &kept, &host, Some(self.block))?;
+        let table = blocked.upload(&self.kernels.perfect)?;
+        let (before, after) = (*self.table.sizes(), *table.sizes());
+        let message = format!(
+            "blocked perfect hash (b = {}) rebuilt for {} cells: |H| {} -> {}, |Φ| {} -> {} ({} bytes)",
+            self.block,
+            union.len(),
+            before.h,
+            after.h,
+            before.phi,
+            after.phi,
+            table.bytes()
+        );
+        self.len = blocked.table.sizes.slots() as u64 * blocked.layout.block_words() as u64;
+        self.table = table;
+        self.keys = union;
+        self.blocked = Some(blocked);
+        Ok(StoreReport {
+            texels: self.len,
+            added: new_cells.len() as u64,
+            reallocations: vec![message],
+        })
+    }
+}
+
+/// The voxels a trilinear lookup in interpolation cell `cell` reads: its 8 corners, clamped
+/// onto the grid.
+fn cell_corners(cell: u64, resolution: u32) -> impl Iterator<Item = [u32; 3]> {
+    let j = morton_decode(cell, 3);
+    (0..8u32).map(move |o| {
+        std::array::from_fn(|a| {
+            (j[a] as i64 - 1 + ((o >> a) & 1) as i64).clamp(0, resolution as i64 - 1) as u32
+        })
+    })
+}
+
+/// The colours a blocked table holds at the corners of its `cells`.
+fn corner_colours(blocked: &BlockedPerfectHash, cells: &[u64]) -> HashMap<[u32; 3], u32> {
+    let layout = blocked.layout;
+    let (b, side, bw) = (layout.block, layout.side(), layout.block_words() as usize);
+    let mut out = HashMap::new();
+    for &cell in cells {
+        let j = morton_decode(cell, 3);
+        let block = j.map(|c| c / b);
+        let slot = blocked.table.slot(block) as usize;
+        for (o, voxel) in cell_corners(cell, layout.resolution).enumerate() {
+            let t: [u32; 3] = std::array::from_fn(|a| j[a] - block[a] * b + ((o >> a) & 1) as u32);
+            let word = slot * bw + (t[0] + side * (t[1] + side * t[2])) as usize;
+            out.insert(voxel, blocked.table.data[word]);
+        }
+    }
+    out
+}
+
+/// A blocked table of `cells` whose texels take `kept` colours first, then `source`'s (0 for
+/// block texels no cell reads and the source lacks).
+///
+/// # Errors
+/// A corner of a cell that neither has ([`StoreError::MissingColour`]), the hash's errors.
+fn blocked_table(
+    cells: &[u64],
+    resolution: u32,
+    kept: &HashMap<[u32; 3], u32>,
+    source: &HostColours<'_>,
+    block: Option<u32>,
+) -> Result<BlockedPerfectHash, StoreError> {
+    let colour = |v: [u32; 3]| {
+        kept.get(&v)
+            .copied()
+            .or_else(|| source.colour(v, resolution))
+    };
+    if let HostColours::Map(_) = source {
+        let mut missing: Vec<[u32; 3]> = cells
+            .iter()
+            .flat_map(|&c| cell_corners(c, resolution))
+            .filter(|&v| colour(v).is_none())
+            .collect();
+        missing.sort_unstable_by_key(|&v| crate::hash::morton_encode(v, 3));
+        missing.dedup();
+        if let Some(&voxel) = missing.first() {
+            return Err(StoreError::MissingColour {
+                store: NAME,
+                voxel,
+                count: missing.len() as u64,
+            });
+        }
+    }
+    Ok(BlockedPerfectHash::build(
+        cells,
+        resolution,
+        |v| colour(v).unwrap_or(0),
+        block,
+    )?)
 }
 
 impl SparseStore for PerfectStore {
@@ -248,24 +379,38 @@ impl SparseStore for PerfectStore {
         self.len
     }
 
+    fn insert_unit(&self) -> InsertUnit {
+        match self.block {
+            0 => InsertUnit::Voxels,
+            _ => InsertUnit::Cells,
+        }
+    }
+
     /// Rebuilds the hash over the stored and the new voxels (a perfect hash is static); the
-    /// rebuild is reported. The blocked layout refuses: rebuild it from all cells.
+    /// rebuild is reported. The blocked layout takes new interpolation *cells* (keys of the
+    /// shifted grid, as it was built from) and rebuilds with the same b: texels it held keep
+    /// their colours, the others come from `colours`.
     fn insert(
         &mut self,
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<StoreReport, StoreError> {
         if self.block != 0 {
-            return Err(StoreError::Unsupported {
-                store: NAME,
-                what: "insert into the blocked layout (rebuild it from all interpolation cells)",
-            });
+            return self.insert_cells(keys, colours);
         }
+        check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let new_keys = keys.read()?;
-        check_keys(NAME, &new_keys, self.resolution)?;
         let gpu = self.kernels.gpu.clone();
         let mut fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(&gpu, keys, colours, self.resolution, &mut fresh, 0)?;
+        fill_colours(
+            &gpu,
+            NAME,
+            keys,
+            colours,
+            self.resolution,
+            (&mut fresh, 0),
+            None,
+        )?;
         let new_colours = fresh.read_range(0, keys.len)?;
         // Merge by key so the union stays sorted, as the voxelizer's sets are.
         let mut pairs: Vec<(u64, u32)> = self

@@ -176,6 +176,17 @@ impl PathTracer {
         })
     }
 
+    /// Starts the picture over (film and sample count cleared), e.g. after texels were
+    /// inserted into the scene's stores and the records refreshed.
+    ///
+    /// # Errors
+    /// Device failures.
+    pub fn restart(&mut self) -> Result<(), RenderError> {
+        self.film.write(0, &vec![[0.0f32; 4]; self.film.len()])?;
+        self.samples = 0;
+        Ok(())
+    }
+
     /// Renders the remaining samples of the scene's `spp`, calling `on_pass` after each.
     ///
     /// # Errors
@@ -234,6 +245,12 @@ impl PathTracer {
     /// The sparse stores baked for the scene's textures.
     pub fn stores(&self) -> &[BakedStoreInfo] {
         self.stores.info()
+    }
+
+    /// The baked stores themselves, to insert texels (new surface) into; refresh them
+    /// ([`SceneStores::refresh`]) before the next pass.
+    pub fn scene_stores_mut(&mut self) -> &mut SceneStores {
+        &mut self.stores
     }
 
     /// Facts about the prepared scene.

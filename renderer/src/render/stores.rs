@@ -1,46 +1,99 @@
 //! Solid textures baked into sparse stores: for every (mesh, material) pair whose texture asks
 //! for a store, the mesh's surface voxels (or interpolation voxels, for trilinear reads) are
-//! filled with the texture's colour at each voxel centre, and the path tracer reads the store
-//! at the hit point instead of evaluating the pattern. One kernel renders every store variant of
-//! a scene, which is how the structures are compared in pictures.
+//! filled with the texture's colour at each voxel centre — or, for the TileTree, the texels of
+//! tiles built from the mesh itself — and the path tracer reads the store at the hit point
+//! instead of evaluating the pattern. One kernel renders every store variant of a scene, which
+//! is how the structures are compared in pictures; the records it reads are refreshed after
+//! inserts.
 
 use super::error::RenderError;
 use crate::output::encode8;
 use crate::scene::{Scene, StoreFilter, StoreKind};
 use crate::shader_constants::{
     STORE_FILTER_NEAREST, STORE_FILTER_TRILINEAR, STORE_KIND_HASH, STORE_KIND_OCTREE,
+    STORE_KIND_PERFECT, STORE_KIND_TILETREE,
 };
 use crate::shading::reference::solid_texture_albedo;
 use crate::shading::GpuMaterial;
 use glam::Vec3;
 use lazysolid_compute::gpu::{BufferArg, DeviceRecords, Gpu, GpuBuffer};
+use lazysolid_compute::hash::perfect::PerfectAccess;
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{
-    ColourSource, HashStore, HashStoreParams, OctreeConfig, OctreeParams, OctreeStore, SparseStore,
-    StoreKernels,
+    ColourSource, HashStore, HashStoreParams, OctreeConfig, OctreeParams, OctreeStore,
+    PerfectStore, PerfectStoreParams, SparseStore, StoreKernels, TileTree, TileTreeConfig,
+    TileTreeParams,
 };
 use lazysolid_compute::voxel::Voxelizer;
 use std::collections::HashMap;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 lazysolid_compute::push_block! {
     /// One store as the kernel sees it (`StoreRecord` in `glsl/render/path_trace.comp`),
-    /// borrowing the store.
+    /// borrowing the store: the params of its kind, the others default (null addresses).
     #[derive(Clone, Copy, Debug, Default)]
     pub struct GpuStoreRecord<'a> {
         /// `STORE_KIND_*`.
         pub kind: u32,
         /// `STORE_FILTER_*`.
         pub filter: u32,
-        /// The hash store's params (default for an octree).
+        /// The coherent-hash store's params.
         pub hash: HashStoreParams<'a>,
-        /// The octree's params (default for a hash).
+        /// The octree's params.
         pub octree: OctreeParams<'a>,
+        /// The perfect-hash store's params.
+        pub perfect: PerfectStoreParams<'a>,
+        /// The TileTree's params.
+        pub tiletree: TileTreeParams<'a>,
     }
 }
 
 /// Marks an instance whose albedo is not read from a store.
 pub const NO_STORE: u32 = u32::MAX;
+
+/// A store a scene baked, of any of the four structures: what callers insert into before
+/// [`SceneStores::refresh`].
+pub enum SceneStore {
+    /// The coherent hash.
+    Hash(HashStore),
+    /// The N³ tree.
+    Octree(OctreeStore),
+    /// The perfect hash.
+    Perfect(PerfectStore),
+    /// The TileTree.
+    TileTree(TileTree),
+}
+
+impl SceneStore {
+    /// The record of the store's current buffers, read with `filter`.
+    pub fn record(&self, filter: StoreFilter) -> GpuStoreRecord<'_> {
+        let mut r = GpuStoreRecord {
+            filter: match filter {
+                StoreFilter::Nearest => STORE_FILTER_NEAREST,
+                StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
+            },
+            ..Default::default()
+        };
+        match self {
+            SceneStore::Hash(s) => (r.kind, r.hash) = (STORE_KIND_HASH, s.params()),
+            SceneStore::Octree(s) => (r.kind, r.octree) = (STORE_KIND_OCTREE, s.params()),
+            SceneStore::Perfect(s) => (r.kind, r.perfect) = (STORE_KIND_PERFECT, s.params()),
+            SceneStore::TileTree(s) => (r.kind, r.tiletree) = (STORE_KIND_TILETREE, s.params()),
+        }
+        r
+    }
+
+    /// Texels stored and exact GPU bytes.
+    pub fn size(&self) -> (u64, u64) {
+        match self {
+            SceneStore::Hash(s) => (s.len(), s.bytes()),
+            SceneStore::Octree(s) => (s.len(), s.bytes()),
+            SceneStore::Perfect(s) => (s.len(), s.bytes()),
+            SceneStore::TileTree(s) => (s.len(), s.bytes()),
+        }
+    }
+}
 
 /// Facts about one baked store, for messages.
 #[derive(Clone, Debug)]
@@ -49,7 +102,8 @@ pub struct BakedStoreInfo {
     pub mesh: String,
     /// Material name.
     pub material: String,
-    /// `coherent_hash` or `octree`.
+    /// The scene's name of the structure (`coherent_hash`, `octree`, `perfect_hash`,
+    /// `tiletree`).
     pub kind: &'static str,
     /// Voxels per unit.
     pub resolution: u32,
@@ -61,14 +115,13 @@ pub struct BakedStoreInfo {
     pub build_time: Duration,
 }
 
-enum Baked {
-    Hash(HashStore),
-    Octree(OctreeStore),
-}
-
-/// The records of every store of a scene (which hold the stores' buffers) and the
-/// per-instance store slots.
+/// Every store of a scene, the records the kernel reads (which hold the buffers they point
+/// into) and the per-instance store slots. After an insert into a store
+/// ([`SceneStores::store_mut`]), which may reallocate its buffers, [`SceneStores::refresh`]
+/// rewrites the records before the next render (until then they keep the old buffers alive).
 pub struct SceneStores {
+    gpu: Gpu,
+    stores: Vec<(SceneStore, StoreFilter)>,
     records: DeviceRecords,
     instance_slots: GpuBuffer<u32>,
     info: Vec<BakedStoreInfo>,
@@ -81,6 +134,90 @@ fn pack_srgb8(albedo: Vec3) -> u32 {
     r | g << 8 | b << 16 | 255 << 24
 }
 
+/// What the stores of one scene share while they are built.
+struct Baker<'a> {
+    gpu: &'a Gpu,
+    kernels: Option<Arc<StoreKernels>>,
+    voxelizer: Option<Voxelizer>,
+}
+
+impl Baker<'_> {
+    /// Bakes the texture of `material` on `mesh` into the store `spec` asks for.
+    fn bake(
+        &mut self,
+        scene: &Scene,
+        mesh: usize,
+        material: usize,
+    ) -> Result<SceneStore, RenderError> {
+        let material = &scene.materials[material];
+        let mesh = &scene.meshes[mesh];
+        let spec = material
+            .texture
+            .and_then(|t| t.store)
+            .expect("only textures with a store are baked");
+        let gpu = self.gpu;
+        let kernels = match &self.kernels {
+            Some(k) => k.clone(),
+            None => self.kernels.insert(StoreKernels::new(gpu)?).clone(),
+        };
+        let r = spec.resolution;
+        let gm = GpuMaterial::from(material);
+        let colour = move |v: [u32; 3]| {
+            let centre = (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5) / r as f32;
+            pack_srgb8(solid_texture_albedo(&gm, centre))
+        };
+        let source = ColourSource::Fn(&colour);
+        let (positions, triangles) = (&mesh.mesh.positions, &mesh.mesh.triangles);
+        if spec.kind == StoreKind::TileTree {
+            let (s, _) = TileTree::build(
+                &kernels,
+                positions,
+                triangles,
+                r,
+                &source,
+                TileTreeConfig::default(),
+            )
+            .map_err(store_error)?;
+            return Ok(SceneStore::TileTree(s));
+        }
+        let voxelizer = match &mut self.voxelizer {
+            Some(v) => v,
+            None => self
+                .voxelizer
+                .insert(Voxelizer::new(gpu).map_err(store_error)?),
+        };
+        let keys = match spec.filter {
+            StoreFilter::Nearest => voxelizer.surface(positions, triangles, r),
+            StoreFilter::Trilinear => voxelizer.interpolation(positions, triangles, r),
+        }
+        .map_err(|e| {
+            RenderError::Settings(format!(
+                "{}: baking material {:?} on mesh {:?}: {e}",
+                scene.source.display(),
+                material.name,
+                mesh.name
+            ))
+        })?;
+        Ok(match spec.kind {
+            StoreKind::CoherentHash => SceneStore::Hash(
+                HashStore::build(&kernels, r, &keys, &source, RobinHoodConfig::default())
+                    .map_err(store_error)?,
+            ),
+            StoreKind::Octree => {
+                let config = OctreeConfig::for_resolution(r).map_err(store_error)?;
+                let (s, _) =
+                    OctreeStore::build(&kernels, r, &keys, &source, config).map_err(store_error)?;
+                SceneStore::Octree(s)
+            }
+            StoreKind::PerfectHash => SceneStore::Perfect(
+                PerfectStore::build(&kernels, r, &keys, &source, PerfectAccess::Constrained)
+                    .map_err(store_error)?,
+            ),
+            StoreKind::TileTree => unreachable!("built from the mesh above"),
+        })
+    }
+}
+
 impl SceneStores {
     /// Bakes the stores `scene`'s materials ask for.
     ///
@@ -91,8 +228,11 @@ impl SceneStores {
         let mut info = Vec::new();
         let mut slot_of: HashMap<(usize, usize), u32> = HashMap::new();
         let mut slots = vec![NO_STORE; scene.instances.len()];
-        let mut kernels = None;
-        let mut voxelizer = None;
+        let mut baker = Baker {
+            gpu,
+            kernels: None,
+            voxelizer: None,
+        };
         for (i, inst) in scene.instances.iter().enumerate() {
             let material = &scene.materials[inst.material];
             let Some(spec) = material.texture.and_then(|t| t.store) else {
@@ -103,100 +243,69 @@ impl SceneStores {
                 continue;
             }
             let start = Instant::now();
-            let kernels = match &kernels {
-                Some(k) => k,
-                None => kernels.insert(StoreKernels::new(gpu)?),
-            };
-            let voxelizer = match &mut voxelizer {
-                Some(v) => v,
-                None => voxelizer.insert(Voxelizer::new(gpu).map_err(store_error)?),
-            };
-            let mesh = &scene.meshes[inst.mesh];
-            let r = spec.resolution;
-            let keys = match spec.filter {
-                StoreFilter::Nearest => {
-                    voxelizer.surface(&mesh.mesh.positions, &mesh.mesh.triangles, r)
-                }
-                StoreFilter::Trilinear => {
-                    voxelizer.interpolation(&mesh.mesh.positions, &mesh.mesh.triangles, r)
-                }
-            }
-            .map_err(|e| {
-                RenderError::Settings(format!(
-                    "{}: baking material {:?} on mesh {:?}: {e}",
-                    scene.source.display(),
-                    material.name,
-                    mesh.name
-                ))
-            })?;
-            let gm = GpuMaterial::from(material);
-            let colour = move |v: [u32; 3]| {
-                let centre = (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5) / r as f32;
-                pack_srgb8(solid_texture_albedo(&gm, centre))
-            };
-            let source = ColourSource::Fn(&colour);
-            let filter = match spec.filter {
-                StoreFilter::Nearest => STORE_FILTER_NEAREST,
-                StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
-            };
-            let baked = match spec.kind {
-                StoreKind::CoherentHash => Baked::Hash(
-                    HashStore::build(kernels, r, &keys, &source, RobinHoodConfig::default())
-                        .map_err(store_error)?,
-                ),
-                StoreKind::Octree => {
-                    let config = OctreeConfig::for_resolution(r).map_err(store_error)?;
-                    let (s, _) = OctreeStore::build(kernels, r, &keys, &source, config)
-                        .map_err(store_error)?;
-                    Baked::Octree(s)
-                }
-            };
-            let (kind, texels, bytes) = match &baked {
-                Baked::Hash(s) => ("coherent_hash", s.len(), s.bytes()),
-                Baked::Octree(s) => ("octree", s.len(), s.bytes()),
-            };
+            let store = baker.bake(scene, inst.mesh, inst.material)?;
+            let (texels, bytes) = store.size();
             info.push(BakedStoreInfo {
-                mesh: mesh.name.clone(),
+                mesh: scene.meshes[inst.mesh].name.clone(),
                 material: material.name.clone(),
-                kind,
-                resolution: r,
+                kind: spec.kind.name(),
+                resolution: spec.resolution,
                 texels,
                 bytes,
                 build_time: start.elapsed(),
             });
             let slot = stores.len() as u32;
-            stores.push((baked, filter));
+            stores.push((store, spec.filter));
             slot_of.insert((inst.mesh, inst.material), slot);
             slots[i] = slot;
         }
-        let mut records: Vec<GpuStoreRecord<'_>> = stores
-            .iter()
-            .map(|(baked, filter)| match baked {
-                Baked::Hash(s) => GpuStoreRecord {
-                    kind: STORE_KIND_HASH,
-                    filter: *filter,
-                    hash: s.params(),
-                    ..Default::default()
-                },
-                Baked::Octree(s) => GpuStoreRecord {
-                    kind: STORE_KIND_OCTREE,
-                    filter: *filter,
-                    octree: s.params(),
-                    ..Default::default()
-                },
-            })
-            .collect();
-        if records.is_empty() {
-            // Bindings cannot be empty.
-            records.push(GpuStoreRecord::default());
-        }
-        // The records hold the buffers of the stores they point into, so the stores
-        // themselves need not outlive this function.
+        let records = Self::upload(gpu, &stores)?;
         Ok(SceneStores {
-            records: DeviceRecords::new(gpu, "render store records", &records)?,
+            gpu: gpu.clone(),
+            stores,
+            records,
             instance_slots: GpuBuffer::from_slice(gpu, "render instance stores", &slots)?,
             info,
         })
+    }
+
+    /// The store of `slot` (in the order of [`SceneStores::info`]), to insert texels into;
+    /// call [`SceneStores::refresh`] before the next render.
+    pub fn store_mut(&mut self, slot: usize) -> Option<&mut SceneStore> {
+        self.stores.get_mut(slot).map(|(s, _)| s)
+    }
+
+    /// The records of `stores` on the device (one default record when there is no store:
+    /// bindings cannot be empty).
+    fn upload(
+        gpu: &Gpu,
+        stores: &[(SceneStore, StoreFilter)],
+    ) -> Result<DeviceRecords, RenderError> {
+        let mut records: Vec<GpuStoreRecord<'_>> =
+            stores.iter().map(|(s, f)| s.record(*f)).collect();
+        if records.is_empty() {
+            records.push(GpuStoreRecord::default());
+        }
+        Ok(DeviceRecords::new(gpu, "render store records", &records)?)
+    }
+
+    /// The record of every store as the kernel reads it after the next
+    /// [`SceneStores::refresh`] (or now, when no store changed since the last).
+    pub fn records(&self) -> Vec<GpuStoreRecord<'_>> {
+        self.stores.iter().map(|(s, f)| s.record(*f)).collect()
+    }
+
+    /// Rewrites the kernel's records from the stores' current buffers (after inserts, which
+    /// may have reallocated them) and their sizes in [`SceneStores::info`].
+    ///
+    /// # Errors
+    /// Device failures.
+    pub fn refresh(&mut self) -> Result<(), RenderError> {
+        self.records = Self::upload(&self.gpu, &self.stores)?;
+        for ((store, _), info) in self.stores.iter().zip(&mut self.info) {
+            (info.texels, info.bytes) = store.size();
+        }
+        Ok(())
     }
 
     /// The bindings of `path_trace.comp` that describe the stores.

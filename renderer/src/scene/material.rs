@@ -279,30 +279,43 @@ fn store(doc: &Doc, raw: &RawTexture, label: &str) -> Result<Option<StoreSpec>, 
             }
             Ok(None)
         }
-        (Some(kind), Some(res)) => Ok(Some(StoreSpec {
-            kind: match kind.get_ref() {
+        (Some(kind), Some(res)) => {
+            let kind_ = match kind.get_ref() {
                 RawStoreKind::CoherentHash => StoreKind::CoherentHash,
                 RawStoreKind::Octree => StoreKind::Octree,
-            },
-            resolution: {
-                let r = doc.integer(res, &join(label, "resolution"), 2..=MAX_STORE_RESOLUTION)?;
-                // The N³ tree needs R as a product of per-level sizes it supports.
-                if *kind.get_ref() == RawStoreKind::Octree {
-                    if let Err(e) = lazysolid_compute::store::OctreeConfig::for_resolution(r) {
-                        return Err(doc.invalid(
-                            res.span(),
-                            join(label, "resolution"),
-                            format!("{r} cannot be an octree resolution: {e}"),
-                        ));
-                    }
-                }
-                r
-            },
-            filter: match raw.filter.as_ref().map(|f| *f.get_ref()) {
-                None | Some(RawStoreFilter::Nearest) => StoreFilter::Nearest,
-                Some(RawStoreFilter::Trilinear) => StoreFilter::Trilinear,
-            },
-        })),
+                RawStoreKind::PerfectHash => StoreKind::PerfectHash,
+                RawStoreKind::TileTree => StoreKind::TileTree,
+            };
+            let field = join(label, "resolution");
+            let r = doc.integer(res, &field, 2..=MAX_STORE_RESOLUTION)?;
+            // The N³ tree needs R as a product of per-level sizes it supports; the TileTree's
+            // tile sides are R / 2^depth.
+            let problem = match kind_ {
+                StoreKind::Octree => lazysolid_compute::store::OctreeConfig::for_resolution(r)
+                    .err()
+                    .map(|e| ("an octree", e)),
+                StoreKind::TileTree => lazysolid_compute::store::TileTreeConfig::default()
+                    .check(r)
+                    .err()
+                    .map(|e| ("a tiletree", e)),
+                StoreKind::CoherentHash | StoreKind::PerfectHash => None,
+            };
+            if let Some((what, e)) = problem {
+                return Err(doc.invalid(
+                    res.span(),
+                    field,
+                    format!("{r} cannot be {what} resolution: {e}"),
+                ));
+            }
+            Ok(Some(StoreSpec {
+                kind: kind_,
+                resolution: r,
+                filter: match raw.filter.as_ref().map(|f| *f.get_ref()) {
+                    None | Some(RawStoreFilter::Nearest) => StoreFilter::Nearest,
+                    Some(RawStoreFilter::Trilinear) => StoreFilter::Trilinear,
+                },
+            }))
+        }
         (Some(kind), None) => Err(doc.invalid(
             kind.span(),
             join(label, "resolution"),
@@ -311,7 +324,7 @@ fn store(doc: &Doc, raw: &RawTexture, label: &str) -> Result<Option<StoreSpec>, 
         (None, Some(res)) => Err(doc.invalid(
             res.span(),
             join(label, "store"),
-            "is required with `resolution` (coherent_hash or octree)",
+            "is required with `resolution` (coherent_hash, octree, perfect_hash or tiletree)",
         )),
     }
 }

@@ -134,6 +134,9 @@ pub(super) struct RawTexture {
 pub(super) enum RawStoreKind {
     CoherentHash,
     Octree,
+    PerfectHash,
+    #[serde(rename = "tiletree")]
+    TileTree,
 }
 
 /// Store filters as spelled in the file.

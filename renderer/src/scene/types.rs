@@ -153,6 +153,23 @@ pub enum StoreKind {
     CoherentHash,
     /// The N³ octree texture.
     Octree,
+    /// The perfect spatial hash (texel layout, constrained access: no keys stored).
+    PerfectHash,
+    /// The TileTree: 2D tiles on the leaves of an octree around the surface, built from the
+    /// mesh itself; R must be a power of two.
+    TileTree,
+}
+
+impl StoreKind {
+    /// The name a scene file gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            StoreKind::CoherentHash => "coherent_hash",
+            StoreKind::Octree => "octree",
+            StoreKind::PerfectHash => "perfect_hash",
+            StoreKind::TileTree => "tiletree",
+        }
+    }
 }
 
 /// How a store is sampled.

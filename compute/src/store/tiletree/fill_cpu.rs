@@ -17,7 +17,7 @@
 
 use super::geometry::{column_hit, face_axis, plane_axes, MARGIN};
 use super::plan::{Plan, Tile};
-use crate::store::ColourSource;
+use crate::store::HostColours;
 
 /// The voxel a texel takes its colour from and whether it met the surface. Texel (x, y) of a
 /// tile (border included, so the leaf's columns are x, y = 1..=T) is the column
@@ -114,8 +114,11 @@ fn dilate(plan: &Plan, colours: &mut [u32], filled: &[bool], columns: bool) -> V
 }
 
 /// The tile map (row-major RGBA8 words, `map_width × map_height`, 0 outside tiles) that the
-/// GPU fill produces for `plan` and `colours`.
-pub fn fill_cpu(plan: &Plan, colours: &ColourSource<'_>) -> Vec<u32> {
+/// GPU fill produces for `plan` and `colours` ([`ColourSource::to_host`]
+/// (crate::store::ColourSource::to_host)). A colour map (a buffer source) colours the texels
+/// that meet the surface (0 where it lacks the voxel); the others start at 0.
+pub fn fill_cpu(plan: &Plan, colours: &HostColours<'_>) -> Vec<u32> {
+    let keyed = matches!(colours, HostColours::Map(_));
     let n = plan.texel_count();
     let mut texel_colours = vec![0u32; n];
     let mut filled = vec![false; n];
@@ -125,7 +128,11 @@ pub fn fill_cpu(plan: &Plan, colours: &ColourSource<'_>) -> Vec<u32> {
             for x in 0..side {
                 let t = (tile.texel_offset + y * side + x) as usize;
                 let (voxel, hit) = texel_voxel(plan, tile, x, y);
-                texel_colours[t] = colours.colour(voxel, plan.resolution);
+                texel_colours[t] = if hit || !keyed {
+                    colours.colour(voxel, plan.resolution).unwrap_or(0)
+                } else {
+                    0
+                };
                 filled[t] = hit;
             }
         }
