@@ -226,14 +226,22 @@ fn figure(
 pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
     ensure!(!args.sizes.is_empty(), "--sizes names no size");
+    // `--three ""` names none.
+    let three: Vec<&String> = args.three.iter().filter(|n| !n.is_empty()).collect();
     ensure!(
-        args.three.is_empty() || args.three.len() == 3,
+        three.is_empty() || three.len() == 3,
         "--three names {} exemplars; give three (E_x, E_y, E_z) or none",
-        args.three.len()
+        three.len()
     );
     let mut cases: Vec<String> = args.exemplars.clone();
-    if !args.three.is_empty() {
-        cases.push(args.three.join("+"));
+    if !three.is_empty() {
+        cases.push(
+            three
+                .iter()
+                .map(|n| n.as_str())
+                .collect::<Vec<_>>()
+                .join("+"),
+        );
     }
     let (cases, candidate_sides, sizes) = if args.quick {
         (&cases[..1], &args.candidate_sides[..1], &args.sizes[..1])
