@@ -5,10 +5,11 @@
 use crate::gpu::{PushBlock, PushRegistration};
 use crate::hash::perfect::{blocked, gpu as perfect};
 use crate::hash::{cuckoo, dense, open_addressing, robin_hood, validate};
-use crate::kernels::{hash, prims, store, synth, voxel};
+use crate::kernels::{hash, prims, store, synth, synth_solid, voxel};
 use crate::prims::push as prims_push;
 use crate::prims::segments;
 use crate::store::{colours, hash_store, octree, perfect_store, tiletree};
+use crate::synth::solid::{candidates_gpu as solid_candidates, gpu as solid_gpu};
 use crate::synth::{energy, gpu as synth_gpu};
 use crate::voxel::{gpu as voxel_gpu, keys};
 
@@ -69,6 +70,11 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<synth_gpu::CorrectPush>(&synth::CORRECT),
         of::<energy::EnergyPush>(&synth::ENERGY),
         of::<synth_gpu::UpsamplePush>(&synth::UPSAMPLE_JITTER),
+        of::<solid_candidates::SearchPush>(&synth_solid::STRIP_SEARCH),
+        of::<solid_candidates::TriplesPush>(&synth_solid::TRIPLES),
+        of::<solid_candidates::CoherencePush>(&synth_solid::COHERENCE),
+        of::<solid_gpu::UpsamplePush>(&synth_solid::UPSAMPLE_JITTER),
+        of::<solid_gpu::CorrectPush>(&synth_solid::CORRECT),
         of::<voxel_gpu::ColumnsPush>(&voxel::COLUMNS),
         of::<voxel_gpu::DilatePush>(&voxel::DILATE),
         of::<voxel_gpu::HitsPush>(&voxel::HITS),

@@ -105,3 +105,13 @@ pub const COHERENT_OFFSETS: [u32; 16] = [
 /// Coordinate tolerance, in exemplar pixels, of the synthesizer's period penalty
 /// (`synth/period.rs`): the period repetition measure's tolerance.
 pub const SYNTH_PERIOD_TOLERANCE: u32 = 4;
+
+/// Largest S of solid-synthesis candidates: strips kept per other exemplar (the thesis' 65).
+pub const SOLID_MAX_S: u32 = 65;
+/// Triples kept per exemplar pixel after the crossbar ranking (the thesis' 100).
+pub const SOLID_KEPT: u32 = 100;
+/// Candidate triples per exemplar pixel after the coherence filter (the thesis' 12).
+pub const SOLID_MAX_CANDIDATES: u32 = 12;
+/// Longest crossbar strip: the crossbar ranking loops over S² pairs of N samples, and llvmpipe
+/// stops an invocation after 65535 loop iterations in all (65² · (11 + 1) ≈ 51 k).
+pub const SOLID_MAX_STRIP: u32 = 11;

@@ -55,6 +55,9 @@ enum Command {
     /// Synthesize a window of the unbounded texture plane from an exemplar (PNG, JPEG or GIMP
     /// .pat) into a PNG and its exemplar-coordinate map, with timings and quality metrics.
     Synth(cli::synth::SynthArgs),
+    /// Synthesize a cube of the unbounded solid texture from 2D exemplars into NRRD, with
+    /// slices, the candidate slab, timings and per-axis quality.
+    Solid(cli::solid::SolidArgs),
 }
 
 fn main() {
@@ -86,6 +89,7 @@ fn main() {
         Command::Diff(d) => cli::diff::run(&d),
         Command::Render(r) => cli::render::run(&r, &global),
         Command::Synth(s) => cli::synth::run(&s, &global),
+        Command::Solid(s) => cli::solid::run(&s, &global),
     };
     // Every device is dropped by now, so leak reports are in the logs.
     let validation_errors = global.report_validation();

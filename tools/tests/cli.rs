@@ -1220,3 +1220,141 @@ fn bench_textures_refuses_store_and_filter_choices_that_measure_nothing() {
         "{err}"
     );
 }
+
+/// A `side`² PNG cut from the top-left of GIMP's terra pattern, in `dir`.
+fn terra_square(dir: &std::path::Path, side: u32) -> std::path::PathBuf {
+    let full = image::open(repo("assets/exemplars/terra.pat"))
+        .map(|i| i.to_rgb8())
+        .unwrap_or_else(|_| {
+            // The image crate does not read GIMP patterns: decode through the library.
+            let e = lazysolid_compute::synth::Exemplar::load(&repo("assets/exemplars/terra.pat"))
+                .unwrap();
+            image::RgbImage::from_fn(e.width, e.height, |x, y| image::Rgb(e.at(x, y)))
+        });
+    let path = dir.join(format!("terra{side}.png"));
+    image::imageops::crop_imm(&full, 0, 0, side, side)
+        .to_image()
+        .save(&path)
+        .unwrap();
+    path
+}
+
+#[test]
+fn solid_writes_volume_slices_and_slab_with_metrics() {
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = terra_square(dir.path(), 16);
+    let out_dir = dir.path().join("out");
+    std::fs::create_dir(&out_dir).unwrap();
+    let out = out_dir.join("terra.nrrd");
+    let (ok, stdout, err) = run(lazysolid()
+        .arg("solid")
+        .arg(&exemplar)
+        // No correction passes: each pass pads every level's box by 8 voxels a side, which
+        // costs minutes on lavapipe; the synthesizer itself is tested in tests/tests/solid.rs.
+        .args([
+            "--size", "64", "--offset", "-70,5,9", "--seed", "4", "--passes", "0",
+        ])
+        .args(["--energy-samples", "64", "-o"])
+        .arg(&out)
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    for needle in [
+        "candidates (GPU)",
+        "synthesis (GPU)",
+        "peak GPU memory",
+        "slice perpendicular to z vs E_z: energy",
+        "period repetition",
+    ] {
+        assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
+    }
+    let nrrd = std::fs::read(&out).unwrap();
+    let header_end = nrrd.windows(2).position(|w| w == b"\n\n").unwrap() + 2;
+    assert!(nrrd.starts_with(b"NRRD0004\n"));
+    assert_eq!(nrrd.len() - header_end, 64 * 64 * 64 * 3);
+    for (name, width) in [
+        ("x", 64),
+        ("y", 64),
+        ("z", 64),
+        ("oblique", 64),
+        ("slab", 9 * 16 + 8 * 2),
+    ] {
+        let image = image::open(out_dir.join(format!("terra.{name}.png"))).unwrap();
+        assert_eq!(image.width(), width, "{name}");
+    }
+    // The volume and five pictures; no temporary file is left behind.
+    assert_eq!(std::fs::read_dir(&out_dir).unwrap().count(), 6);
+}
+
+#[test]
+fn solid_names_each_bad_input_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = terra_square(dir.path(), 16);
+    let big = terra_square(dir.path(), 32);
+    let odd = dir.path().join("odd.png");
+    image::RgbImage::new(24, 24).save(&odd).unwrap();
+    let tiny = dir.path().join("tiny.png");
+    image::RgbImage::new(8, 8).save(&tiny).unwrap();
+    let huge = dir.path().join("huge.png");
+    image::RgbImage::new(256, 256).save(&huge).unwrap();
+    let corrupt = dir.path().join("corrupt.png");
+    std::fs::write(&corrupt, b"not a PNG at all").unwrap();
+    let out = dir.path().join("out.nrrd");
+    let path = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    let cases: [(Vec<String>, &[&str]); 11] = [
+        (
+            vec!["--ey".into(), path(&big)],
+            &["--ey", "terra32.png", "same side"],
+        ),
+        (
+            vec!["--ex".into(), path(&odd)],
+            &["odd.png", "power-of-two"],
+        ),
+        (vec!["--ex".into(), path(&tiny)], &["tiny.png", "16..=256"]),
+        (vec!["--ez".into(), path(&huge)], &["huge.png", "16..=128"]),
+        (
+            vec!["--ez".into(), "/nonexistent/e.png".into()],
+            &["/nonexistent/e.png", "cannot read"],
+        ),
+        (
+            vec!["--ey".into(), path(&corrupt)],
+            &["corrupt.png", "cannot decode"],
+        ),
+        (
+            vec!["--size".into(), "100".into()],
+            &["--size 100", "64, 128, 256"],
+        ),
+        (
+            vec!["--size".into(), "512".into()],
+            &["--size 512", "64, 128, 256"],
+        ),
+        (
+            vec!["--offset".into(), "300000000,0,0".into()],
+            &["--offset 300000000,0,0", "268435456"],
+        ),
+        (vec!["--strip".into(), "4".into()], &["strip", "odd"]),
+        (vec!["--s".into(), "80".into()], &["`s`", "1..=65"]),
+    ];
+    for (extra, needles) in cases {
+        let (ok, _, err) = run(lazysolid()
+            .arg("solid")
+            .arg(&good)
+            .args(&extra)
+            .arg("-o")
+            .arg(&out));
+        assert!(!ok, "{extra:?}");
+        for needle in needles {
+            assert!(
+                err.contains(needle),
+                "{extra:?}: missing {needle:?} in {err}"
+            );
+        }
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!out.exists());
+    }
+    let png_out = dir.path().join("out.png");
+    let (ok, _, err) = run(lazysolid().arg("solid").arg(&good).arg("-o").arg(&png_out));
+    assert!(!ok && err.contains(".nrrd"), "{err}");
+    assert!(!png_out.exists());
+    // Nothing but the inputs in the folder.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 6);
+}

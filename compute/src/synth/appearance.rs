@@ -35,24 +35,47 @@ pub struct Appearance {
 
 /// Computes the appearance of `level` (`w`×`h` RGB in 0..=255) sampled every `spacing` pixels.
 pub fn appearance(level: &[[f32; 3]], w: u32, h: u32, spacing: u32, toroidal: bool) -> Appearance {
+    let (mut vectors, residual_variance) = shared_appearance(&[level], w, h, spacing, toroidal);
+    Appearance {
+        vectors: vectors.pop().expect("one image in, one out"),
+        residual_variance,
+    }
+}
+
+/// The appearance of several images of the same size in **one** PCA space: the basis and the
+/// quantization scale come from the neighbourhoods of all images pooled, so a distance
+/// between vectors of different images (or sums over several of them) compares like with
+/// like. Returns one vector list per image and the residual variance of the pooled data.
+pub(crate) fn shared_appearance(
+    levels: &[&[[f32; 3]]],
+    w: u32,
+    h: u32,
+    spacing: u32,
+    toroidal: bool,
+) -> (Vec<Vec<[i8; APPEARANCE_DIMS]>>, f64) {
     let side = (2 * RADIUS + 1) as usize;
     let dims = side * side * 3;
-    let n = level.len();
+    let per_image = w as usize * h as usize;
+    let n = per_image * levels.len();
     let mut data = vec![0.0f64; n * dims];
-    for y in 0..h as i64 {
-        for x in 0..w as i64 {
-            let row = &mut data[(y * w as i64 + x) as usize * dims..][..dims];
-            let mut j = 0;
-            for dy in -RADIUS..=RADIUS {
-                for dx in -RADIUS..=RADIUS {
-                    let weight =
-                        (-((dx * dx + dy * dy) as f64) / (2.0 * WEIGHT_SIGMA * WEIGHT_SIGMA)).exp();
-                    let sx = border(x + dx * spacing as i64, w, toroidal);
-                    let sy = border(y + dy * spacing as i64, h, toroidal);
-                    let s = level[sy * w as usize + sx];
-                    for c in s {
-                        row[j] = weight * c as f64;
-                        j += 1;
+    for (image, level) in levels.iter().enumerate() {
+        for y in 0..h as i64 {
+            for x in 0..w as i64 {
+                let pixel = image * per_image + (y * w as i64 + x) as usize;
+                let row = &mut data[pixel * dims..][..dims];
+                let mut j = 0;
+                for dy in -RADIUS..=RADIUS {
+                    for dx in -RADIUS..=RADIUS {
+                        let weight = (-((dx * dx + dy * dy) as f64)
+                            / (2.0 * WEIGHT_SIGMA * WEIGHT_SIGMA))
+                            .exp();
+                        let sx = border(x + dx * spacing as i64, w, toroidal);
+                        let sy = border(y + dy * spacing as i64, h, toroidal);
+                        let s = level[sy * w as usize + sx];
+                        for c in s {
+                            row[j] = weight * c as f64;
+                            j += 1;
+                        }
                     }
                 }
             }
@@ -96,13 +119,17 @@ pub fn appearance(level: &[[f32; 3]], w: u32, h: u32, spacing: u32, toroidal: bo
     } else {
         1.0
     };
-    let vectors = (0..n)
-        .map(|p| std::array::from_fn(|k| (projected[(p, k)] * scale).round() as i8))
+    let vectors = (0..levels.len())
+        .map(|image| {
+            (0..per_image)
+                .map(|p| {
+                    let row = image * per_image + p;
+                    std::array::from_fn(|k| (projected[(row, k)] * scale).round() as i8)
+                })
+                .collect()
+        })
         .collect();
-    Appearance {
-        vectors,
-        residual_variance,
-    }
+    (vectors, residual_variance)
 }
 
 /// Squared distance between two quantized vectors (exact).

@@ -85,7 +85,7 @@ pub struct GpuSynthesizer {
 }
 
 /// First interior local position of parity `class` along one axis, and how many there are.
-fn class_span(origin: i32, size: u32, class: i32) -> (u32, u32) {
+pub(crate) fn class_span(origin: i32, size: u32, class: i32) -> (u32, u32) {
     let first = 1 + ((class - (origin + 1)) & 1) as u32;
     let last = size as i64 - 2;
     if (first as i64) > last {

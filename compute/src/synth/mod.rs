@@ -27,6 +27,7 @@ mod pat;
 mod period;
 mod plan;
 mod repetition;
+pub mod solid;
 mod stack;
 mod synthesis;
 

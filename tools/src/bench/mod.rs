@@ -6,6 +6,7 @@ mod hash;
 mod plot;
 mod prims;
 mod psh;
+mod solid;
 mod synth;
 mod textures;
 mod trace;
@@ -29,6 +30,9 @@ pub enum BenchCommand {
     Trace(trace::TraceArgs),
     /// GPU appearance-space synthesis against the texture-synthesis crate: time and quality.
     Synth(synth::SynthArgs),
+    /// Solid synthesis from 2D exemplars: candidate and synthesis times, per-axis quality
+    /// beside the 2D synthesizer and two ablations.
+    Solid(solid::SolidArgs),
     /// Thesis Table 4.1: memory and lookup speed of every sparse texture structure over a mesh
     /// at one equivalent resolution, seen from a fixed 800×800 viewpoint, with pictures.
     Textures(textures::TexturesArgs),
@@ -57,6 +61,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Psh(a) => &a.common,
         BenchCommand::Trace(a) => &a.common,
         BenchCommand::Synth(a) => &a.common,
+        BenchCommand::Solid(a) => &a.common,
         BenchCommand::Textures(a) => &a.common,
     };
     check_writable_dir("--out-dir", &common.out_dir)?;
@@ -66,6 +71,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Psh(args) => psh::run(&args, global),
         BenchCommand::Trace(args) => trace::run(&args, global),
         BenchCommand::Synth(args) => synth::run(&args, global),
+        BenchCommand::Solid(args) => solid::run(&args, global),
         BenchCommand::Textures(args) => textures::run(&args, global),
     }
 }

@@ -8,6 +8,7 @@ pub mod exit_status;
 pub mod output;
 pub mod render;
 pub mod resolution;
+pub mod solid;
 pub mod synth;
 
 use lazysolid_compute::gpu::{Gpu, GpuOptions, Validation, ValidationLog};

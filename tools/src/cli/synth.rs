@@ -80,7 +80,12 @@ fn coords_path(output: &Path) -> PathBuf {
 }
 
 /// Writes an RGB PNG whole or not at all.
-fn write_png(path: &Path, width: u32, height: u32, rgb: &[[u8; 3]]) -> anyhow::Result<()> {
+pub(crate) fn write_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    rgb: &[[u8; 3]],
+) -> anyhow::Result<()> {
     let bytes: Vec<u8> = rgb.iter().flatten().copied().collect();
     write_atomically(path, |w| {
         Ok(image::write_buffer_with_format(

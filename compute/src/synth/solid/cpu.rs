@@ -1,0 +1,246 @@
+//! The CPU reference of the volume synthesizer: the same integer operations as
+//! `glsl/synth/solid/upsample_jitter.comp` and `correct.comp`.
+//!
+//! Per level: each voxel's triple is its parent's plus `h_l` times the child offset projected
+//! into each role (level 0: the projection of the position times `h_0`), then moved by the
+//! projected 3D jitter. Then `P_l` passes of 8 subpasses, one per 2×2×2 parity class: every
+//! interior voxel of the class takes, among its current triple and the candidates gathered
+//! from its 27 neighbours (the neighbour's coordinate in each role shifted back by the
+//! neighbour's offset projected into that role, and that pixel's candidate triples), the one
+//! minimizing the sum over the three planes through the voxel of the 2D synthesizer's
+//! 4-diagonal appearance distance — plane ⊥ x compares the `E_x` coordinates of the voxels in
+//! that plane with the candidate's `E_x` neighbourhood, and so on. Ties keep the current
+//! triple, then go to the smallest triple.
+
+use super::analysis::SolidAnalysis;
+use super::candidates::SolidCandidates;
+use super::jitter::jitter3;
+use super::plan::{plan_boxes, VolumeBox};
+use super::roles::{project, ROLES, ROLE_AXES};
+use super::volume::{check_box, LevelTriples, SolidSynthesis};
+use crate::synth::appearance::APPEARANCE_DIMS;
+use crate::synth::coords::unpack;
+use crate::synth::neighbourhood::{
+    neighbourhood_distance, shifted, synthesized_neighbourhood, NEIGHBOURHOOD_DIMS,
+};
+use crate::synth::{SynthError, SynthParams, SynthResult};
+use rayon::prelude::*;
+
+/// Parity classes in subpass order (x fastest).
+pub(crate) const CLASSES_3D: [[i32; 3]; 8] = [
+    [0, 0, 0],
+    [1, 0, 0],
+    [0, 1, 0],
+    [1, 1, 0],
+    [0, 0, 1],
+    [1, 0, 1],
+    [0, 1, 1],
+    [1, 1, 1],
+];
+
+/// Offset `n` of the 3×3×3 neighbourhood (x fastest; 13 is the centre).
+pub(crate) fn offset27(n: usize) -> [i32; 3] {
+    [n % 3, (n / 3) % 3, n / 9].map(|v| v as i32 - 1)
+}
+
+/// Packed coordinate `c` moved by `spacing · d` on the `m`×`m` torus.
+fn moved(c: u32, d: [i32; 2], spacing: i32, m: u32) -> u32 {
+    shifted(c, d[0], d[1], spacing, m, m)
+}
+
+/// Upsampled (level 0: initial) and jittered triples of `region` at `level`.
+pub fn upsample_jitter_3d(
+    analysis: &SolidAnalysis,
+    params: &SynthParams,
+    level: u32,
+    region: VolumeBox,
+    parent: Option<&LevelTriples>,
+) -> Vec<[u32; 3]> {
+    let m = analysis.side;
+    let h = analysis.levels[level as usize].spacing as i32;
+    (0..region.voxels())
+        .map(|i| {
+            let p = region.position(i);
+            let base: [u32; 3] = match parent {
+                None => std::array::from_fn(|r| {
+                    let [a, b] = ROLE_AXES[r];
+                    let q = [p[a], p[b]].map(|v| (v.rem_euclid(m as i32) as u32 * h as u32) % m);
+                    q[0] | q[1] << 16
+                }),
+                Some(parent) => {
+                    let t = parent.triples[parent.region.index(p.map(|v| v.div_euclid(2)))];
+                    std::array::from_fn(|r| moved(t[r], project(r, p.map(|v| v & 1)), h, m))
+                }
+            };
+            let j = jitter3(
+                p,
+                level,
+                params.seed,
+                h as u32,
+                params.jitter[level as usize],
+            );
+            std::array::from_fn(|r| moved(base[r], project(r, j), 1, m))
+        })
+        .collect()
+}
+
+/// The synthesized neighbourhoods of the three planes through the voxel whose 27 neighbours'
+/// triples are `around`.
+pub(crate) fn plane_neighbourhoods(
+    analysis: &SolidAnalysis,
+    level: u32,
+    around: &[[u32; 3]; 27],
+) -> [[i32; NEIGHBOURHOOD_DIMS]; ROLES] {
+    let lv = &analysis.levels[level as usize];
+    let m = analysis.side;
+    std::array::from_fn(|r| {
+        let [a, b] = ROLE_AXES[r];
+        let plane: [u32; 9] = std::array::from_fn(|n| {
+            let mut d = [0i32; 3];
+            d[a] = n as i32 % 3 - 1;
+            d[b] = n as i32 / 3 - 1;
+            around[((d[2] + 1) * 9 + (d[1] + 1) * 3 + d[0] + 1) as usize][r]
+        });
+        let appearance = |c: u32| -> [i8; APPEARANCE_DIMS] {
+            let (x, y) = unpack(c);
+            lv.roles[r].appearance[(y * m + x) as usize]
+        };
+        synthesized_neighbourhood(&plane, appearance, lv.spacing as i32, m, m)
+    })
+}
+
+/// Distance of candidate `t` to the synthesized plane neighbourhoods.
+pub(crate) fn triple_distance(
+    analysis: &SolidAnalysis,
+    level: u32,
+    planes: &[[i32; NEIGHBOURHOOD_DIMS]; ROLES],
+    t: [u32; 3],
+) -> u32 {
+    let lv = &analysis.levels[level as usize];
+    let m = analysis.side;
+    (0..ROLES)
+        .map(|r| {
+            let (x, y) = unpack(t[r]);
+            neighbourhood_distance(
+                &planes[r],
+                &lv.roles[r].neighbourhoods[(y * m + x) as usize],
+            )
+        })
+        .sum()
+}
+
+/// One correction subpass of parity `class` over the interior of `region`, in place.
+pub fn correct_subpass_3d(
+    analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
+    level: u32,
+    region: VolumeBox,
+    triples: &mut [[u32; 3]],
+    class: [i32; 3],
+) {
+    let m = analysis.side;
+    let h = analysis.levels[level as usize].spacing as i32;
+    let sets = &candidates.levels[level as usize];
+    let class_voxels: Vec<usize> = (0..region.voxels())
+        .filter(|&i| {
+            let p = region.position(i);
+            (0..3).all(|a| {
+                let l = p[a] - region.origin[a];
+                l >= 1 && l < region.size[a] as i32 - 1 && p[a] & 1 == class[a]
+            })
+        })
+        .collect();
+    // Voxels of one class only read voxels of other classes, so they update independently.
+    let updated: Vec<[u32; 3]> = class_voxels
+        .par_iter()
+        .map(|&i| {
+            let p = region.position(i);
+            let around: [[u32; 3]; 27] = std::array::from_fn(|n| {
+                let d = offset27(n);
+                triples[region.index([p[0] + d[0], p[1] + d[1], p[2] + d[2]])]
+            });
+            let planes = plane_neighbourhoods(analysis, level, &around);
+            let current = around[13];
+            let mut best = (
+                triple_distance(analysis, level, &planes, current),
+                0u32,
+                current,
+            );
+            for (r, role_sets) in sets.iter().enumerate() {
+                // Each distinct shifted-back pixel once: a repeat has the same candidates.
+                let mut bases: Vec<u32> = around
+                    .iter()
+                    .enumerate()
+                    .map(|(n, t)| {
+                        let back = project(r, offset27(n)).map(|v| -v);
+                        let (x, y) = unpack(moved(t[r], back, h, m));
+                        y * m + x
+                    })
+                    .collect();
+                bases.sort_unstable();
+                bases.dedup();
+                for base in bases {
+                    for &c in role_sets.of(base as usize) {
+                        let dist = triple_distance(analysis, level, &planes, c);
+                        best = best.min((dist, (c != current) as u32, c));
+                    }
+                }
+            }
+            best.2
+        })
+        .collect();
+    for (i, t) in class_voxels.into_iter().zip(updated) {
+        triples[i] = t;
+    }
+}
+
+/// Synthesizes `window` of the finest level on the CPU, keeping every level.
+///
+/// # Errors
+/// A window or parameter set that does not fit.
+pub fn synthesize_solid_cpu(
+    analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
+    params: &SynthParams,
+    window: VolumeBox,
+) -> SynthResult<SolidSynthesis> {
+    check_solid(analysis, candidates, params, window)?;
+    let boxes = plan_boxes(window, &params.passes);
+    let mut levels: Vec<LevelTriples> = Vec::with_capacity(boxes.len());
+    for (l, &region) in boxes.iter().enumerate() {
+        let l = l as u32;
+        let mut triples = upsample_jitter_3d(analysis, params, l, region, levels.last());
+        for _ in 0..params.passes[l as usize] {
+            for class in CLASSES_3D {
+                correct_subpass_3d(analysis, candidates, l, region, &mut triples, class);
+            }
+        }
+        levels.push(LevelTriples { region, triples });
+    }
+    Ok(SolidSynthesis { window, levels })
+}
+
+/// Checks that the window, the candidates and the parameters fit the analysis.
+pub(crate) fn check_solid(
+    analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
+    params: &SynthParams,
+    window: VolumeBox,
+) -> SynthResult<()> {
+    check_box(window)?;
+    let levels = analysis.levels.len();
+    for (name, n) in [
+        ("candidate levels", candidates.levels.len()),
+        ("passes", params.passes.len()),
+        ("jitter", params.jitter.len()),
+    ] {
+        if n != levels {
+            return Err(SynthError::Parameter {
+                name,
+                value: n.to_string(),
+                limit: format!("the exemplars have {levels} levels"),
+            });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,40 @@
+//! Solid texture synthesis from 2D exemplars (Dong, Lefebvre, Tong & Drettakis 2008): the 2D
+//! synthesizer of `synth/` extended to a volume. Three exemplar roles `E_x`, `E_y`, `E_z`
+//! ([`roles`](self) fixes their axes), per-level 3D candidates (coordinate triples with a
+//! consistent crossbar that form coherent patches), and a volume synthesizer over any box of
+//! the unbounded volume, each on the GPU with an exact CPU reference. See `docs/solid.md`.
+
+mod analysis;
+mod candidates;
+pub(crate) mod candidates_gpu;
+mod cpu;
+pub(crate) mod gpu;
+mod jitter;
+mod loop_budget;
+mod plan;
+mod roles;
+mod slab;
+mod strips;
+mod volume;
+
+pub use analysis::{analyze_solid, pack_rgb, unpack_rgb, RoleLevel, SolidAnalysis, SolidLevel};
+pub use candidates::{
+    candidates_cpu, coherence_step_cpu, search_cpu, triples_cpu, unit_step, CandidateParams,
+    CandidateSets, LevelReport, SolidCandidates, StripMatches, DEFAULT_S, KEPT, MAX_CANDIDATES,
+    MAX_COHERENCE_ITERATIONS, MAX_S,
+};
+pub use candidates_gpu::GpuCandidates;
+pub use cpu::{correct_subpass_3d, synthesize_solid_cpu, upsample_jitter_3d};
+pub use gpu::GpuSolidSynthesizer;
+pub use jitter::jitter3;
+pub use loop_budget::{LOOP_BUDGET, LOOP_LIMIT};
+pub use plan::{plan_boxes, VolumeBox, SUBPASSES_3D};
+pub use roles::{
+    image_axis, project, shared_axis, SolidExemplars, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLES,
+    ROLE_AXES, ROLE_NAMES,
+};
+pub use slab::candidate_slab;
+pub use strips::{strip_distance, DEFAULT_STRIP, MAX_STRIP};
+pub use volume::{
+    check_box, voxel_colour, LevelTriples, SolidSynthesis, MAX_VOLUME_ORIGIN, MAX_VOLUME_SIDE,
+};

@@ -1,0 +1,324 @@
+//! Solid texture synthesis: the candidates and the volume synthesizer on the GPU against their
+//! CPU references (exactly, every level), spatial determinism of boxes, the known answer of a
+//! lattice volume, and the errors of bad exemplars.
+
+use lazysolid_compute::synth::solid::{
+    analyze_solid, candidates_cpu, plan_boxes, synthesize_solid_cpu, voxel_colour, CandidateParams,
+    GpuCandidates, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox,
+    LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
+};
+use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
+use lazysolid_tests::{asset_exemplar, rng, with_gpu};
+use rand::Rng;
+use std::sync::OnceLock;
+
+/// A `side`² crop at (`x0`, `y0`) of a GIMP pattern.
+fn crop(name: &str, x0: u32, y0: u32, side: u32) -> Exemplar {
+    let full = Exemplar::load(&asset_exemplar(name)).unwrap();
+    let rgb = (0..side)
+        .flat_map(|y| (0..side).map(move |x| (x, y)))
+        .map(|(x, y)| full.at(x0 + x, y0 + y))
+        .collect();
+    Exemplar::from_rgb(format!("{name} crop"), side, side, rgb).unwrap()
+}
+
+type Case = (SolidExemplars, SolidAnalysis, SolidCandidates);
+
+fn prepare(exemplars: SolidExemplars) -> Case {
+    let analysis = analyze_solid(&exemplars);
+    let candidates = candidates_cpu(&analysis, &CandidateParams::default()).unwrap();
+    (exemplars, analysis, candidates)
+}
+
+/// One 16² leather crop playing all three roles.
+fn shared() -> &'static Case {
+    static CELL: OnceLock<Case> = OnceLock::new();
+    CELL.get_or_init(|| {
+        prepare(SolidExemplars::new(crop("leather.pat", 8, 8, 16), [None, None, None]).unwrap())
+    })
+}
+
+/// Loop iterations per dispatch small enough that every search of a 16² exemplar with the
+/// default parameters is split: the strip search over 3 dispatches, the crossbar ranking into
+/// one per row of S, the coherence filter's 100 candidates into 12.
+const TIGHT_LOOP_BUDGET: u32 = 8000;
+
+/// Three different 16² crops (terra, brick, walnut) as E_x, E_y, E_z.
+fn three() -> &'static Case {
+    static CELL: OnceLock<Case> = OnceLock::new();
+    CELL.get_or_init(|| {
+        let roles = [
+            Some(crop("terra.pat", 0, 0, 16)),
+            Some(crop("brick.pat", 20, 4, 16)),
+            Some(crop("walnut.pat", 40, 40, 16)),
+        ];
+        prepare(SolidExemplars::new(crop("leather.pat", 0, 0, 16), roles).unwrap())
+    })
+}
+
+#[test]
+fn candidates_gpu_equal_cpu() {
+    let cases = [
+        ("shared", shared(), LOOP_BUDGET),
+        ("three", three(), LOOP_BUDGET),
+        ("three, tight loop budget", three(), TIGHT_LOOP_BUDGET),
+    ];
+    for (name, (exemplars, analysis, cpu), budget) in cases {
+        assert_eq!(exemplars.images.len(), if name == "shared" { 1 } else { 3 });
+        let gpu = with_gpu(|gpu| {
+            GpuCandidates::with_loop_budget(gpu, budget)
+                .unwrap()
+                .compute(analysis, &CandidateParams::default(), &mut |_| {})
+                .unwrap()
+        });
+        assert_eq!(gpu.reports, cpu.reports, "{name}: reports");
+        for (l, (g, c)) in gpu.levels.iter().zip(&cpu.levels).enumerate() {
+            for r in 0..3 {
+                assert_eq!(g[r], c[r], "{name}: level {l} role {r}");
+            }
+        }
+        // Every set is non-empty, at most 12, sorted by crossbar error, and each triple holds
+        // its own pixel in its own role.
+        let m = analysis.side;
+        for sets in &cpu.levels {
+            for (r, s) in sets.iter().enumerate() {
+                for p in 0..(m * m) as usize {
+                    let n = s.counts[p] as usize;
+                    assert!((1..=MAX_CANDIDATES).contains(&n));
+                    let errors = &s.errors[p * s.slots..][..n];
+                    assert!(errors.windows(2).all(|w| w[0] <= w[1]));
+                    assert!(s
+                        .of(p)
+                        .iter()
+                        .all(|t| t[r] == pack(p as u32 % m, p as u32 / m)));
+                }
+            }
+        }
+        // The finest level's coherence filter ran (more than 12 triples to start with).
+        assert!(cpu.reports.last().unwrap().iterations >= 1, "{name}");
+    }
+}
+
+fn boxed(origin: [i32; 3], size: [u32; 3]) -> VolumeBox {
+    VolumeBox { origin, size }
+}
+
+#[test]
+fn synthesis_gpu_equals_cpu_on_every_level() {
+    // The three-image case: every role reads its own image (the shared case reads one image
+    // through the same code, and is synthesized by `overlapping_boxes_agree`).
+    for (name, (_, analysis, candidates)) in [("three", three())] {
+        let levels = analysis.levels.len() as u32;
+        // One pass at every other level, from the finest down, none in between: each pass pads
+        // the level's box by 8 voxels a side, which the CPU reference pays for on 2 cores.
+        let passes: Vec<u32> = (0..levels).map(|l| (levels - l) % 2).collect();
+        let params = SynthParams::new(levels, 11, &passes, &[0.5]).unwrap();
+        let window = boxed([-5, 7, 2], [16, 16, 16]);
+        let cpu = synthesize_solid_cpu(analysis, candidates, &params, window).unwrap();
+        let gpu = with_gpu(|gpu| {
+            let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
+            synth
+                .synthesize(analysis, candidates, &params, window, true, &mut |_| {})
+                .unwrap()
+                .0
+        });
+        assert_eq!(gpu.levels.len(), levels as usize);
+        for (l, (c, g)) in cpu.levels.iter().zip(&gpu.levels).enumerate() {
+            assert_eq!(c.region, g.region, "{name} level {l}");
+            let differ = c
+                .triples
+                .iter()
+                .zip(&g.triples)
+                .filter(|(a, b)| a != b)
+                .count();
+            assert_eq!(differ, 0, "{name} level {l}: {differ} triples differ");
+        }
+        // Correction did something: most voxels are not the projected tiling.
+        let m = analysis.side as i32;
+        let tiling = gpu
+            .window_triples()
+            .iter()
+            .enumerate()
+            .filter(|(i, t)| {
+                let p = window.position(*i);
+                let (x, y) = unpack(t[2]);
+                (x as i32, y as i32) == (p[0].rem_euclid(m), p[1].rem_euclid(m))
+            })
+            .count();
+        assert!(tiling < window.voxels() / 2, "{name}: mostly the tiling");
+    }
+}
+
+#[test]
+fn overlapping_boxes_agree() {
+    let (_, analysis, candidates) = shared();
+    let levels = analysis.levels.len() as u32;
+    // One pass at the three finest levels: their boxes are padded, and the coarser ones
+    // follow as their parents.
+    let passes: Vec<u32> = (0..levels).map(|l| (l + 3 >= levels) as u32).collect();
+    let params = SynthParams::new(levels, 3, &passes, &[0.5]).unwrap();
+    let (a, b) = (boxed([0, 0, 0], [12, 10, 8]), boxed([5, -3, 4], [9, 9, 9]));
+    let (sa, sb) = with_gpu(|gpu| {
+        let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
+        let run = |w| {
+            synth
+                .synthesize(analysis, candidates, &params, w, false, &mut |_| {})
+                .unwrap()
+                .0
+        };
+        (run(a), run(b))
+    });
+    let (ta, tb) = (sa.window_triples(), sb.window_triples());
+    let mut compared = 0;
+    for (i, t) in ta.iter().enumerate() {
+        let p = a.position(i);
+        let inside = (0..3).all(|k| p[k] >= b.origin[k] && p[k] < b.origin[k] + b.size[k] as i32);
+        if inside {
+            assert_eq!(*t, tb[b.index(p)], "voxel {p:?}");
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 7 * 6 * 4);
+    // The CPU reference agrees on a third, small box.
+    let c = boxed([6, 2, 5], [3, 2, 2]);
+    let tc = synthesize_solid_cpu(analysis, candidates, &params, c)
+        .unwrap()
+        .window_triples();
+    for (i, t) in tc.iter().enumerate() {
+        assert_eq!(*t, ta[a.index(c.position(i))]);
+    }
+    assert_eq!(plan_boxes(a, &params.passes).len(), levels as usize);
+}
+
+/// A 16-periodic lattice volume whose red channel varies along x only, green along y only and
+/// blue along z only (three random injective 1D profiles).
+fn lattice() -> impl Fn([i32; 3]) -> [u8; 3] {
+    let mut r = rng(5);
+    let mut profile = || {
+        let mut values: Vec<u8> = (0..=255).collect();
+        for i in 0..16 {
+            let j = r.random_range(i..256);
+            values.swap(i, j);
+        }
+        values.truncate(16);
+        values
+    };
+    let f = [profile(), profile(), profile()];
+    move |p| std::array::from_fn(|c| f[c][p[c].rem_euclid(16) as usize])
+}
+
+#[test]
+fn zero_jitter_reproduces_a_lattice_volume() {
+    // Exemplars cut from the volume through the origin: E_x = V(0, y, z) over (u, v) = (y, z),
+    // E_y = V(x, 0, z), E_z = V(x, y, 0). Each is a different image (E_x has a constant red
+    // channel, E_y a constant green, E_z a constant blue).
+    let v = lattice();
+    let cut = |role: usize| {
+        let [a, b] = ROLE_AXES[role];
+        let rgb = (0..16 * 16)
+            .map(|i| {
+                let mut p = [0i32; 3];
+                p[a] = i % 16;
+                p[b] = i / 16;
+                v(p)
+            })
+            .collect();
+        Exemplar::from_rgb(format!("lattice {role}"), 16, 16, rgb).unwrap()
+    };
+    let exemplars =
+        SolidExemplars::new(cut(0), [Some(cut(0)), Some(cut(1)), Some(cut(2))]).unwrap();
+    let (exemplars, analysis, candidates) = prepare(exemplars);
+    let levels = analysis.levels.len() as u32;
+    // Correction at the coarsest and the finest level.
+    let passes: Vec<u32> = (0..levels)
+        .map(|l| (l == 0 || l + 1 == levels) as u32)
+        .collect();
+    let params = SynthParams::new(levels, 9, &passes, &[0.0]).unwrap();
+    let window = boxed([-37, 50, 3], [10, 9, 11]);
+    let synthesis = with_gpu(|gpu| {
+        let synth = GpuSolidSynthesizer::new(gpu, &analysis, &candidates).unwrap();
+        synth
+            .synthesize(&analysis, &candidates, &params, window, false, &mut |_| {})
+            .unwrap()
+            .0
+    });
+    // What is reproduced, exactly: every voxel's triple is the projection of its absolute
+    // position mod 16 into each role's image (the 3D tiling, with translation zero), so the
+    // median colour of the three exemplars at the triple is the volume itself, V(p).
+    let triples = synthesis.window_triples();
+    for (i, t) in triples.iter().enumerate() {
+        let p = window.position(i);
+        for (role, axes) in ROLE_AXES.iter().enumerate() {
+            let want = (
+                p[axes[0]].rem_euclid(16) as u32,
+                p[axes[1]].rem_euclid(16) as u32,
+            );
+            assert_eq!(unpack(t[role]), want, "voxel {p:?} role {role}");
+        }
+        assert_eq!(voxel_colour(&exemplars, *t), v(p), "voxel {p:?}");
+    }
+    // And every role's slices through the window are exact translated copies of its exemplar:
+    // the mid slice perpendicular to each axis, coloured by that axis's exemplar at the
+    // voxels' coordinates, has zero neighbourhood energy against it at every pixel.
+    for (axis, [a, b]) in ROLE_AXES.into_iter().enumerate() {
+        let (w, h) = (window.size[a], window.size[b]);
+        let slice: Vec<[u8; 3]> = (0..w * h)
+            .map(|k| {
+                let mut p = window.origin;
+                p[axis] += window.size[axis] as i32 / 2;
+                p[a] += (k % w) as i32;
+                p[b] += (k / w) as i32;
+                let (x, y) = unpack(triples[window.index(p)][axis]);
+                exemplars.role(axis).at(x, y)
+            })
+            .collect();
+        let e = energy_cpu(exemplars.role(axis), &slice, w, h, (w * h) as usize).unwrap();
+        // Every interior pixel: (w - 6)(h - 6) of them.
+        assert_eq!(e.len(), ((w - 6) * (h - 6)) as usize, "axis {axis}");
+        assert!(e.iter().all(|&x| x == 0), "axis {axis}: {e:?}");
+    }
+}
+
+#[test]
+fn bad_solid_exemplars_are_rejected_with_the_image_and_limit() {
+    let make = |name: &str, w: u32, h: u32| {
+        Exemplar::from_rgb(name, w, h, vec![[1, 2, 3]; (w * h) as usize]).unwrap()
+    };
+    let limit = |e: SynthError, needle: &str| {
+        let msg = e.to_string();
+        assert!(msg.contains(needle), "{msg}");
+    };
+    limit(
+        SolidExemplars::new(make("wide.png", 32, 16), [None, None, None]).unwrap_err(),
+        "wide.png",
+    );
+    limit(
+        SolidExemplars::new(make("odd.png", 48, 48), [None, None, None]).unwrap_err(),
+        "power-of-two",
+    );
+    limit(
+        SolidExemplars::new(make("big.png", 256, 256), [None, None, None]).unwrap_err(),
+        "16..=128",
+    );
+    let e = SolidExemplars::new(
+        make("main.png", 32, 32),
+        [None, Some(make("other.png", 64, 64)), None],
+    )
+    .unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        msg.contains("--ey") && msg.contains("other.png") && msg.contains("main.png"),
+        "{msg}"
+    );
+    // Parameters of the candidates.
+    let p = CandidateParams {
+        strip: 4,
+        ..CandidateParams::default()
+    };
+    limit(p.check().unwrap_err(), "odd");
+    let p = CandidateParams {
+        s: 66,
+        ..CandidateParams::default()
+    };
+    limit(p.check().unwrap_err(), "1..=65");
+}

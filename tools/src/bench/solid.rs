@@ -1,0 +1,402 @@
+//! `lazysolid bench solid`: solid synthesis timed and scored per axis against its exemplars,
+//! beside the 2D synthesizer's output of the same exemplar and two ablations.
+//!
+//! Timed rows (wall time on the host): the candidate precompute per exemplar side
+//! (`--candidate-sides`, default 64 and 128) and the synthesis of a cube per `--sizes`
+//! (default 64 and 128, the analysis and candidates already on the GPU). Quality, from one run
+//! at the first size: for each axis the mid slice perpendicular to it against that axis's
+//! exemplar — neighbourhood energy, colour-histogram distance and period repetition — for
+//! - `solid`: the defaults;
+//! - `crossbar only`: candidates without the coherence filter (each pixel's 12 smallest
+//!   crossbar errors);
+//! - `extruded`: every voxel copies `E_z` at its (x, y), i.e. `E_z` extruded along z;
+//! - `2d synth`: the 2D synthesizer's output of the axis's exemplar at the same side.
+
+use super::harness::{time_cpu, Bench, Throughput};
+use super::CommonArgs;
+use crate::cli::solid::{axis_quality, slice, synthesize_cube, AxisQuality};
+use crate::cli::synth::write_png;
+use crate::cli::GlobalArgs;
+use anyhow::{ensure, Context};
+use clap::Args;
+use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::synth::solid::{
+    analyze_solid, CandidateParams, GpuCandidates, LevelTriples, SolidExemplars, SolidSynthesis,
+    VolumeBox, ROLE_NAMES,
+};
+use lazysolid_compute::synth::{
+    analyze, default_jitter, default_passes, histogram_distance, pack, period_repetition,
+    AnalysisParams, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
+};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// What to measure.
+#[derive(Args)]
+pub struct SolidArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Exemplars playing all three roles: GIMP pattern names in --exemplar-dir (NAME.pat) or
+    /// paths; each is cropped to its top-left square of the side measured.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "brick,terra,walnut,pink_marble"
+    )]
+    pub exemplars: Vec<String>,
+    /// Three exemplars playing E_x, E_y, E_z of one more case (empty: none).
+    #[arg(long, value_delimiter = ',', default_value = "terra,brick,walnut")]
+    pub three: Vec<String>,
+    /// Where named exemplars live.
+    #[arg(long, default_value = "assets/exemplars")]
+    pub exemplar_dir: PathBuf,
+    /// Exemplar sides whose candidate precompute is timed.
+    #[arg(long, value_delimiter = ',', default_value = "64,128")]
+    pub candidate_sides: Vec<u32>,
+    /// Exemplar side of the synthesis and quality cases.
+    #[arg(long, default_value_t = 64)]
+    pub side: u32,
+    /// Cube sides whose synthesis is timed; the first is scored.
+    #[arg(long, value_delimiter = ',', default_value = "64,128")]
+    pub sizes: Vec<u32>,
+    /// Seed of the jitter.
+    #[arg(long, default_value_t = 3)]
+    pub seed: u32,
+    /// Correction passes, one for all levels or one per level, coarsest first [default: as
+    /// `lazysolid synth`]. Each pass pads every level's box by 8 voxels a side, so fewer
+    /// passes make a small run possible on a slow device.
+    #[arg(long, value_delimiter = ',')]
+    pub passes: Vec<u32>,
+    /// Most pixels of each slice the energy evaluates.
+    #[arg(long, default_value_t = 4096)]
+    pub energy_samples: usize,
+    /// Only the first exemplar, the first candidate side and the first size.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// One quality row: a variant of one case, per axis.
+#[derive(Serialize)]
+struct QualityRow {
+    case: String,
+    variant: String,
+    axes: [AxisQuality; 3],
+}
+
+fn path_of(args: &SolidArgs, name: &str) -> PathBuf {
+    if name.contains('/') || name.contains('.') {
+        PathBuf::from(name)
+    } else {
+        args.exemplar_dir.join(format!("{name}.pat"))
+    }
+}
+
+/// The top-left `side`² of an exemplar.
+fn load_square(args: &SolidArgs, name: &str, side: u32) -> anyhow::Result<Exemplar> {
+    let path = path_of(args, name);
+    let e = Exemplar::load(&path).with_context(|| format!("loading {}", path.display()))?;
+    ensure!(
+        e.width >= side && e.height >= side,
+        "{}: {}x{} is smaller than the {side}² measured",
+        path.display(),
+        e.width,
+        e.height
+    );
+    let rgb = (0..side)
+        .flat_map(|y| (0..side).map(move |x| (x, y)))
+        .map(|(x, y)| e.at(x, y))
+        .collect();
+    Ok(Exemplar::from_rgb(path, side, side, rgb)?)
+}
+
+/// A case's exemplars: one name for all roles, or three joined by `+`.
+fn exemplars_of(args: &SolidArgs, case: &str, side: u32) -> anyhow::Result<SolidExemplars> {
+    let names: Vec<&str> = case.split('+').collect();
+    let main = load_square(args, names[0], side)?;
+    if names.len() == 1 {
+        return Ok(SolidExemplars::new(main, [None, None, None])?);
+    }
+    let roles = [0, 1, 2].map(|r| load_square(args, names[r], side).map(Some));
+    let [a, b, c] = roles;
+    Ok(SolidExemplars::new(main, [a?, b?, c?])?)
+}
+
+/// The `extruded` ablation: `E_z` at (x, y) everywhere along z, with the triples that say so.
+fn extruded(exemplars: &SolidExemplars, n: u32) -> (SolidSynthesis, Vec<[u8; 3]>) {
+    let m = exemplars.side();
+    let window = VolumeBox {
+        origin: [0; 3],
+        size: [n; 3],
+    };
+    let triples: Vec<[u32; 3]> = (0..window.voxels())
+        .map(|i| {
+            let p = window.position(i).map(|v| v as u32 % m);
+            [pack(p[1], 0), pack(p[0], 0), pack(p[0], p[1])]
+        })
+        .collect();
+    let colours = triples
+        .iter()
+        .map(|t| exemplars.role(2).at(t[2] & 0xffff, t[2] >> 16))
+        .collect();
+    let synthesis = SolidSynthesis {
+        window,
+        levels: vec![LevelTriples {
+            region: window,
+            triples,
+        }],
+    };
+    (synthesis, colours)
+}
+
+/// The 2D synthesizer's `n`² output of each role's exemplar, scored like a slice.
+fn synth_2d(
+    gpu: &Gpu,
+    energy: &EnergyKernel,
+    exemplars: &SolidExemplars,
+    n: u32,
+    seed: u32,
+    samples: usize,
+) -> anyhow::Result<([AxisQuality; 3], Vec<[u8; 3]>)> {
+    let mut out = Vec::new();
+    let mut image = Vec::new();
+    for r in 0..3 {
+        let e = exemplars.role(r);
+        let a = analyze(e, &AnalysisParams::default())?;
+        let levels = a.levels.len() as u32;
+        let params = SynthParams::new(
+            levels,
+            seed,
+            &default_passes(levels),
+            &default_jitter(levels),
+        )?;
+        let s = GpuSynthesizer::new(gpu, &a)?.synthesize(
+            &a,
+            &params,
+            Region {
+                origin: [0, 0],
+                size: [n, n],
+            },
+            false,
+            &mut |_| {},
+        )?;
+        let rgb = s.colours(e);
+        let minima = energy.minima(e, &rgb, n, n, samples)?;
+        out.push(AxisQuality {
+            energy: EnergyReport::from_minima(&minima).mean,
+            histogram: histogram_distance(&e.rgb, &rgb),
+            repetition: period_repetition(&s.window_coords(), n, n, e.width, e.height),
+        });
+        if r == 0 {
+            image = rgb;
+        }
+    }
+    Ok((out.try_into().expect("three roles"), image))
+}
+
+/// Exemplar, 2D synthesis and the three mid slices of a cube side by side (8-pixel gaps).
+fn figure(
+    exemplar: &Exemplar,
+    two_d: &[[u8; 3]],
+    synthesis: &SolidSynthesis,
+    colours: &[[u8; 3]],
+) -> (u32, u32, Vec<[u8; 3]>) {
+    let n = synthesis.window.size[0];
+    let gap = 8;
+    let mut panels: Vec<(u32, Vec<[u8; 3]>)> = vec![(exemplar.width, exemplar.rgb.clone())];
+    panels.push((n, two_d.to_vec()));
+    for axis in 0..3 {
+        panels.push((n, slice(synthesis, colours, axis, n / 2).0));
+    }
+    let width: u32 = panels.iter().map(|p| p.0).sum::<u32>() + gap * (panels.len() as u32 - 1);
+    let height = panels.iter().map(|p| p.0).max().unwrap_or(0);
+    let mut rgb = vec![[255u8; 3]; (width * height) as usize];
+    let mut x0 = 0;
+    for (side, pixels) in panels {
+        for y in 0..side {
+            for x in 0..side {
+                rgb[(y * width + x0 + x) as usize] = pixels[(y * side + x) as usize];
+            }
+        }
+        x0 += side + gap;
+    }
+    (width, height, rgb)
+}
+
+/// Runs the suite.
+pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
+    ensure!(!args.sizes.is_empty(), "--sizes names no size");
+    // `--three ""` names none.
+    let three: Vec<&String> = args.three.iter().filter(|n| !n.is_empty()).collect();
+    ensure!(
+        three.is_empty() || three.len() == 3,
+        "--three names {} exemplars; give three (E_x, E_y, E_z) or none",
+        three.len()
+    );
+    let mut cases: Vec<String> = args.exemplars.clone();
+    if !three.is_empty() {
+        cases.push(
+            three
+                .iter()
+                .map(|n| n.as_str())
+                .collect::<Vec<_>>()
+                .join("+"),
+        );
+    }
+    let (cases, candidate_sides, sizes) = if args.quick {
+        (&cases[..1], &args.candidate_sides[..1], &args.sizes[..1])
+    } else {
+        (&cases[..], &args.candidate_sides[..], &args.sizes[..])
+    };
+    let gpu = global.gpu()?;
+    let energy = EnergyKernel::new(&gpu)?;
+    let total = cases.len() as u64 * (candidate_sides.len() + sizes.len()) as u64;
+    let mut bench = Bench::new("bench-solid", &gpu, &args.common, total)?;
+    let dir = bench.artifact_dir()?;
+    let candidates = GpuCandidates::new(&gpu)?;
+    let mut quality = Vec::new();
+    let mut peak = Vec::new();
+
+    for case in cases {
+        for &side in candidate_sides {
+            let exemplars = exemplars_of(args, case, side)?;
+            let analysis = analyze_solid(&exemplars);
+            bench.case(
+                &format!("{case} {side}² candidates"),
+                (side * side * 3) as u64,
+                "lazysolid gpu (wall)",
+                Throughput::Elements,
+                None,
+                || {
+                    let (r, ms) = time_cpu(|| {
+                        candidates.compute(&analysis, &CandidateParams::default(), &mut |_| {})
+                    });
+                    r?;
+                    Ok(ms)
+                },
+            )?;
+        }
+        let exemplars = exemplars_of(args, case, args.side)?;
+        for (i, &n) in sizes.iter().enumerate() {
+            let mut last = None;
+            bench.case(
+                &format!("{case} {}² -> {n}³", args.side),
+                (n as u64).pow(3),
+                "lazysolid gpu synthesis (wall)",
+                Throughput::Elements,
+                None,
+                || {
+                    let run = synthesize_cube(
+                        &gpu,
+                        exemplars.clone(),
+                        &CandidateParams::default(),
+                        args.seed,
+                        &args.passes,
+                        &[],
+                        n,
+                        [0; 3],
+                        false,
+                    )?;
+                    let ms = run.synthesis_s * 1e3;
+                    last = Some(run);
+                    Ok(ms)
+                },
+            )?;
+            let run = last.expect("ran at least once");
+            peak.push((
+                format!("{case} {n}³ peak GPU MiB"),
+                run.peak_bytes as f64 / 1048576.0,
+            ));
+            if i > 0 {
+                continue;
+            }
+            bench.status(format!("{case}: scoring"));
+            let q = |s: &SolidSynthesis, c: &[[u8; 3]]| {
+                axis_quality(&energy, &run.exemplars, s, c, args.energy_samples)
+            };
+            let mut push = |variant: &str, axes| {
+                quality.push(QualityRow {
+                    case: case.clone(),
+                    variant: variant.into(),
+                    axes,
+                })
+            };
+            push("solid", q(&run.synthesis, &run.colours)?);
+            let ablation = synthesize_cube(
+                &gpu,
+                exemplars.clone(),
+                &CandidateParams {
+                    coherence: false,
+                    ..CandidateParams::default()
+                },
+                args.seed,
+                &args.passes,
+                &[],
+                n,
+                [0; 3],
+                false,
+            )?;
+            push("crossbar only", q(&ablation.synthesis, &ablation.colours)?);
+            let (ex, ex_colours) = extruded(&exemplars, n);
+            push("extruded E_z", q(&ex, &ex_colours)?);
+            let (two_d, image) =
+                synth_2d(&gpu, &energy, &exemplars, n, args.seed, args.energy_samples)?;
+            push("2d synth", two_d);
+            let (w, h, rgb) = figure(exemplars.role(0), &image, &run.synthesis, &run.colours);
+            let name = case.replace('+', "-");
+            write_png(&dir.join(format!("{name}-{n}-slices.png")), w, h, &rgb)?;
+            let (sw, sh, slab) = &run.slab;
+            write_png(&dir.join(format!("{name}-slab.png")), *sw, *sh, slab)?;
+        }
+    }
+
+    println!(
+        "{:<28} {:<14} {}",
+        "case",
+        "variant",
+        (0..3)
+            .map(|a| format!(
+                "{:>9} {:>6} {:>5}",
+                format!("E {}", ROLE_NAMES[a]),
+                "hist",
+                "rep"
+            ))
+            .collect::<Vec<_>>()
+            .join("  ")
+    );
+    let mut csv = String::from("case,variant,axis,energy,histogram,repetition\n");
+    for row in &quality {
+        println!(
+            "{:<28} {:<14} {}",
+            row.case,
+            row.variant,
+            row.axes
+                .iter()
+                .map(|q| format!(
+                    "{:>9.1} {:>6.3} {:>5.2}",
+                    q.energy, q.histogram, q.repetition
+                ))
+                .collect::<Vec<_>>()
+                .join("  ")
+        );
+        for (a, q) in row.axes.iter().enumerate() {
+            csv.push_str(&format!(
+                "{},{},{},{:.3},{:.5},{:.4}\n",
+                row.case,
+                row.variant,
+                ["x", "y", "z"][a],
+                q.energy,
+                q.histogram,
+                q.repetition
+            ));
+        }
+    }
+    std::fs::write(dir.join("quality.csv"), csv)?;
+    std::fs::write(
+        dir.join("quality.json"),
+        serde_json::to_string_pretty(&quality)?,
+    )?;
+    bench.finish(&peak)?;
+    println!("quality table and figures in {}", dir.display());
+    Ok(())
+}

@@ -1,0 +1,410 @@
+//! `lazysolid solid EXEMPLAR [--ex IMG] [--ey IMG] [--ez IMG] --size N [--offset X,Y,Z]
+//! [--seed S] -o OUT.nrrd`: synthesize a box of the unbounded solid texture from 2D exemplars
+//! on the device, write it as NRRD with orthogonal and oblique slices and the candidate slab,
+//! and score the slices against their exemplars.
+
+use super::synth::write_png;
+use super::GlobalArgs;
+use anyhow::{ensure, Context};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::synth::solid::{
+    analyze_solid, candidate_slab, check_box, CandidateParams, GpuCandidates, GpuSolidSynthesizer,
+    SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
+};
+use lazysolid_compute::synth::{
+    histogram_distance, jitter_or_default, passes_or_default, period_repetition, EnergyKernel,
+    EnergyReport, Exemplar, SynthParams,
+};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Sides `--size` accepts.
+pub const SOLID_SIZES: [u32; 3] = [64, 128, 256];
+
+/// What to synthesize and where to write it.
+#[derive(Args)]
+pub struct SolidArgs {
+    /// The exemplar playing every role not given by --ex/--ey/--ez: PNG, JPEG or GIMP
+    /// pattern, square with a power-of-two side of 16 to 128 pixels.
+    pub exemplar: PathBuf,
+    /// Exemplar of the slices perpendicular to x (image u = y, v = z).
+    #[arg(long)]
+    pub ex: Option<PathBuf>,
+    /// Exemplar of the slices perpendicular to y (image u = x, v = z).
+    #[arg(long)]
+    pub ey: Option<PathBuf>,
+    /// Exemplar of the slices perpendicular to z (image u = x, v = y).
+    #[arg(long)]
+    pub ez: Option<PathBuf>,
+    /// Side of the cube to synthesize: 64, 128 or 256 voxels.
+    #[arg(long, default_value_t = 64)]
+    pub size: u32,
+    /// Absolute position X,Y,Z of the box's first voxel in the unbounded volume.
+    #[arg(long, default_value = "0,0,0", value_parser = parse_offset3, allow_hyphen_values = true)]
+    pub offset: [i32; 3],
+    /// Seed of the jitter.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u32,
+    /// Jitter strength in 0..=1, one for all levels or one per level, coarsest first
+    /// [default: as `lazysolid synth`].
+    #[arg(long, value_delimiter = ',')]
+    pub jitter: Vec<f32>,
+    /// Correction passes, one for all levels or one per level, coarsest first [default: as
+    /// `lazysolid synth`].
+    #[arg(long, value_delimiter = ',')]
+    pub passes: Vec<u32>,
+    /// Crossbar strip length N (odd).
+    #[arg(long, default_value_t = DEFAULT_STRIP)]
+    pub strip: u32,
+    /// Strips kept per other exemplar before the crossbar ranking (the thesis' S).
+    #[arg(long, default_value_t = DEFAULT_S)]
+    pub s: u32,
+    /// Most pixels of each slice the neighbourhood energy evaluates.
+    #[arg(long, default_value_t = 4096)]
+    pub energy_samples: usize,
+    /// The NRRD volume to write; slices and the candidate slab go next to it as
+    /// NAME.x.png, NAME.y.png, NAME.z.png, NAME.oblique.png and NAME.slab.png.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+fn parse_offset3(s: &str) -> Result<[i32; 3], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("{s:?} is not X,Y,Z (e.g. -64,0,128)"));
+    }
+    let mut out = [0; 3];
+    for (o, v) in out.iter_mut().zip(parts) {
+        *o = v
+            .trim()
+            .parse()
+            .map_err(|_| format!("{v:?} in {s:?} is not a whole number"))?;
+    }
+    Ok(out)
+}
+
+/// `out.nrrd` → `out.SUFFIX.png`.
+fn sibling(output: &Path, suffix: &str) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}.{suffix}.png"))
+}
+
+/// Loads the exemplars of the roles.
+pub fn load_exemplars(
+    main: &Path,
+    ex: Option<&Path>,
+    ey: Option<&Path>,
+    ez: Option<&Path>,
+) -> anyhow::Result<SolidExemplars> {
+    let main = Exemplar::load(main)?;
+    let load = |p: Option<&Path>| p.map(Exemplar::load).transpose();
+    Ok(SolidExemplars::new(
+        main,
+        [load(ex)?, load(ey)?, load(ez)?],
+    )?)
+}
+
+/// An axis-aligned slice of a synthesized cube of side `n`: perpendicular to world `axis` at
+/// `at`, over that role's image axes; colours and the role's own coordinates.
+pub fn slice(
+    synthesis: &SolidSynthesis,
+    colours: &[[u8; 3]],
+    axis: usize,
+    at: u32,
+) -> (Vec<[u8; 3]>, Vec<u32>) {
+    let w = synthesis.window;
+    let n = w.size[0] as usize;
+    let triples = synthesis.window_triples();
+    let [a, b] = lazysolid_compute::synth::solid::ROLE_AXES[axis];
+    let mut rgb = Vec::with_capacity(n * n);
+    let mut coords = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let mut p = [0usize; 3];
+            p[axis] = at as usize;
+            p[a] = i;
+            p[b] = j;
+            let idx = (p[2] * n + p[1]) * n + p[0];
+            rgb.push(colours[idx]);
+            coords.push(triples[idx][axis]);
+        }
+    }
+    (rgb, coords)
+}
+
+/// The diagonal plane `y + z = n − 1` of a cube of side `n` (a 45° cut about x), as an
+/// `n`×`n` image (stretched by √2 along its second axis).
+pub fn oblique(colours: &[[u8; 3]], n: usize) -> Vec<[u8; 3]> {
+    (0..n * n)
+        .map(|k| {
+            let (x, y) = (k % n, k / n);
+            let z = n - 1 - y;
+            colours[(z * n + y) * n + x]
+        })
+        .collect()
+}
+
+/// Quality of the slices perpendicular to one axis.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct AxisQuality {
+    /// Mean 7×7 neighbourhood energy of the mid slice against the axis's exemplar.
+    pub energy: f64,
+    /// Colour-histogram distance of the mid slice to the exemplar.
+    pub histogram: f64,
+    /// Period repetition of the role's coordinates in the mid slice.
+    pub repetition: f64,
+}
+
+/// Scores the mid slices of a cube perpendicular to each axis against that axis's exemplar.
+pub fn axis_quality(
+    energy: &EnergyKernel,
+    exemplars: &SolidExemplars,
+    synthesis: &SolidSynthesis,
+    colours: &[[u8; 3]],
+    samples: usize,
+) -> anyhow::Result<[AxisQuality; 3]> {
+    let n = synthesis.window.size[0];
+    let m = exemplars.side();
+    let mut out = Vec::with_capacity(3);
+    for axis in 0..3 {
+        let (rgb, coords) = slice(synthesis, colours, axis, n / 2);
+        let e = exemplars.role(axis);
+        let minima = energy.minima(e, &rgb, n, n, samples)?;
+        out.push(AxisQuality {
+            energy: EnergyReport::from_minima(&minima).mean,
+            histogram: histogram_distance(&e.rgb, &rgb),
+            repetition: period_repetition(&coords, n, n, m, m),
+        });
+    }
+    Ok(out.try_into().expect("three axes"))
+}
+
+/// Encodes an RGB cube of side `n` as NRRD (raw bytes, x fastest), the format ParaView, 3D
+/// Slicer and ImageJ open.
+pub fn nrrd(colours: &[[u8; 3]], n: u32) -> Vec<u8> {
+    let mut out = Vec::with_capacity(colours.len() * 3 + 200);
+    let _ = write!(
+        out,
+        "NRRD0004\n# lazysolid solid texture\ntype: uint8\ndimension: 4\nsizes: 3 {n} {n} {n}\nkinds: RGB-color domain domain domain\nspacings: NaN 1 1 1\nencoding: raw\n\n"
+    );
+    out.extend(colours.iter().flatten());
+    out
+}
+
+/// Writes `bytes` through a temporary name in the same folder, then renames it.
+fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let tmp = path.with_file_name(format!(".{name}.partial"));
+    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
+}
+
+fn bar(len: u64, message: &'static str) -> ProgressBar {
+    let bar = ProgressBar::new(len).with_style(
+        ProgressStyle::with_template("{msg} [{bar:30}] level {pos}/{len} {elapsed}")
+            .expect("valid template"),
+    );
+    bar.set_message(message);
+    bar
+}
+
+/// A synthesized cube and the times it took.
+pub struct SolidRun {
+    /// The exemplars.
+    pub exemplars: SolidExemplars,
+    /// The synthesis.
+    pub synthesis: SolidSynthesis,
+    /// Colours of the window, x fastest.
+    pub colours: Vec<[u8; 3]>,
+    /// CPU analysis, seconds.
+    pub analysis_s: f64,
+    /// GPU candidates (wall), seconds.
+    pub candidates_s: f64,
+    /// GPU synthesis (wall), seconds.
+    pub synthesis_s: f64,
+    /// Peak GPU memory of the synthesis, bytes.
+    pub peak_bytes: u64,
+    /// Candidate slab picture: width, height, pixels.
+    pub slab: (u32, u32, Vec<[u8; 3]>),
+    /// Fallbacks of the coherence filter, over all levels.
+    pub fallbacks: u64,
+}
+
+/// Analysis, candidates and synthesis of a cube of side `n` at `offset`.
+#[allow(clippy::too_many_arguments)]
+pub fn synthesize_cube(
+    gpu: &Gpu,
+    exemplars: SolidExemplars,
+    candidate_params: &CandidateParams,
+    seed: u32,
+    passes: &[u32],
+    jitter: &[f32],
+    n: u32,
+    offset: [i32; 3],
+    progress: bool,
+) -> anyhow::Result<SolidRun> {
+    let start = Instant::now();
+    let analysis = analyze_solid(&exemplars);
+    let analysis_s = start.elapsed().as_secs_f64();
+    let levels = analysis.levels.len() as u32;
+    let params = SynthParams::new(
+        levels,
+        seed,
+        &passes_or_default(passes, levels),
+        &jitter_or_default(jitter, levels),
+    )?;
+    let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };
+    let start = Instant::now();
+    let b = show(bar(levels as u64, "candidates"));
+    let candidates =
+        GpuCandidates::new(gpu)?.compute(&analysis, candidate_params, &mut |_| b.inc(1))?;
+    b.finish_and_clear();
+    let candidates_s = start.elapsed().as_secs_f64();
+    let window = VolumeBox {
+        origin: offset,
+        size: [n; 3],
+    };
+    let synth = GpuSolidSynthesizer::new(gpu, &analysis, &candidates)?;
+    let b = show(bar(levels as u64, "synthesizing"));
+    let start = Instant::now();
+    let (synthesis, _) = synth
+        .synthesize(&analysis, &candidates, &params, window, false, &mut |_| {
+            b.inc(1)
+        })
+        .with_context(|| format!("--size {n}: the volume does not fit the device"))?;
+    let synthesis_s = start.elapsed().as_secs_f64();
+    b.finish_and_clear();
+    let colours = synthesis.colours(&exemplars);
+    let slab = candidate_slab(&exemplars, &candidates, 4);
+    Ok(SolidRun {
+        peak_bytes: synth.peak_bytes(window, &params.passes),
+        fallbacks: candidates.reports.iter().map(|r| r.fallbacks).sum(),
+        exemplars,
+        synthesis,
+        colours,
+        analysis_s,
+        candidates_s,
+        synthesis_s,
+        slab,
+    })
+}
+
+/// Runs the command.
+pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    ensure!(
+        args.output
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("nrrd")),
+        "-o {}: the output must be a .nrrd file",
+        args.output.display()
+    );
+    ensure!(
+        SOLID_SIZES.contains(&args.size),
+        "--size {}: the cube side must be one of {SOLID_SIZES:?} voxels",
+        args.size
+    );
+    check_box(VolumeBox {
+        origin: args.offset,
+        size: [args.size; 3],
+    })
+    .with_context(|| {
+        format!(
+            "--offset {},{},{}",
+            args.offset[0], args.offset[1], args.offset[2]
+        )
+    })?;
+    let exemplars = load_exemplars(
+        &args.exemplar,
+        args.ex.as_deref(),
+        args.ey.as_deref(),
+        args.ez.as_deref(),
+    )?;
+    let candidate_params = CandidateParams {
+        strip: args.strip,
+        s: args.s,
+        coherence: true,
+    };
+    candidate_params.check()?;
+    let gpu = global.gpu()?;
+    let n = args.size;
+    let run = synthesize_cube(
+        &gpu,
+        exemplars,
+        &candidate_params,
+        args.seed,
+        &args.passes,
+        &args.jitter,
+        n,
+        args.offset,
+        true,
+    )?;
+    let energy = EnergyKernel::new(&gpu)?;
+    let quality = axis_quality(
+        &energy,
+        &run.exemplars,
+        &run.synthesis,
+        &run.colours,
+        args.energy_samples,
+    )?;
+
+    // Everything is computed; only now are files written, each complete or not at all.
+    write_atomic(&args.output, &nrrd(&run.colours, n))?;
+    for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
+        let (rgb, _) = slice(&run.synthesis, &run.colours, axis, n / 2);
+        write_png(&sibling(&args.output, name), n, n, &rgb)?;
+    }
+    write_png(
+        &sibling(&args.output, "oblique"),
+        n,
+        n,
+        &oblique(&run.colours, n as usize),
+    )?;
+    let (sw, sh, slab) = &run.slab;
+    write_png(&sibling(&args.output, "slab"), *sw, *sh, slab)?;
+
+    let m = run.exemplars.side();
+    println!(
+        "exemplars {m}x{m}: {}",
+        (0..3)
+            .map(|r| format!(
+                "{} = {}",
+                ROLE_NAMES[r],
+                run.exemplars.role(r).source.display()
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    println!(
+        "cube {n}^3 at ({}, {}, {}), seed {}, strip {}, S {}",
+        args.offset[0], args.offset[1], args.offset[2], args.seed, args.strip, args.s
+    );
+    println!("analysis (CPU)    {:8.3} s", run.analysis_s);
+    println!(
+        "candidates (GPU)  {:8.3} s ({} coherence fallbacks)",
+        run.candidates_s, run.fallbacks
+    );
+    println!("synthesis (GPU)   {:8.3} s", run.synthesis_s);
+    println!(
+        "peak GPU memory of the synthesis {:.1} MiB",
+        run.peak_bytes as f64 / (1 << 20) as f64
+    );
+    for (axis, q) in quality.iter().enumerate() {
+        println!(
+            "slice perpendicular to {} vs {}: energy {:.1}, histogram distance {:.4}, period repetition {:.3}",
+            ["x", "y", "z"][axis],
+            ROLE_NAMES[axis],
+            q.energy,
+            q.histogram,
+            q.repetition
+        );
+    }
+    println!(
+        "wrote {} and its slices ({}, ...)",
+        args.output.display(),
+        sibling(&args.output, "x").display()
+    );
+    Ok(())
+}
