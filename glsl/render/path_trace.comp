@@ -99,20 +99,30 @@ float srgb_to_linear(float c) {
 // Albedo of a store-baked texture at an object-space surface point with its object-space
 // geometric normal. A point whose voxels are not stored (never expected on the surface) shows
 // magenta, so a hole is seen, not hidden.
+//
+// The scene's store kinds, one bit per STORE_KIND_*, are a specialization constant: the lookups
+// of kinds the scene does not use are compiled out, which shortens the pipeline's compilation on
+// a CPU device (default: all four kinds).
+layout(constant_id = PATH_TRACE_STORE_KINDS_ID) const uint STORE_KINDS = 15u;
+
+bool store_kind_used(uint kind) {
+    return (STORE_KINDS & (1u << kind)) != 0u;
+}
+
 vec3 store_albedo(uint slot, vec3 pos, vec3 normal) {
     uint kind = store_records[slot].kind;
     bool nearest = store_records[slot].filtering == STORE_FILTER_NEAREST;
-    vec4 c;
-    if (kind == STORE_KIND_HASH) {
+    vec4 c = vec4(0.0);
+    if (store_kind_used(STORE_KIND_HASH) && kind == STORE_KIND_HASH) {
         HashStoreParams p = store_records[slot].hash;
         c = nearest ? store_hash_nearest(p, pos) : store_hash_trilinear(p, pos);
-    } else if (kind == STORE_KIND_OCTREE) {
+    } else if (store_kind_used(STORE_KIND_OCTREE) && kind == STORE_KIND_OCTREE) {
         OctreeParams p = store_records[slot].octree;
         c = nearest ? store_octree_nearest(p, pos) : store_octree_trilinear(p, pos);
-    } else if (kind == STORE_KIND_PERFECT) {
+    } else if (store_kind_used(STORE_KIND_PERFECT) && kind == STORE_KIND_PERFECT) {
         PerfectStoreParams p = store_records[slot].perfect;
         c = nearest ? store_perfect_nearest(p, pos) : store_perfect_trilinear(p, pos);
-    } else {
+    } else if (store_kind_used(STORE_KIND_TILETREE) && kind == STORE_KIND_TILETREE) {
         TileTreeParams p = store_records[slot].tiletree;
         c = nearest ? store_tiletree_nearest(p, pos, normal) : store_tiletree_bilinear(p, pos, normal);
     }

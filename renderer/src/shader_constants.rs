@@ -64,6 +64,9 @@ pub const STORE_KIND_OCTREE: u32 = 1;
 pub const STORE_KIND_PERFECT: u32 = 2;
 /// See [`STORE_KIND_HASH`].
 pub const STORE_KIND_TILETREE: u32 = 3;
+/// Specialization constant id of the path tracer's store-kind mask (bit `STORE_KIND_*` set for
+/// each kind the scene uses; the others' lookups are compiled out).
+pub const PATH_TRACE_STORE_KINDS_ID: u32 = 2;
 /// Nearest-texel store reads.
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).

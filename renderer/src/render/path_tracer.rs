@@ -8,7 +8,7 @@ use crate::accel::{DeviceBvh, SceneBvh};
 use crate::kernels::render::PATH_TRACE;
 use crate::output::Film;
 use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
-use crate::shader_constants::CWBVH_WORKGROUP_SIZE;
+use crate::shader_constants::{CWBVH_WORKGROUP_SIZE, PATH_TRACE_STORE_KINDS_ID};
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
 use bytemuck::Zeroable;
 use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
@@ -104,7 +104,11 @@ impl PathTracer {
         };
         Ok(PathTracer {
             gpu: gpu.clone(),
-            kernel: gpu.kernel_with(&PATH_TRACE, CWBVH_WORKGROUP_SIZE, &[])?,
+            kernel: gpu.kernel_with(
+                &PATH_TRACE,
+                CWBVH_WORKGROUP_SIZE,
+                &[(PATH_TRACE_STORE_KINDS_ID, stores.kinds_mask())],
+            )?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
             materials: GpuBuffer::from_slice(gpu, "render materials", &materials)?,
             lights: GpuBuffer::from_slice(gpu, "render lights", &light_records)?,

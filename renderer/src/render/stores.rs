@@ -295,6 +295,12 @@ impl SceneStores {
         self.stores.iter().map(|(s, f)| s.record(*f)).collect()
     }
 
+    /// One bit per `STORE_KIND_*` the scene's stores use: the path tracer compiles only those
+    /// lookups.
+    pub fn kinds_mask(&self) -> u32 {
+        self.records().iter().fold(0, |mask, r| mask | 1 << r.kind)
+    }
+
     /// Rewrites the kernel's records from the stores' current buffers (after inserts, which
     /// may have reallocated them) and their sizes in [`SceneStores::info`].
     ///
