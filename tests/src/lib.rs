@@ -89,6 +89,25 @@ pub fn asset_exemplar(name: &str) -> std::path::PathBuf {
     asset("exemplars", name)
 }
 
+/// A `width`×`height` crop at (`x0`, `y0`) of a GIMP pattern of the assets (`file`, e.g.
+/// `terra.pat`), named after it: small exemplars keep analyses and syntheses quick.
+pub fn exemplar_crop(
+    file: &str,
+    x0: u32,
+    y0: u32,
+    width: u32,
+    height: u32,
+) -> lazysolid_compute::synth::Exemplar {
+    use lazysolid_compute::synth::Exemplar;
+    let full = Exemplar::load(&asset_exemplar(file)).unwrap_or_else(|e| panic!("{e}"));
+    let rgb = (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| full.at(x0 + x, y0 + y))
+        .collect();
+    let name = format!("{} crop", file.trim_end_matches(".pat"));
+    Exemplar::from_rgb(name, width, height, rgb).unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// An asset mesh moved into the unit cube, the space of voxel grids, stores and test scenes.
 pub fn unit_mesh(name: &str) -> lazysolid_renderer::mesh::Mesh {
     lazysolid_renderer::mesh::Mesh::load_unit_cube(asset_mesh(name))

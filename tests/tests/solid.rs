@@ -8,18 +8,13 @@ use lazysolid_compute::synth::solid::{
     LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
 use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
-use lazysolid_tests::{asset_exemplar, rng, with_gpu};
+use lazysolid_tests::{exemplar_crop, rng, with_gpu};
 use rand::Rng;
 use std::sync::OnceLock;
 
 /// A `side`² crop at (`x0`, `y0`) of a GIMP pattern.
 fn crop(name: &str, x0: u32, y0: u32, side: u32) -> Exemplar {
-    let full = Exemplar::load(&asset_exemplar(name)).unwrap();
-    let rgb = (0..side)
-        .flat_map(|y| (0..side).map(move |x| (x, y)))
-        .map(|(x, y)| full.at(x0 + x, y0 + y))
-        .collect();
-    Exemplar::from_rgb(format!("{name} crop"), side, side, rgb).unwrap()
+    exemplar_crop(name, x0, y0, side, side)
 }
 
 type Case = (SolidExemplars, SolidAnalysis, SolidCandidates);

@@ -8,7 +8,7 @@ use lazysolid_compute::synth::{
     GpuSynthesizer, Region, SynthError, SynthParams, MAX_PERIOD_PENALTY, MIN_EXEMPLAR_SIDE,
     REPETITION_TOLERANCE,
 };
-use lazysolid_tests::{asset_exemplar, with_gpu};
+use lazysolid_tests::{asset_exemplar, exemplar_crop, with_gpu};
 use std::sync::OnceLock;
 
 /// GIMP's 64² leather pattern and its analysis, shared by the tests.
@@ -25,12 +25,7 @@ fn leather() -> &'static (Exemplar, ExemplarAnalysis) {
 fn terra_crop() -> &'static (Exemplar, ExemplarAnalysis) {
     static CELL: OnceLock<(Exemplar, ExemplarAnalysis)> = OnceLock::new();
     CELL.get_or_init(|| {
-        let full = Exemplar::load(&asset_exemplar("terra.pat")).unwrap();
-        let rgb = (0..40)
-            .flat_map(|y| (0..32).map(move |x| (x, y)))
-            .map(|(x, y)| full.at(x, y))
-            .collect();
-        let exemplar = Exemplar::from_rgb("terra crop", 32, 40, rgb).unwrap();
+        let exemplar = exemplar_crop("terra.pat", 0, 0, 32, 40);
         let params = AnalysisParams {
             k: 3,
             ..AnalysisParams::default()

@@ -6,7 +6,7 @@ use lazysolid_compute::synth::{
     analysis_key, analyze, analyze_cached, AnalysisParams, CacheOutcome, DiskCache, Exemplar,
     ExemplarAnalysis, ANALYSIS_CACHE_KIND,
 };
-use lazysolid_tests::asset_exemplar;
+use lazysolid_tests::exemplar_crop;
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
@@ -14,12 +14,7 @@ use std::sync::OnceLock;
 fn terra_crop() -> &'static (Exemplar, ExemplarAnalysis) {
     static CELL: OnceLock<(Exemplar, ExemplarAnalysis)> = OnceLock::new();
     CELL.get_or_init(|| {
-        let full = Exemplar::load(&asset_exemplar("terra.pat")).unwrap();
-        let rgb = (0..40)
-            .flat_map(|y| (0..32).map(move |x| (x, y)))
-            .map(|(x, y)| full.at(x, y))
-            .collect();
-        let exemplar = Exemplar::from_rgb("terra crop", 32, 40, rgb).unwrap();
+        let exemplar = exemplar_crop("terra.pat", 0, 0, 32, 40);
         let analysis = analyze(&exemplar, &AnalysisParams::default()).unwrap();
         (exemplar, analysis)
     })
