@@ -105,7 +105,8 @@ fn synthesis_gpu_equals_cpu_on_every_level() {
     for (name, (_, analysis, candidates)) in [("three", three())] {
         let levels = analysis.levels.len() as u32;
         // One pass at every other level, from the finest down, none in between: each pass pads
-        // the level's box by 8 voxels a side, which the CPU reference pays for on 2 cores.
+        // the level's box by up to 5, 3 and 2 voxels a side along x, y and z, which the CPU
+        // reference pays for on 2 cores.
         let passes: Vec<u32> = (0..levels).map(|l| (levels - l) % 2).collect();
         let params = SynthParams::new(levels, 11, &passes, &[0.5]).unwrap();
         let window = boxed([-5, 7, 2], [16, 16, 16]);

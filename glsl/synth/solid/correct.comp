@@ -1,12 +1,14 @@
 #version 460
-// One correction subpass of the volume synthesizer: every interior voxel of one parity class
-// takes, among its current triple and the candidate triples gathered from its 27 neighbours
-// (each neighbour's coordinate in each role shifted back by the neighbour's offset projected
-// into that role), the one whose three exemplar neighbourhoods best match the three planes
-// through the voxel (per plane the 2D synthesizer's 4-diagonal, 3-prediction appearance sums,
-// integer SSD). Ties keep the current triple, then go to the smallest triple. Each distinct
-// shifted-back pixel of a role is evaluated once (a repeat gives the same candidates, so it
-// cannot change the choice). CPU reference: compute/src/synth/solid/cpu.rs.
+// One correction subpass of the volume synthesizer: every voxel of one parity class inside the
+// subpass's box (first, count: every other voxel per axis) takes, among its current triple and
+// the candidate triples gathered in each role's plane (each of the 3x3 voxels of the plane
+// through the voxel perpendicular to the role's axis: its coordinate in that role shifted back
+// by its offset in the plane), the one whose three exemplar neighbourhoods best match the
+// three planes through the voxel (per plane the 2D synthesizer's 4-diagonal, 3-prediction
+// appearance sums, integer SSD). Ties keep the current triple, then go to the smallest triple.
+// Each distinct shifted-back pixel of a role is evaluated once (a repeat gives the same
+// candidates, so it cannot change the choice), and a candidate's distance stops once its
+// partial sum exceeds the best (it cannot win). CPU reference: compute/src/synth/solid/cpu.rs.
 #include "common.glsl"
 #include "synth/solid.glsl"
 
@@ -19,7 +21,7 @@ layout(push_constant, scalar) uniform Push {
     uint64_t table;
     ivec3 origin;
     uvec3 size;
-    uvec3 first;               // first interior local position of the class
+    uvec3 first;               // first local position of the class inside the subpass's box
     uvec3 count;               // class voxels per axis
     uint side;
     uint spacing;
@@ -41,19 +43,24 @@ uvec2 appearance_at(uint role, uint c, ivec2 d) {
     return UVec2Ptr(appearance[role]).v[e.y * pc.side + e.x];
 }
 
-uint distance_of(uvec3 t) {
-    uint dist = 0u;
-    for (uint r = 0; r < 3; r++) {
-        uvec2 c = synth_unpack(t[r]);
-        uint e = 2u * (c.y * pc.side + c.x);
-        uvec4 lo = UVec4Ptr(records[r]).v[e];
-        uvec4 hi = UVec4Ptr(records[r]).v[e + 1u];
-        dist += word_distance(sums[r][0], lo.x) + word_distance(sums[r][1], lo.y)
-            + word_distance(sums[r][2], lo.z) + word_distance(sums[r][3], lo.w)
-            + word_distance(sums[r][4], hi.x) + word_distance(sums[r][5], hi.y)
-            + word_distance(sums[r][6], hi.z) + word_distance(sums[r][7], hi.w);
-    }
-    return dist;
+uint role_distance(uint r, uint c) {
+    uvec2 u = synth_unpack(c);
+    uint e = 2u * (u.y * pc.side + u.x);
+    uvec4 lo = UVec4Ptr(records[r]).v[e];
+    uvec4 hi = UVec4Ptr(records[r]).v[e + 1u];
+    return word_distance(sums[r][0], lo.x) + word_distance(sums[r][1], lo.y)
+        + word_distance(sums[r][2], lo.z) + word_distance(sums[r][3], lo.w)
+        + word_distance(sums[r][4], hi.x) + word_distance(sums[r][5], hi.y)
+        + word_distance(sums[r][6], hi.z) + word_distance(sums[r][7], hi.w);
+}
+
+// The distance of triple t, or some value above `bound` once the partial sum exceeds it.
+uint distance_of(uvec3 t, uint bound) {
+    uint dist = role_distance(0u, t.x);
+    if (dist > bound) return dist;
+    dist += role_distance(1u, t.y);
+    if (dist > bound) return dist;
+    return dist + role_distance(2u, t.z);
 }
 
 // (distance, 0 for the current triple else 1, triple) lexicographically smaller.
@@ -106,15 +113,17 @@ void main() {
         }
     }
     uvec3 current = around[13];
-    uint best_d = distance_of(current);
+    uint best_d = distance_of(current, 0xffffffffu);
     uint best_r = 0u;
     uvec3 best_t = current;
     for (uint r = 0; r < 3; r++) {
-        uint unique[27];
+        uint unique[9];
         uint n_unique = 0u;
-        for (int n = 0; n < 27; n++) {
-            ivec3 d = ivec3(n % 3, (n / 3) % 3, n / 9) - 1;
-            uvec2 u = synth_unpack(solid_moved(around[n][r], -solid_project(r, d) * s, pc.side));
+        for (int n = 0; n < 9; n++) {
+            ivec2 d = ivec2(n % 3, n / 3) - 1;
+            ivec3 w = r == 0u ? ivec3(0, d) : (r == 1u ? ivec3(d.x, 0, d.y) : ivec3(d, 0));
+            uint c = around[(w.z + 1) * 9 + (w.y + 1) * 3 + w.x + 1][r];
+            uvec2 u = synth_unpack(solid_moved(c, -d * s, pc.side));
             uint base = u.y * pc.side + u.x;
             bool repeated = false;
             for (uint m = 0u; m < n_unique; m++) {
@@ -132,7 +141,7 @@ void main() {
                 uint slot = (base * SOLID_MAX_CANDIDATES + c) * 3u;
                 uvec3 t = uvec3(U32Ptr(candidates[r]).v[slot], U32Ptr(candidates[r]).v[slot + 1u],
                                 U32Ptr(candidates[r]).v[slot + 2u]);
-                uint dist = distance_of(t);
+                uint dist = distance_of(t, best_d);
                 uint rank = t == current ? 0u : 1u;
                 if (better(dist, rank, t, best_d, best_r, best_t)) {
                     best_d = dist;

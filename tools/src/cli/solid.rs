@@ -10,8 +10,9 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidate_slab, check_box, CandidateParams, GpuCandidates, GpuSolidSynthesizer,
-    SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
+    analyze_solid, candidate_slab, check_box, plan_levels, CandidateParams, GpuCandidates,
+    GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP,
+    ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
     histogram_distance, jitter_or_default, passes_or_default, period_repetition, EnergyKernel,
@@ -227,6 +228,10 @@ pub struct SolidRun {
     pub synthesis_s: f64,
     /// Peak GPU memory of the synthesis, bytes.
     pub peak_bytes: u64,
+    /// Voxels computed (upsampled and jittered) over all levels, window and padding.
+    pub voxels: u64,
+    /// Voxel updates of all correction subpasses over all levels.
+    pub voxel_updates: u64,
     /// Candidate slab picture: width, height, pixels.
     pub slab: (u32, u32, Vec<[u8; 3]>),
     /// Fallbacks of the coherence filter, over all levels.
@@ -278,9 +283,12 @@ pub fn synthesize_cube(
     let synthesis_s = start.elapsed().as_secs_f64();
     b.finish_and_clear();
     let colours = synthesis.colours(&exemplars);
+    let plan = plan_levels(window, &params.passes);
     let slab = candidate_slab(&exemplars, &candidates, 4);
     Ok(SolidRun {
         peak_bytes: synth.peak_bytes(window, &params.passes),
+        voxels: plan.iter().map(|p| p.region.voxels() as u64).sum(),
+        voxel_updates: plan.iter().map(|p| p.updates()).sum(),
         fallbacks: candidates.reports.iter().map(|r| r.fallbacks).sum(),
         exemplars,
         synthesis,
@@ -386,7 +394,12 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "candidates (GPU)  {:8.3} s ({} coherence fallbacks)",
         run.candidates_s, run.fallbacks
     );
-    println!("synthesis (GPU)   {:8.3} s", run.synthesis_s);
+    println!(
+        "synthesis (GPU)   {:8.3} s ({:.2} M voxels over all levels, {:.2} M voxel updates)",
+        run.synthesis_s,
+        run.voxels as f64 * 1e-6,
+        run.voxel_updates as f64 * 1e-6
+    );
     println!(
         "peak GPU memory of the synthesis {:.1} MiB",
         run.peak_bytes as f64 / (1 << 20) as f64

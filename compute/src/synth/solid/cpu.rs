@@ -3,10 +3,12 @@
 //!
 //! Per level: each voxel's triple is its parent's plus `h_l` times the child offset projected
 //! into each role (level 0: the projection of the position times `h_0`), then moved by the
-//! projected 3D jitter. Then `P_l` passes of 8 subpasses, one per 2×2×2 parity class: every
-//! interior voxel of the class takes, among its current triple and the candidates gathered
-//! from its 27 neighbours (the neighbour's coordinate in each role shifted back by the
-//! neighbour's offset projected into that role, and that pixel's candidate triples), the one
+//! projected 3D jitter. Then `P_l` passes of 8 subpasses, one per 2×2×2 parity class in the
+//! order of `plan.rs`: every voxel of the class in the subpass's box takes, among its current
+//! triple and the candidates gathered in each role's plane (for each of the 3×3 voxels of the
+//! plane through the voxel perpendicular to the role's axis, that voxel's coordinate in the
+//! role shifted back by its offset in the plane, and that pixel's candidate triples: the 2D
+//! synthesizer's k-coherence, once per plane), the one
 //! minimizing the sum over the three planes through the voxel of the 2D synthesizer's
 //! 4-diagonal appearance distance — plane ⊥ x compares the `E_x` coordinates of the voxels in
 //! that plane with the candidate's `E_x` neighbourhood, and so on. Ties keep the current
@@ -15,7 +17,7 @@
 use super::analysis::SolidAnalysis;
 use super::candidates::SolidCandidates;
 use super::jitter::jitter3;
-use super::plan::{plan_boxes, VolumeBox};
+use super::plan::{plan_levels, Subpass, VolumeBox};
 use super::roles::{project, ROLES, ROLE_AXES};
 use super::volume::{check_box, LevelTriples, SolidSynthesis};
 use crate::synth::appearance::APPEARANCE_DIMS;
@@ -25,18 +27,6 @@ use crate::synth::neighbourhood::{
 };
 use crate::synth::{SynthError, SynthParams, SynthResult};
 use rayon::prelude::*;
-
-/// Parity classes in subpass order (x fastest).
-pub(crate) const CLASSES_3D: [[i32; 3]; 8] = [
-    [0, 0, 0],
-    [1, 0, 0],
-    [0, 1, 0],
-    [1, 1, 0],
-    [0, 0, 1],
-    [1, 0, 1],
-    [0, 1, 1],
-    [1, 1, 1],
-];
 
 /// Offset `n` of the 3×3×3 neighbourhood (x fastest; 13 is the centre).
 pub(crate) fn offset27(n: usize) -> [i32; 3] {
@@ -129,26 +119,40 @@ pub(crate) fn triple_distance(
         .sum()
 }
 
-/// One correction subpass of parity `class` over the interior of `region`, in place.
+/// Offsets of the 3×3 voxels of role `r`'s plane through a voxel (the role's normal
+/// component zero), in the order the kernel visits them.
+pub(crate) fn plane_offsets(r: usize) -> [[i32; 3]; 9] {
+    let [a, b] = ROLE_AXES[r];
+    std::array::from_fn(|n| {
+        let mut d = [0i32; 3];
+        d[a] = n as i32 % 3 - 1;
+        d[b] = n as i32 / 3 - 1;
+        d
+    })
+}
+
+/// One correction subpass over `region`'s triples, in place: the voxels of the subpass's
+/// class inside its update box.
 pub fn correct_subpass_3d(
     analysis: &SolidAnalysis,
     candidates: &SolidCandidates,
     level: u32,
     region: VolumeBox,
     triples: &mut [[u32; 3]],
-    class: [i32; 3],
+    subpass: Subpass,
 ) {
     let m = analysis.side;
     let h = analysis.levels[level as usize].spacing as i32;
     let sets = &candidates.levels[level as usize];
-    let class_voxels: Vec<usize> = (0..region.voxels())
-        .filter(|&i| {
-            let p = region.position(i);
-            (0..3).all(|a| {
-                let l = p[a] - region.origin[a];
-                l >= 1 && l < region.size[a] as i32 - 1 && p[a] & 1 == class[a]
+    let span = subpass.update.class_span(subpass.class);
+    let class_voxels: Vec<usize> = (0..span[2].1 as i32)
+        .flat_map(|z| {
+            (0..span[1].1 as i32).flat_map(move |y| {
+                (0..span[0].1 as i32)
+                    .map(move |x| [span[0].0 + 2 * x, span[1].0 + 2 * y, span[2].0 + 2 * z])
             })
         })
+        .map(|p| region.index(p))
         .collect();
     // Voxels of one class only read voxels of other classes, so they update independently.
     let updated: Vec<[u32; 3]> = class_voxels
@@ -168,11 +172,11 @@ pub fn correct_subpass_3d(
             );
             for (r, role_sets) in sets.iter().enumerate() {
                 // Each distinct shifted-back pixel once: a repeat has the same candidates.
-                let mut bases: Vec<u32> = around
+                let mut bases: Vec<u32> = plane_offsets(r)
                     .iter()
-                    .enumerate()
-                    .map(|(n, t)| {
-                        let back = project(r, offset27(n)).map(|v| -v);
+                    .map(|&d| {
+                        let t = around[((d[2] + 1) * 9 + (d[1] + 1) * 3 + d[0] + 1) as usize];
+                        let back = project(r, d).map(|v| -v);
                         let (x, y) = unpack(moved(t[r], back, h, m));
                         y * m + x
                     })
@@ -205,15 +209,14 @@ pub fn synthesize_solid_cpu(
     window: VolumeBox,
 ) -> SynthResult<SolidSynthesis> {
     check_solid(analysis, candidates, params, window)?;
-    let boxes = plan_boxes(window, &params.passes);
-    let mut levels: Vec<LevelTriples> = Vec::with_capacity(boxes.len());
-    for (l, &region) in boxes.iter().enumerate() {
+    let plans = plan_levels(window, &params.passes);
+    let mut levels: Vec<LevelTriples> = Vec::with_capacity(plans.len());
+    for (l, plan) in plans.iter().enumerate() {
         let l = l as u32;
+        let region = plan.region;
         let mut triples = upsample_jitter_3d(analysis, params, l, region, levels.last());
-        for _ in 0..params.passes[l as usize] {
-            for class in CLASSES_3D {
-                correct_subpass_3d(analysis, candidates, l, region, &mut triples, class);
-            }
+        for &subpass in &plan.subpasses {
+            correct_subpass_3d(analysis, candidates, l, region, &mut triples, subpass);
         }
         levels.push(LevelTriples { region, triples });
     }

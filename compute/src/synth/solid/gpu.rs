@@ -3,13 +3,12 @@
 
 use super::analysis::SolidAnalysis;
 use super::candidates::SolidCandidates;
-use super::cpu::{check_solid, CLASSES_3D};
-use super::plan::{plan_boxes, VolumeBox};
+use super::cpu::check_solid;
+use super::plan::{plan_boxes, plan_levels, VolumeBox};
 use super::roles::ROLES;
 use super::volume::{LevelTriples, SolidSynthesis};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth_solid;
-use crate::synth::gpu::class_span;
 use crate::synth::neighbourhood::pack_i8_words;
 use crate::synth::{LevelTimes, SynthParams, SynthResult};
 use std::sync::Arc;
@@ -147,11 +146,12 @@ impl GpuSolidSynthesizer {
     ) -> SynthResult<(SolidSynthesis, Vec<LevelTimes>)> {
         check_solid(analysis, candidates, params, window)?;
         let finest = self.levels.len() - 1;
-        let boxes = plan_boxes(window, &params.passes);
+        let plans = plan_levels(window, &params.passes);
         let mut levels = Vec::new();
-        let mut times = Vec::with_capacity(boxes.len());
+        let mut times = Vec::with_capacity(plans.len());
         let mut parent: Option<(VolumeBox, GpuBuffer<[u32; 3]>)> = None;
-        for (l, &region) in boxes.iter().enumerate() {
+        for (l, plan) in plans.iter().enumerate() {
+            let region = plan.region;
             let level = &self.levels[l];
             let spacing = &level.spacing;
             let triples = GpuBuffer::<[u32; 3]>::new(
@@ -181,28 +181,21 @@ impl GpuSolidSynthesizer {
                 let k = &self.upsample;
                 rec.dispatch(k, k.groups_for(region.voxels() as u64), &[], &push)?;
                 rec.timestamp()?;
-                for _ in 0..params.passes[l] {
-                    for class in CLASSES_3D {
-                        let spans: [(u32, u32); 3] = std::array::from_fn(|a| {
-                            class_span(region.origin[a], region.size[a], class[a])
-                        });
-                        let n: u64 = spans.iter().map(|s| s.1 as u64).product();
-                        if n == 0 {
-                            continue;
-                        }
-                        let push = CorrectPush {
-                            triples: triples.address(),
-                            table: level.table.address(),
-                            origin: region.origin,
-                            size: region.size,
-                            first: spans.map(|s| s.0),
-                            count: spans.map(|s| s.1),
-                            side: self.side,
-                            spacing: *spacing,
-                        };
-                        let k = &self.correct;
-                        rec.dispatch(k, k.groups_for(n), &[], &push)?;
-                    }
+                for subpass in &plan.subpasses {
+                    let spans = subpass.update.class_span(subpass.class);
+                    let n: u64 = spans.iter().map(|s| s.1 as u64).product();
+                    let push = CorrectPush {
+                        triples: triples.address(),
+                        table: level.table.address(),
+                        origin: region.origin,
+                        size: region.size,
+                        first: std::array::from_fn(|a| (spans[a].0 - region.origin[a]) as u32),
+                        count: spans.map(|s| s.1),
+                        side: self.side,
+                        spacing: *spacing,
+                    };
+                    let k = &self.correct;
+                    rec.dispatch(k, k.groups_for(n), &[], &push)?;
                 }
                 rec.timestamp()
             })?;

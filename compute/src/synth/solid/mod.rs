@@ -28,7 +28,7 @@ pub use cpu::{correct_subpass_3d, synthesize_solid_cpu, upsample_jitter_3d};
 pub use gpu::GpuSolidSynthesizer;
 pub use jitter::jitter3;
 pub use loop_budget::{LOOP_BUDGET, LOOP_LIMIT};
-pub use plan::{plan_boxes, VolumeBox, SUBPASSES_3D};
+pub use plan::{plan_boxes, plan_levels, LevelPlan, Subpass, VolumeBox, CLASSES_3D, SUBPASSES_3D};
 pub use roles::{
     image_axis, project, shared_axis, SolidExemplars, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLES,
     ROLE_AXES, ROLE_NAMES,
