@@ -2,10 +2,12 @@
 //! CPU references (exactly, every level), spatial determinism of boxes, the known answer of a
 //! lattice volume, and the errors of bad exemplars.
 
+use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cpu, plan_boxes, synthesize_solid_cpu, voxel_colour, CandidateParams,
+    analyze_solid, candidates_cached, candidates_cpu, candidates_key, decode_candidates,
+    encode_candidates, plan_boxes, synthesize_solid_cpu, voxel_colour, CandidateParams,
     GpuCandidates, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox,
-    LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
+    CANDIDATES_CACHE_KIND, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
 use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, with_gpu};
@@ -317,4 +319,57 @@ fn bad_solid_exemplars_are_rejected_with_the_image_and_limit() {
         ..CandidateParams::default()
     };
     limit(p.check().unwrap_err(), "1..=65");
+}
+
+/// The candidate cache: a miss computes and stores, a hit reads back the same candidates,
+/// another exemplar or parameter set is another key, and a damaged entry is recomputed.
+#[test]
+fn candidates_round_trip_through_the_disk_cache() {
+    let (exemplars, _, candidates) = three();
+    let dir = tempfile::tempdir().unwrap();
+    let cache = DiskCache::new(dir.path());
+    let params = CandidateParams::default();
+    let mut computed = 0;
+    let mut run = || {
+        candidates_cached(exemplars, &params, Some(&cache), || {
+            computed += 1;
+            Ok(candidates.clone())
+        })
+        .unwrap()
+    };
+    let (first, outcome) = run();
+    assert_eq!(outcome, CacheOutcome::Miss);
+    let (second, outcome) = run();
+    assert_eq!(outcome, CacheOutcome::Hit);
+    assert_eq!(&second, candidates);
+    assert_eq!(first, second);
+    assert_eq!(computed, 1);
+
+    let key = candidates_key(exemplars, &params);
+    let other = CandidateParams {
+        coherence: false,
+        ..params
+    };
+    assert_ne!(key, candidates_key(exemplars, &other));
+    assert_ne!(key, candidates_key(&shared().0, &params));
+
+    // One flipped byte in the payload fails the checksum: recomputed and replaced.
+    let path = cache.entry_path(CANDIDATES_CACHE_KIND, &key);
+    let mut bytes = std::fs::read(&path).unwrap();
+    let last = bytes.len() - 1;
+    bytes[last] ^= 0x40;
+    std::fs::write(&path, &bytes).unwrap();
+    let (third, outcome) =
+        candidates_cached(exemplars, &params, Some(&cache), || Ok(candidates.clone())).unwrap();
+    assert!(
+        matches!(outcome, CacheOutcome::Recomputed(_)),
+        "{outcome:?}"
+    );
+    assert_eq!(&third, candidates);
+
+    // A payload for another side is refused by the decoder, not handed on.
+    let encoded = encode_candidates(candidates);
+    assert_eq!(&decode_candidates(&encoded, 16).unwrap(), candidates);
+    let err = decode_candidates(&encoded, 32).unwrap_err().to_string();
+    assert!(err.contains("levels"), "{err}");
 }

@@ -1246,17 +1246,22 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
     let out_dir = dir.path().join("out");
     std::fs::create_dir(&out_dir).unwrap();
     let out = out_dir.join("terra.nrrd");
-    let (ok, stdout, err) = run(lazysolid()
-        .arg("solid")
-        .arg(&exemplar)
-        // No correction passes: each pass pads every level's box by 8 voxels a side, which
-        // costs minutes on lavapipe; the synthesizer itself is tested in tests/tests/solid.rs.
-        .args([
-            "--size", "64", "--offset", "-70,5,9", "--seed", "4", "--passes", "0",
-        ])
-        .args(["--energy-samples", "64", "-o"])
-        .arg(&out)
-        .env("LAZYSOLID_VALIDATION", "1"));
+    let cache = dir.path().join("cache");
+    let solid = || {
+        run(lazysolid()
+            .arg("solid")
+            .arg(&exemplar)
+            // One correction pass (the defaults' cost a few times more on lavapipe); the
+            // synthesizer itself is tested in tests/tests/solid.rs.
+            .args([
+                "--size", "64", "--offset", "-70,5,9", "--seed", "4", "--passes", "1",
+            ])
+            .args(["--energy-samples", "64", "-o"])
+            .arg(&out)
+            .env("LAZYSOLID_CACHE_DIR", &cache)
+            .env("LAZYSOLID_VALIDATION", "1"))
+    };
+    let (ok, stdout, err) = solid();
     assert!(ok, "{err}");
     for needle in [
         "candidates (GPU)",
@@ -1283,6 +1288,12 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
     }
     // The volume and five pictures; no temporary file is left behind.
     assert_eq!(std::fs::read_dir(&out_dir).unwrap().count(), 6);
+    assert!(stdout.contains("cache miss"), "{stdout}");
+    // A second run reads the candidates back and writes the same volume.
+    let (ok, stdout, err) = solid();
+    assert!(ok, "{err}");
+    assert!(stdout.contains("cache hit"), "{stdout}");
+    assert_eq!(std::fs::read(&out).unwrap(), nrrd);
 }
 
 #[test]

@@ -3,7 +3,11 @@
 //!
 //! Timed rows (wall time on the host): the candidate precompute per exemplar side
 //! (`--candidate-sides`, default 64 and 128) and the synthesis of a cube per `--sizes`
-//! (default 64 and 128, the analysis and candidates already on the GPU). Quality, from one run
+//! (default 64 and 128: the GPU synthesis alone, the candidates read from the cache), and per
+//! case the whole `synthesize_cube` — CPU analysis, candidates, kernels, synthesis, colours,
+//! slab — with the candidate cache cold (entry removed before each run: the precompute is
+//! paid; first size only) and warm (read back, as on every later run of an exemplar). The
+//! cache is a temporary folder, not the user's. Quality, from one run
 //! at the first size: for each axis the mid slice perpendicular to it against that axis's
 //! exemplar — neighbourhood energy, colour-histogram distance and period repetition — for
 //! - `solid`: the defaults;
@@ -20,15 +24,19 @@ use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, CandidateParams, GpuCandidates, LevelTriples, SolidExemplars, SolidSynthesis,
-    VolumeBox, ROLE_NAMES,
+    analyze_solid, candidates_key, CandidateParams, GpuCandidates, LevelTriples, SolidExemplars,
+    SolidSynthesis, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
     analyze, default_jitter, default_passes, histogram_distance, pack, period_repetition,
     AnalysisParams, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
 };
 use serde::Serialize;
+
+const END_TO_END_COLD: &str = "lazysolid end-to-end cold (wall)";
+const END_TO_END_WARM: &str = "lazysolid end-to-end warm (wall)";
 use std::path::PathBuf;
 
 /// What to measure.
@@ -250,10 +258,16 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     };
     let gpu = global.gpu()?;
     let energy = EnergyKernel::new(&gpu)?;
-    let total = cases.len() as u64 * (candidate_sides.len() + sizes.len()) as u64;
+    let total = cases.len() as u64 * (candidate_sides.len() + 2 * sizes.len() + 1) as u64;
     let mut bench = Bench::new("bench-solid", &gpu, &args.common, total)?;
     let dir = bench.artifact_dir()?;
     let candidates = GpuCandidates::new(&gpu)?;
+    // The candidate cache of the synthesis rows: a temporary folder, not the user's.
+    let cache_dir = tempfile::Builder::new()
+        .prefix("lazysolid-bench-cache-")
+        .tempdir()
+        .context("creating a temporary candidate cache folder")?;
+    let cache = DiskCache::new(cache_dir.path());
     let mut quality = Vec::new();
     let mut peak = Vec::new();
 
@@ -277,28 +291,71 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             )?;
         }
         let exemplars = exemplars_of(args, case, args.side)?;
+        let key = candidates_key(&exemplars, &CandidateParams::default());
         for (i, &n) in sizes.iter().enumerate() {
+            let cube = |cache: Option<&DiskCache>| {
+                synthesize_cube(
+                    &gpu,
+                    exemplars.clone(),
+                    &CandidateParams::default(),
+                    args.seed,
+                    &args.passes,
+                    &[],
+                    n,
+                    [0; 3],
+                    false,
+                    cache,
+                )
+            };
+            let tag = format!("{case} {}² -> {n}³", args.side);
             let mut last = None;
             bench.case(
-                &format!("{case} {}² -> {n}³", args.side),
+                &tag,
                 (n as u64).pow(3),
                 "lazysolid gpu synthesis (wall)",
                 Throughput::Elements,
                 None,
                 || {
-                    let run = synthesize_cube(
-                        &gpu,
-                        exemplars.clone(),
-                        &CandidateParams::default(),
-                        args.seed,
-                        &args.passes,
-                        &[],
-                        n,
-                        [0; 3],
-                        false,
-                    )?;
+                    let run = cube(Some(&cache))?;
                     let ms = run.synthesis_s * 1e3;
                     last = Some(run);
+                    Ok(ms)
+                },
+            )?;
+            if i == 0 {
+                bench.case(
+                    &tag,
+                    (n as u64).pow(3),
+                    END_TO_END_COLD,
+                    Throughput::Elements,
+                    None,
+                    || {
+                        cache.remove(CANDIDATES_CACHE_KIND, &key)?;
+                        let (run, ms) = time_cpu(|| cube(Some(&cache)));
+                        let run = run?;
+                        ensure!(
+                            run.cached == CacheOutcome::Miss,
+                            "{tag}: cold run {:?}",
+                            run.cached
+                        );
+                        Ok(ms)
+                    },
+                )?;
+            }
+            bench.case(
+                &tag,
+                (n as u64).pow(3),
+                END_TO_END_WARM,
+                Throughput::Elements,
+                None,
+                || {
+                    let (run, ms) = time_cpu(|| cube(Some(&cache)));
+                    let run = run?;
+                    ensure!(
+                        run.cached == CacheOutcome::Hit,
+                        "{tag}: warm run {:?}",
+                        run.cached
+                    );
                     Ok(ms)
                 },
             )?;
@@ -335,6 +392,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 n,
                 [0; 3],
                 false,
+                Some(&cache),
             )?;
             push("crossbar only", q(&ablation.synthesis, &ablation.colours)?);
             let (ex, ex_colours) = extruded(&exemplars, n);

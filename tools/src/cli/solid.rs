@@ -9,10 +9,11 @@ use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidate_slab, check_box, plan_levels, CandidateParams, GpuCandidates,
-    GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP,
-    ROLE_NAMES,
+    analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels, CandidateParams,
+    GpuCandidates, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S,
+    DEFAULT_STRIP, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
     histogram_distance, jitter_or_default, passes_or_default, period_repetition, EnergyKernel,
@@ -57,6 +58,10 @@ pub struct SolidArgs {
     /// `lazysolid synth`].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
+    /// Neither read nor write the on-disk cache of solid candidates (kept in
+    /// LAZYSOLID_CACHE_DIR, else in the user's cache folder, e.g. ~/.cache/lazysolid).
+    #[arg(long)]
+    pub no_cache: bool,
     /// Crossbar strip length N (odd).
     #[arg(long, default_value_t = DEFAULT_STRIP)]
     pub strip: u32,
@@ -236,6 +241,8 @@ pub struct SolidRun {
     pub slab: (u32, u32, Vec<[u8; 3]>),
     /// Fallbacks of the coherence filter, over all levels.
     pub fallbacks: u64,
+    /// What the candidate cache did.
+    pub cached: CacheOutcome,
 }
 
 /// Analysis, candidates and synthesis of a cube of side `n` at `offset`.
@@ -250,6 +257,7 @@ pub fn synthesize_cube(
     n: u32,
     offset: [i32; 3],
     progress: bool,
+    cache: Option<&DiskCache>,
 ) -> anyhow::Result<SolidRun> {
     let start = Instant::now();
     let analysis = analyze_solid(&exemplars);
@@ -264,8 +272,9 @@ pub fn synthesize_cube(
     let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };
     let start = Instant::now();
     let b = show(bar(levels as u64, "candidates"));
-    let candidates =
-        GpuCandidates::new(gpu)?.compute(&analysis, candidate_params, &mut |_| b.inc(1))?;
+    let (candidates, cached) = candidates_cached(&exemplars, candidate_params, cache, || {
+        GpuCandidates::new(gpu)?.compute(&analysis, candidate_params, &mut |_| b.inc(1))
+    })?;
     b.finish_and_clear();
     let candidates_s = start.elapsed().as_secs_f64();
     let window = VolumeBox {
@@ -290,6 +299,7 @@ pub fn synthesize_cube(
         voxels: plan.iter().map(|p| p.region.voxels() as u64).sum(),
         voxel_updates: plan.iter().map(|p| p.updates()).sum(),
         fallbacks: candidates.reports.iter().map(|r| r.fallbacks).sum(),
+        cached,
         exemplars,
         synthesis,
         colours,
@@ -338,6 +348,11 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     candidate_params.check()?;
     let gpu = global.gpu()?;
     let n = args.size;
+    let cache = if args.no_cache {
+        None
+    } else {
+        Some(DiskCache::user().context("the candidate cache (--no-cache runs without it)")?)
+    };
     let run = synthesize_cube(
         &gpu,
         exemplars,
@@ -348,6 +363,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         n,
         args.offset,
         true,
+        cache.as_ref(),
     )?;
     let energy = EnergyKernel::new(&gpu)?;
     let quality = axis_quality(
@@ -391,8 +407,14 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     println!("analysis (CPU)    {:8.3} s", run.analysis_s);
     println!(
-        "candidates (GPU)  {:8.3} s ({} coherence fallbacks)",
-        run.candidates_s, run.fallbacks
+        "candidates (GPU)  {:8.3} s ({} coherence fallbacks; cache {}{})",
+        run.candidates_s,
+        run.fallbacks,
+        run.cached.label(),
+        cache
+            .as_ref()
+            .map(|c| format!(" in {}", c.dir().display()))
+            .unwrap_or_default()
     );
     println!(
         "synthesis (GPU)   {:8.3} s ({:.2} M voxels over all levels, {:.2} M voxel updates)",

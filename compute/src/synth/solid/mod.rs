@@ -6,6 +6,7 @@
 
 mod analysis;
 mod candidates;
+mod candidates_cache;
 pub(crate) mod candidates_gpu;
 mod cpu;
 pub(crate) mod gpu;
@@ -22,6 +23,10 @@ pub use candidates::{
     candidates_cpu, coherence_step_cpu, search_cpu, triples_cpu, unit_step, CandidateParams,
     CandidateSets, LevelReport, SolidCandidates, StripMatches, DEFAULT_S, KEPT, MAX_CANDIDATES,
     MAX_COHERENCE_ITERATIONS, MAX_S,
+};
+pub use candidates_cache::{
+    candidates_cached, candidates_key, decode_candidates, encode_candidates, CANDIDATES_CACHE_KIND,
+    CANDIDATES_FORMAT_VERSION,
 };
 pub use candidates_gpu::GpuCandidates;
 pub use cpu::{correct_subpass_3d, synthesize_solid_cpu, upsample_jitter_3d};
