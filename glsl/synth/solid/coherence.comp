@@ -1,13 +1,12 @@
 #version 460
-// One iteration of the coherence filter of one role: a pixel with more than
-// SOLID_MAX_CANDIDATES candidates keeps those whose two other coordinates each continue (one
-// step h along an image axis) a coordinate of some candidate of one of its 4 neighbours
+// One iteration of the coherence filter of one role, one workgroup per pixel: a pixel with more
+// than SOLID_MAX_CANDIDATES candidates keeps those whose two other coordinates each continue
+// (one step h along an image axis) a coordinate of some candidate of one of its 4 neighbours
 // (+-h in the image); if none would survive it keeps its SOLID_MAX_CANDIDATES first (best
-// crossbar) ones and is flagged. Smaller sets are copied. Order is preserved. One dispatch
-// tests the candidates first .. first + chunk of every pixel and appends the survivors to those
-// of earlier dispatches (llvmpipe stops an invocation's loops after 65535 iterations in all,
-// and one candidate costs up to 800). CPU reference:
-// compute/src/synth/solid/candidates.rs (coherence_step_cpu).
+// crossbar) ones and is flagged. Smaller sets are copied. Order is preserved. The workgroup
+// puts the neighbours' coordinates of each of the two roles into a hash set in shared memory,
+// so a candidate costs 4 look-ups per coordinate instead of a scan of up to 400 coordinates.
+// CPU reference: compute/src/synth/solid/candidates.rs (coherence_step_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
 
@@ -24,33 +23,52 @@ layout(push_constant, scalar) uniform Push {
     uint slots;
     uint role1;            // the two other roles
     uint role2;
-    uint first;            // first candidate this dispatch tests
-    uint chunk;            // candidates it tests
+    uint first_pixel;      // pixel of workgroup 0
 } pc;
 
-bool unit_step(uint a, uint b) {
-    uint mask = (1u << pc.shift) - 1u;
-    uvec2 ua = synth_unpack(a);
-    uvec2 ub = synth_unpack(b);
-    uint du = (ub.x - ua.x) & mask;
-    uint dv = (ub.y - ua.y) & mask;
-    uint s1 = pc.spacing & mask;
-    uint s2 = (0u - pc.spacing) & mask;
-    return (du == 0u && (dv == s1 || dv == s2)) || (dv == 0u && (du == s1 || du == s2));
+// Open addressing, linear probing; a packed coordinate is below 2^23, so all ones is empty.
+const uint TABLE = 1024u;
+const uint EMPTY = 0xffffffffu;
+shared uint table[2][TABLE];
+shared uint survives[SOLID_KEPT];
+shared uint kept_total;
+
+uint slot_of(uint c) {
+    return (c * 2654435761u) >> 22;
 }
 
-// Whether some candidate of a neighbour has a coordinate of `role` one step from c.
-bool continued(uint near[4], uint c, uint role) {
-    for (uint n = 0; n < 4; n++) {
-        uint q = near[n];
-        uint count = U32Ptr(pc.in_counts).v[q];
-        for (uint k = 0; k < count; k++) {
-            if (unit_step(c, U32Ptr(pc.in_triples).v[(q * pc.slots + k) * 3u + role])) {
-                return true;
-            }
+void insert(uint t, uint c) {
+    uint h = slot_of(c);
+    for (uint probe = 0u; probe < TABLE; probe++) {
+        uint was = atomicCompSwap(table[t][h], EMPTY, c);
+        if (was == EMPTY || was == c) {
+            return;
         }
+        h = (h + 1u) & (TABLE - 1u);
+    }
+}
+
+bool holds(uint t, uint c) {
+    uint h = slot_of(c);
+    for (uint probe = 0u; probe < TABLE; probe++) {
+        uint v = table[t][h];
+        if (v == c) {
+            return true;
+        }
+        if (v == EMPTY) {
+            return false;
+        }
+        h = (h + 1u) & (TABLE - 1u);
     }
     return false;
+}
+
+// Whether some neighbour candidate's coordinate in table t is one step h from c.
+bool continued(uint t, uint c) {
+    uint m = 1u << pc.shift;
+    int h = int(pc.spacing);
+    return holds(t, solid_moved(c, ivec2(h, 0), m)) || holds(t, solid_moved(c, ivec2(-h, 0), m))
+        || holds(t, solid_moved(c, ivec2(0, h), m)) || holds(t, solid_moved(c, ivec2(0, -h), m));
 }
 
 void copy_slot(uint p, uint from, uint to) {
@@ -63,47 +81,73 @@ void copy_slot(uint p, uint from, uint to) {
 }
 
 void main() {
-    uint p = uint(global_index());
-    if (p >= (1u << (2u * pc.shift))) {
-        return;
-    }
+    uint p = pc.first_pixel + group_index();
+    uint lid = gl_LocalInvocationID.x;
+    uint w = gl_WorkGroupSize.x;
     uint count = U32Ptr(pc.in_counts).v[p];
     if (count <= SOLID_MAX_CANDIDATES) {
-        if (pc.first == 0u) {
-            for (uint k = 0; k < count; k++) {
-                copy_slot(p, k, k);
-            }
+        // The same for the whole workgroup, so no invocation is left at a barrier.
+        for (uint k = lid; k < count; k += w) {
+            copy_slot(p, k, k);
+        }
+        if (lid == 0u) {
             U32Ptr(pc.out_counts).v[p] = count;
             U32Ptr(pc.fallbacks).v[p] = 0u;
         }
         return;
     }
-    if (pc.first >= count) {
-        return;
+    for (uint k = lid; k < TABLE; k += w) {
+        table[0][k] = EMPTY;
+        table[1][k] = EMPTY;
     }
-    uint kept = pc.first == 0u ? 0u : U32Ptr(pc.out_counts).v[p];
+    barrier();
     int h = int(pc.spacing);
     uint near[4] = uint[4](solid_along(p, 0u, -h, pc.shift), solid_along(p, 0u, h, pc.shift),
                            solid_along(p, 1u, -h, pc.shift), solid_along(p, 1u, h, pc.shift));
-    uint last = min(pc.first + pc.chunk, count);
-    for (uint k = pc.first; k < last; k++) {
-        uint slot = (p * pc.slots + k) * 3u;
-        if (continued(near, U32Ptr(pc.in_triples).v[slot + pc.role1], pc.role1)
-            && continued(near, U32Ptr(pc.in_triples).v[slot + pc.role2], pc.role2)) {
-            copy_slot(p, k, kept);
-            kept++;
+    for (uint n = 0u; n < 4u; n++) {
+        uint q = near[n];
+        uint cq = U32Ptr(pc.in_counts).v[q];
+        for (uint k = lid; k < cq; k += w) {
+            uint slot = (q * pc.slots + k) * 3u;
+            insert(0u, U32Ptr(pc.in_triples).v[slot + pc.role1]);
+            insert(1u, U32Ptr(pc.in_triples).v[slot + pc.role2]);
         }
     }
-    uint fell_back = 0u;
-    if (last == count && kept == 0u) {
-        for (uint k = 0; k < SOLID_MAX_CANDIDATES; k++) {
+    barrier();
+    for (uint k = lid; k < count; k += w) {
+        uint slot = (p * pc.slots + k) * 3u;
+        bool keep = continued(0u, U32Ptr(pc.in_triples).v[slot + pc.role1])
+            && continued(1u, U32Ptr(pc.in_triples).v[slot + pc.role2]);
+        survives[k] = keep ? 1u : 0u;
+    }
+    barrier();
+    // Survivors keep their order: each one's place is the survivors before it.
+    for (uint k = lid; k < count; k += w) {
+        if (survives[k] == 1u) {
+            uint place = 0u;
+            for (uint o = 0u; o < k; o++) {
+                place += survives[o];
+            }
+            copy_slot(p, k, place);
+        }
+    }
+    if (lid == 0u) {
+        uint kept = 0u;
+        for (uint o = 0u; o < count; o++) {
+            kept += survives[o];
+        }
+        kept_total = kept;
+    }
+    barrier();
+    uint kept = kept_total;
+    if (kept == 0u) {
+        for (uint k = lid; k < SOLID_MAX_CANDIDATES; k += w) {
             copy_slot(p, k, k);
         }
         kept = SOLID_MAX_CANDIDATES;
-        fell_back = 1u;
     }
-    U32Ptr(pc.out_counts).v[p] = kept;
-    if (pc.first == 0u || fell_back == 1u) {
-        U32Ptr(pc.fallbacks).v[p] = fell_back;
+    if (lid == 0u) {
+        U32Ptr(pc.out_counts).v[p] = kept;
+        U32Ptr(pc.fallbacks).v[p] = kept_total == 0u ? 1u : 0u;
     }
 }

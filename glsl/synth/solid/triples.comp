@@ -2,11 +2,14 @@
 // Crossbar ranking of one role's candidates: for every pixel p, all S x S triples of p with
 // its S strip matches in each other role, scored by the full crossbar error (the two match
 // distances plus the distance between the two matches' strips along the axis their roles
-// share), the `kept` best by (error, i * S + j). One dispatch ranks the rows i = first_row ..
-// first_row + rows and folds them into the list of earlier dispatches, kept in `errors` and
+// share), the `kept` best by (error, i * S + j). The kept list is a max-heap on (error, key):
+// a triple enters when it beats the root (the worst kept), replacing it and sifting down, so
+// an insertion costs log2(kept) steps instead of an insertion sort's shift, which kept all the
+// SIMD lanes waiting whenever one inserted. One dispatch ranks the rows i = first_row ..
+// first_row + rows and folds them into the heap of earlier dispatches, kept in `errors` and
 // `keys` (llvmpipe stops an invocation's loops after 65535 iterations in all; the host sizes
-// the rows, compute/src/synth/solid/candidates_gpu.rs); the last dispatch writes the triples.
-// CPU reference: compute/src/synth/solid/candidates.rs (triples_cpu).
+// the rows, compute/src/synth/solid/candidates_gpu.rs); the last dispatch sorts the heap and
+// writes the triples. CPU reference: compute/src/synth/solid/candidates.rs (triples_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
 
@@ -34,6 +37,37 @@ layout(push_constant, scalar) uniform Push {
     uint rows;            // rows it ranks
 } pc;
 
+uint best_e[SOLID_KEPT];
+uint best_k[SOLID_KEPT];
+
+// (e, k) ranks after (f, l).
+bool after(uint e, uint k, uint f, uint l) {
+    return e > f || (e == f && k > l);
+}
+
+// Sifts the entry at `at` down the max-heap of the first `size` entries.
+void sift_down(uint at, uint size) {
+    uint e = best_e[at];
+    uint k = best_k[at];
+    while (true) {
+        uint child = 2u * at + 1u;
+        if (child >= size) {
+            break;
+        }
+        if (child + 1u < size && after(best_e[child + 1u], best_k[child + 1u], best_e[child], best_k[child])) {
+            child++;
+        }
+        if (!after(best_e[child], best_k[child], e, k)) {
+            break;
+        }
+        best_e[at] = best_e[child];
+        best_k[at] = best_k[child];
+        at = child;
+    }
+    best_e[at] = e;
+    best_k[at] = k;
+}
+
 void main() {
     uint p = uint(global_index());
     uint n = 1u << (2u * pc.shift);
@@ -41,14 +75,13 @@ void main() {
         return;
     }
     int half_n = int(pc.strip / 2u);
-    uint best_e[SOLID_KEPT];
-    uint best_k[SOLID_KEPT];
+    // Empty slots are (max, max): all equal, so the first dispatch starts from a valid heap.
     for (uint k = 0; k < pc.kept; k++) {
         uint slot = p * pc.kept + k;
         best_e[k] = pc.first_row == 0u ? 0xffffffffu : U32Ptr(pc.errors).v[slot];
         best_k[k] = pc.first_row == 0u ? 0xffffffffu : U32Ptr(pc.keys).v[slot];
     }
-    uint worst = best_e[pc.kept - 1u];
+    uint worst = best_e[0];
     uint last_row = min(pc.first_row + pc.rows, pc.s);
     for (uint i = pc.first_row; i < last_row; i++) {
         uint q1 = U32Ptr(pc.m1_pixels).v[p * pc.s + i];
@@ -70,16 +103,10 @@ void main() {
             // Keys come in increasing order, so an equal error never displaces an earlier
             // entry: the ranking is (error, key).
             if (e < worst) {
-                uint key = i * pc.s + j;
-                uint k = pc.kept - 1u;
-                while (k > 0u && best_e[k - 1u] > e) {
-                    best_e[k] = best_e[k - 1u];
-                    best_k[k] = best_k[k - 1u];
-                    k--;
-                }
-                best_e[k] = e;
-                best_k[k] = key;
-                worst = best_e[pc.kept - 1u];
+                best_e[0] = e;
+                best_k[0] = i * pc.s + j;
+                sift_down(0u, pc.kept);
+                worst = best_e[0];
             }
         }
     }
@@ -90,6 +117,16 @@ void main() {
             U32Ptr(pc.keys).v[slot] = best_k[k];
         }
         return;
+    }
+    // Heap sort: the largest goes to the end, leaving the list in increasing (error, key).
+    for (uint size = pc.kept; size > 1u; size--) {
+        uint e = best_e[0];
+        uint k = best_k[0];
+        best_e[0] = best_e[size - 1u];
+        best_k[0] = best_k[size - 1u];
+        best_e[size - 1u] = e;
+        best_k[size - 1u] = k;
+        sift_down(0u, size - 1u);
     }
     uint role = 3u - pc.role1 - pc.role2;
     for (uint k = 0; k < pc.kept; k++) {

@@ -5,7 +5,7 @@
 use super::analysis::{SolidAnalysis, SolidLevel};
 use super::candidates::{
     filter_and_cut, image_key, others, search_key, CandidateParams, CandidateSets, LevelReport,
-    SearchKey, SolidCandidates, MAX_CANDIDATES,
+    SearchKey, SolidCandidates,
 };
 use super::loop_budget::{items_per_dispatch, loop_cost, LOOP_BUDGET};
 use super::roles::{image_axis, shared_axis, ROLES};
@@ -34,33 +34,31 @@ crate::push_block! {
 }
 
 /// Target pixels one strip-search dispatch compares: each costs the outer loop's pass, the
-/// strip's samples and the insertion into the `S` best; the query strip is loaded and the list
-/// loaded and stored once per dispatch (`strip_search.comp`).
+/// strip's samples and a sift down the max-heap of the `S` best; the query strip is loaded and
+/// the heap loaded and stored once per dispatch, and the last one heap-sorts it
+/// (`strip_search.comp`).
 fn targets_per_dispatch(budget: u32, params: &CandidateParams) -> SynthResult<u32> {
-    let per_target = 1 + loop_cost(params.strip) + loop_cost(params.s - 1);
-    let overhead = 1 + loop_cost(params.strip) + 2 * loop_cost(params.s);
+    let sift = loop_cost(params.s.ilog2());
+    let per_target = 1 + loop_cost(params.strip) + sift;
+    let overhead = 1 + loop_cost(params.strip) + 2 * loop_cost(params.s) + params.s * (1 + sift);
     items_per_dispatch(budget, per_target, overhead)
 }
 
 /// Rows `i` of the `S × S` crossbar pairs one ranking dispatch takes: a row loads one strip
-/// and, per `j`, compares a strip and inserts into the kept list (`triples.comp`); the list is
-/// loaded and stored, and the last dispatch writes the kept triples.
+/// and, per `j`, compares a strip and may sift a new entry down the kept max-heap
+/// (`triples.comp`); the heap is loaded and stored, and the last dispatch heap-sorts it and
+/// writes the kept triples.
 fn rows_per_dispatch(budget: u32, params: &CandidateParams) -> SynthResult<u32> {
     let kept = params.kept() as u32;
-    let per_j = 1 + loop_cost(params.strip) + loop_cost(kept - 1);
+    let sift = loop_cost(kept.ilog2());
+    let per_j = 1 + loop_cost(params.strip) + sift;
     let per_row = 1 + loop_cost(params.strip) + 1 + params.s * per_j;
-    let overhead = 1 + 2 * loop_cost(kept) + kept * loop_cost(3);
+    let overhead = 1 + 2 * loop_cost(kept) + kept * (1 + sift) + kept * loop_cost(3);
     items_per_dispatch(budget, per_row, overhead)
 }
 
-/// Candidates of every pixel one coherence dispatch tests: a candidate looks through the
-/// `slots` candidates of 4 neighbours for each of its two other coordinates and may be copied
-/// (`coherence.comp`); a small or fallen-back set is copied once.
-fn coherence_chunk(budget: u32, slots: u32) -> SynthResult<u32> {
-    let per_candidate = 1 + 2 * (loop_cost(4) + 4 * loop_cost(slots)) + loop_cost(3);
-    let overhead = 1 + loop_cost(MAX_CANDIDATES as u32) * (1 + loop_cost(3));
-    items_per_dispatch(budget, per_candidate, overhead)
-}
+/// Workgroup width of the coherence filter (one workgroup per pixel).
+const COHERENCE_WORKGROUP: u32 = 64;
 
 crate::push_block! {
     #[derive(Clone, Copy)]
@@ -104,8 +102,7 @@ crate::push_block! {
         slots: u32,
         role1: u32,
         role2: u32,
-        first: u32,
-        chunk: u32,
+        first_pixel: u32,
     }
 }
 
@@ -134,7 +131,7 @@ impl GpuCandidates {
             gpu: gpu.clone(),
             search: gpu.kernel(&synth_solid::STRIP_SEARCH)?,
             triples: gpu.kernel(&synth_solid::TRIPLES)?,
-            coherence: gpu.kernel(&synth_solid::COHERENCE)?,
+            coherence: gpu.kernel_with(&synth_solid::COHERENCE, COHERENCE_WORKGROUP, &[])?,
             budget: LOOP_BUDGET,
         })
     }
@@ -345,14 +342,16 @@ impl GpuCandidates {
             slots: sets.slots as u32,
             role1: f1 as u32,
             role2: f2 as u32,
-            first: 0,
-            chunk: coherence_chunk(self.budget, sets.slots as u32)?,
+            first_pixel: 0,
         };
+        // One workgroup per pixel, in as many dispatches as the device's group count needs.
+        let most = g.info().max_workgroup_count as usize;
         g.submit(|rec| {
             let kernel = &self.coherence;
-            for first in (0..sets.slots as u32).step_by(push.chunk as usize) {
-                push.first = first;
-                rec.dispatch(kernel, kernel.groups_for(pixels as u64), &[], &push)?;
+            for first in (0..pixels).step_by(most) {
+                push.first_pixel = first as u32;
+                let groups = (pixels - first).min(most) as u32;
+                rec.dispatch(kernel, [groups, 1, 1], &[], &push)?;
             }
             Ok(())
         })?;
