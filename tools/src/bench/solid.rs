@@ -71,7 +71,7 @@ pub struct SolidArgs {
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
     /// Correction passes, one for all levels or one per level, coarsest first [default: as
-    /// `lazysolid solid`]. Each pass pads every level's box by up to 5, 3 and 2 voxels a
+    /// `lazysolid solid`, 2 per level and 1 at the finest]. Each pass pads every level's box by up to 5, 3 and 2 voxels a
     /// side along x, y and z, so fewer passes make a small run possible on a slow device.
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,

@@ -11,13 +11,13 @@ use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels, CandidateParams,
-    GpuCandidates, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S,
-    DEFAULT_STRIP, ROLE_NAMES,
+    analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
+    solid_passes_or_default, CandidateParams, GpuCandidates, GpuSolidSynthesizer, SolidExemplars,
+    SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
-    histogram_distance, jitter_or_default, passes_or_default, period_repetition, EnergyKernel,
-    EnergyReport, Exemplar, SynthParams,
+    histogram_distance, jitter_or_default, period_repetition, EnergyKernel, EnergyReport, Exemplar,
+    SynthParams,
 };
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -54,8 +54,8 @@ pub struct SolidArgs {
     /// [default: as `lazysolid synth`].
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
-    /// Correction passes, one for all levels or one per level, coarsest first [default: as
-    /// `lazysolid synth`].
+    /// Correction passes, one for all levels or one per level, coarsest first [default: 2 per
+    /// level, 1 at the finest].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
     /// Neither read nor write the on-disk cache of solid candidates (kept in
@@ -266,7 +266,7 @@ pub fn synthesize_cube(
     let params = SynthParams::new(
         levels,
         seed,
-        &passes_or_default(passes, levels),
+        &solid_passes_or_default(passes, levels),
         &jitter_or_default(jitter, levels),
     )?;
     let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };

@@ -9,6 +9,7 @@ mod candidates;
 mod candidates_cache;
 pub(crate) mod candidates_gpu;
 mod cpu;
+mod defaults;
 pub(crate) mod gpu;
 mod jitter;
 mod loop_budget;
@@ -30,6 +31,10 @@ pub use candidates_cache::{
 };
 pub use candidates_gpu::GpuCandidates;
 pub use cpu::{correct_subpass_3d, synthesize_solid_cpu, upsample_jitter_3d};
+pub use defaults::{
+    default_solid_passes, solid_passes_or_default, DEFAULT_SOLID_FINEST_PASSES,
+    DEFAULT_SOLID_PASSES,
+};
 pub use gpu::GpuSolidSynthesizer;
 pub use jitter::jitter3;
 pub use loop_budget::{LOOP_BUDGET, LOOP_LIMIT};
