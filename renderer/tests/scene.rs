@@ -56,11 +56,11 @@ fn default_scene_loads() {
     assert_eq!(marble.roughness, 0.3);
     assert_eq!(marble.ior, 1.5);
     assert_eq!(
-        marble.texture.map(|t| t.kind),
+        marble.texture.as_ref().map(|t| t.kind),
         Some(SolidTextureKind::Marble)
     );
     assert_eq!(
-        s.materials[1].texture.map(|t| t.kind),
+        s.materials[1].texture.as_ref().map(|t| t.kind),
         Some(SolidTextureKind::Checker)
     );
     assert!(matches!(s.lights[0], Light::Sphere { radius, .. } if radius == 0.8));
@@ -92,7 +92,7 @@ fn test_scenes_load() {
     );
     assert_eq!(s.meshes[0].mesh.triangles.len(), 75_408);
     assert_eq!(
-        s.materials[0].texture.map(|t| t.kind),
+        s.materials[0].texture.as_ref().map(|t| t.kind),
         Some(SolidTextureKind::Wood)
     );
     assert_eq!(s.materials[0].kind, MaterialKind::Lambertian);
@@ -393,7 +393,7 @@ fn missing_required_fields_name_the_table() {
     expect(
         &append("[[material]]\nname = \"m\"\nkind = \"lambertian\"\ntexture = { kind = \"wood\", color_a = [1, 1, 1] }\n"),
         22,
-        "material \"m\".texture: missing field `color_b`",
+        "material \"m\".texture.color_b: missing (a marble, wood or checker texture blends two colours)",
     );
     expect(
         &append("[environment]\n"),
@@ -838,7 +838,7 @@ fn textures_baked_into_stores() {
     ))
     .unwrap();
     assert_eq!(
-        s.materials[0].texture.unwrap().store,
+        s.materials[0].texture.clone().unwrap().store,
         Some(StoreSpec {
             kind: StoreKind::Octree,
             resolution: 256,
@@ -847,11 +847,18 @@ fn textures_baked_into_stores() {
     );
     let s = parse(&tex(", store = \"coherent_hash\", resolution = 64")).unwrap();
     assert_eq!(
-        s.materials[0].texture.unwrap().store.unwrap().filter,
+        s.materials[0]
+            .texture
+            .clone()
+            .unwrap()
+            .store
+            .unwrap()
+            .filter,
         StoreFilter::Nearest
     );
     assert!(parse(&tex("")).unwrap().materials[0]
         .texture
+        .clone()
         .unwrap()
         .store
         .is_none());
@@ -897,7 +904,7 @@ fn textures_baked_into_stores() {
                 ", store = \"{name}\", resolution = 128, filter = \"{filter}\""
             )))
             .unwrap();
-            let spec = s.materials[0].texture.unwrap().store.unwrap();
+            let spec = s.materials[0].texture.clone().unwrap().store.unwrap();
             assert_eq!((spec.kind.name(), spec.filter), (name, want));
         }
     }
@@ -906,6 +913,7 @@ fn textures_baked_into_stores() {
             .unwrap()
             .materials[0]
             .texture
+            .clone()
             .unwrap()
             .store
             .unwrap()
@@ -922,5 +930,76 @@ fn textures_baked_into_stores() {
         &tex(", store = \"perfect_hash\", resolution = 64, filter = \"cubic\""),
         15,
         "material \"white\".texture.filter: unknown variant `cubic`",
+    );
+}
+
+#[test]
+fn volume_textures_read_their_file_through_a_store() {
+    // Red then blue along x.
+    let nrrd = b"NRRD0004\ntype: uint8\ndimension: 4\nsizes: 3 2 1 1\nencoding: raw\n\n\xff\x00\x00\x00\x00\xff";
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("v.nrrd"), nrrd).unwrap();
+    std::fs::write(dir.path().join("bad.nrrd"), b"P6\n").unwrap();
+    let scene = dir.path().join("scene.toml");
+    let tex = |body: &str| edit(15, &format!("texture = {{ kind = \"volume\"{body} }}"));
+    let store = ", store = \"octree\", resolution = 64";
+    let s = Scene::parse(&tex(&format!(", path = \"v.nrrd\"{store}")), &scene).unwrap();
+    let t = s.materials[0].texture.as_ref().unwrap();
+    assert_eq!(t.kind, SolidTextureKind::Volume);
+    let v = t.volume.as_ref().unwrap();
+    assert_eq!(v.size, [2, 1, 1]);
+    assert_eq!(v.at_voxel([31, 0, 0], 64), [255, 0, 0]);
+    assert_eq!(v.at_voxel([32, 63, 63], 64), [0, 0, 255]);
+    // The flat preview colour is the mean in linear RGB.
+    assert!((s.materials[0].color - glam::Vec3::new(0.5, 0.0, 0.5)).length() < 1e-6);
+
+    let err = |text: String| Scene::parse(&text, &scene).unwrap_err().to_string();
+    for (body, needle) in [
+        (
+            ", path = \"v.nrrd\"".to_string(),
+            "material \"white\".texture.store: missing: a volume texture is read through a store",
+        ),
+        (
+            store.to_string(),
+            "material \"white\".texture.path: missing (a volume texture names its NRRD file)",
+        ),
+        (
+            format!(", path = \"v.nrrd\", color_a = [1, 1, 1]{store}"),
+            "material \"white\".texture.color_a: a volume texture has its colours in its file",
+        ),
+        (
+            format!(", path = \"v.nrrd\", scale = 2{store}"),
+            "material \"white\".texture.scale: a volume texture",
+        ),
+        (
+            format!(", path = \"absent.nrrd\"{store}"),
+            "absent.nrrd does not exist",
+        ),
+        (
+            format!(", path = \"bad.nrrd\"{store}"),
+            "bad.nrrd: not an NRRD file",
+        ),
+    ] {
+        let e = err(tex(&body));
+        assert!(
+            e.contains(":15: ") && e.contains(needle),
+            "{needle:?} in {e}"
+        );
+    }
+    let e = err(edit(
+        15,
+        "texture = { kind = \"marble\", color_a = [1, 1, 1], color_b = [0, 0, 0], path = \"v.nrrd\" }",
+    ));
+    assert!(
+        e.contains("material \"white\".texture.path: only kind = \"volume\" reads a file"),
+        "{e}"
+    );
+    let e = err(edit(
+        15,
+        "texture = { kind = \"marble\", color_a = [1, 1, 1] }",
+    ));
+    assert!(
+        e.contains("material \"white\".texture.color_b: missing"),
+        "{e}"
     );
 }

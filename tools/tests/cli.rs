@@ -1247,9 +1247,10 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
     std::fs::create_dir(&out_dir).unwrap();
     let out = out_dir.join("terra.nrrd");
     let cache = dir.path().join("cache");
-    let solid = || {
+    let solid = |extra: &[&str]| {
         run(lazysolid()
             .arg("solid")
+            .args(extra)
             .arg(&exemplar)
             // One correction pass (the defaults' cost a few times more on lavapipe); the
             // synthesizer itself is tested in tests/tests/solid.rs.
@@ -1261,7 +1262,7 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
             .env("LAZYSOLID_CACHE_DIR", &cache)
             .env("LAZYSOLID_VALIDATION", "1"))
     };
-    let (ok, stdout, err) = solid();
+    let (ok, stdout, err) = solid(&[]);
     assert!(ok, "{err}");
     for needle in [
         "candidates (GPU)",
@@ -1269,6 +1270,7 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         "peak GPU memory",
         "slice perpendicular to z vs E_z: energy",
         "period repetition",
+        "render (GPU)",
     ] {
         assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
     }
@@ -1282,15 +1284,21 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         ("z", 64),
         ("oblique", 64),
         ("slab", 9 * 16 + 8 * 2),
+        ("render", 400),
     ] {
         let image = image::open(out_dir.join(format!("terra.{name}.png"))).unwrap();
         assert_eq!(image.width(), width, "{name}");
     }
-    // The volume and five pictures; no temporary file is left behind.
-    assert_eq!(std::fs::read_dir(&out_dir).unwrap().count(), 6);
+    // The carved render's scene names the volume beside it and loads.
+    let scene = out_dir.join("terra.scene.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert!(text.contains("path = \"terra.nrrd\""), "{text}");
+    lazysolid_renderer::scene::Scene::load(&scene).unwrap();
+    // The volume, six pictures and the scene; no temporary file is left behind.
+    assert_eq!(std::fs::read_dir(&out_dir).unwrap().count(), 8);
     assert!(stdout.contains("cache miss"), "{stdout}");
     // A second run reads the candidates back and writes the same volume.
-    let (ok, stdout, err) = solid();
+    let (ok, stdout, err) = solid(&["--no-render"]);
     assert!(ok, "{err}");
     assert!(stdout.contains("cache hit"), "{stdout}");
     assert_eq!(std::fs::read(&out).unwrap(), nrrd);

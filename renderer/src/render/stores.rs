@@ -153,6 +153,7 @@ impl Baker<'_> {
         let mesh = &scene.meshes[mesh];
         let spec = material
             .texture
+            .as_ref()
             .and_then(|t| t.store)
             .expect("only textures with a store are baked");
         let gpu = self.gpu;
@@ -162,9 +163,17 @@ impl Baker<'_> {
         };
         let r = spec.resolution;
         let gm = GpuMaterial::from(material);
-        let colour = move |v: [u32; 3]| {
-            let centre = (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5) / r as f32;
-            pack_srgb8(solid_texture_albedo(&gm, centre))
+        let volume = material.texture.as_ref().and_then(|t| t.volume.clone());
+        let colour = move |v: [u32; 3]| match &volume {
+            // Already sRGB bytes.
+            Some(volume) => {
+                let [r_, g, b] = volume.at_voxel(v, r).map(|c| c as u32);
+                r_ | g << 8 | b << 16 | 255 << 24
+            }
+            None => {
+                let centre = (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5) / r as f32;
+                pack_srgb8(solid_texture_albedo(&gm, centre))
+            }
         };
         let source = ColourSource::Fn(&colour);
         let (positions, triangles) = (&mesh.mesh.positions, &mesh.mesh.triangles);
@@ -235,7 +244,7 @@ impl SceneStores {
         };
         for (i, inst) in scene.instances.iter().enumerate() {
             let material = &scene.materials[inst.material];
-            let Some(spec) = material.texture.and_then(|t| t.store) else {
+            let Some(spec) = material.texture.as_ref().and_then(|t| t.store) else {
                 continue;
             };
             if let Some(&slot) = slot_of.get(&(inst.mesh, inst.material)) {

@@ -7,12 +7,15 @@ use super::raw::{
     RawMaterial, RawMaterialKind, RawPreset, RawStoreFilter, RawStoreKind, RawTexture,
     RawTextureKind,
 };
+use super::volume::VolumeTexture;
 use super::{
     Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind, StoreFilter, StoreKind,
     StoreSpec,
 };
 use glam::Vec3;
 use std::ops::Range;
+use std::path::Path;
+use std::sync::Arc;
 use toml::Spanned;
 
 /// Index of refraction of the plastic coat when the file gives none (a typical polymer).
@@ -107,11 +110,13 @@ fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), 
     Ok(())
 }
 
-/// Validates one material table; `label` is its field path prefix (`material "glass"`).
+/// Validates one material table; `label` is its field path prefix (`material "glass"`),
+/// `base` the folder relative paths start from.
 pub(super) fn resolve(
     doc: &Doc,
     raw: &Spanned<RawMaterial>,
     label: &str,
+    base: &Path,
 ) -> Result<Material, SceneError> {
     let table = raw.span();
     let raw = raw.get_ref();
@@ -153,7 +158,7 @@ pub(super) fn resolve(
     };
     match kind {
         RawMaterialKind::Lambertian | RawMaterialKind::Plastic => {
-            (material.color, material.texture) = albedo(doc, raw, &table, label)?;
+            (material.color, material.texture) = albedo(doc, raw, &table, label, base)?;
             if kind == RawMaterialKind::Plastic {
                 material.kind = MaterialKind::Plastic;
                 material.roughness = roughness(true)?;
@@ -196,6 +201,7 @@ fn albedo(
     raw: &RawMaterial,
     table: &Range<usize>,
     label: &str,
+    base: &Path,
 ) -> Result<(Vec3, Option<SolidTexture>), SceneError> {
     match (&raw.color, &raw.texture) {
         (Some(_), Some(t)) => Err(doc.invalid(
@@ -208,7 +214,7 @@ fn albedo(
             None,
         )),
         (None, Some(t)) => {
-            let texture = texture(doc, t.get_ref(), &join(label, "texture"))?;
+            let texture = texture(doc, t, &join(label, "texture"), base)?;
             Ok(((texture.color_a + texture.color_b) * 0.5, Some(texture)))
         }
         (None, None) => Err(doc.invalid(
@@ -244,21 +250,91 @@ fn eta_k(
     ))
 }
 
-/// A solid texture table.
-fn texture(doc: &Doc, raw: &RawTexture, label: &str) -> Result<SolidTexture, SceneError> {
+/// A solid texture table: a procedural pattern (`color_a`, `color_b`, `scale`) or a volume
+/// file (`path`, read through a store only).
+fn texture(
+    doc: &Doc,
+    spanned: &Spanned<RawTexture>,
+    label: &str,
+    base: &Path,
+) -> Result<SolidTexture, SceneError> {
+    let raw = spanned.get_ref();
+    let table = spanned.span();
+    let store = store(doc, raw, label)?;
+    let kind = match raw.kind.get_ref() {
+        RawTextureKind::Marble => SolidTextureKind::Marble,
+        RawTextureKind::Wood => SolidTextureKind::Wood,
+        RawTextureKind::Checker => SolidTextureKind::Checker,
+        RawTextureKind::Volume => return volume_texture(doc, raw, &table, label, base, store),
+    };
+    doc.reject(
+        &raw.path,
+        label,
+        "path",
+        "only kind = \"volume\" reads a file",
+    )?;
+    let why = "a marble, wood or checker texture blends two colours";
+    let color_a = doc.require(&raw.color_a, &table, label, "color_a", why)?;
+    let color_b = doc.require(&raw.color_b, &table, label, "color_b", why)?;
     Ok(SolidTexture {
-        kind: match raw.kind.get_ref() {
-            RawTextureKind::Marble => SolidTextureKind::Marble,
-            RawTextureKind::Wood => SolidTextureKind::Wood,
-            RawTextureKind::Checker => SolidTextureKind::Checker,
-        },
-        color_a: doc.color(&raw.color_a, &join(label, "color_a"), ColorKind::Albedo)?,
-        color_b: doc.color(&raw.color_b, &join(label, "color_b"), ColorKind::Albedo)?,
+        kind,
+        color_a: doc.color(color_a, &join(label, "color_a"), ColorKind::Albedo)?,
+        color_b: doc.color(color_b, &join(label, "color_b"), ColorKind::Albedo)?,
         scale: match &raw.scale {
             Some(s) => doc.number(s, &join(label, "scale"), |v| v > 0.0, "> 0")?,
             None => 1.0,
         },
-        store: store(doc, raw, label)?,
+        volume: None,
+        store,
+    })
+}
+
+/// A `kind = "volume"` texture table: its file, read through the store `store` only.
+fn volume_texture(
+    doc: &Doc,
+    raw: &RawTexture,
+    table: &Range<usize>,
+    label: &str,
+    base: &Path,
+    store: Option<StoreSpec>,
+) -> Result<SolidTexture, SceneError> {
+    let why = "a volume texture has its colours in its file and spans the unit cube";
+    doc.reject(&raw.color_a, label, "color_a", why)?;
+    doc.reject(&raw.color_b, label, "color_b", why)?;
+    doc.reject(&raw.scale, label, "scale", why)?;
+    let path = doc.require(
+        &raw.path,
+        table,
+        label,
+        "path",
+        "a volume texture names its NRRD file",
+    )?;
+    if store.is_none() {
+        return Err(doc.invalid(
+            raw.kind.span(),
+            join(label, "store"),
+            "missing: a volume texture is read through a store (give `store` and `resolution`)",
+        ));
+    }
+    let file = base.join(path.get_ref());
+    if !file.exists() {
+        return Err(SceneError::MissingFile {
+            file: doc.file.to_path_buf(),
+            line: doc.line(path.span().start),
+            field: join(label, "path"),
+            missing: file,
+        });
+    }
+    let volume = VolumeTexture::load(&file)
+        .map_err(|problem| doc.invalid(path.span(), join(label, "path"), problem))?;
+    let mean = Vec3::from_array(volume.mean_linear());
+    Ok(SolidTexture {
+        kind: SolidTextureKind::Volume,
+        color_a: mean,
+        color_b: mean,
+        scale: 1.0,
+        volume: Some(Arc::new(volume)),
+        store,
     })
 }
 

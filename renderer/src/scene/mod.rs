@@ -28,7 +28,9 @@
 //!   - `"emissive"`: `emission` (radiance, ≥ 0).
 //!
 //!   `texture = { kind = "marble" | "wood" | "checker", color_a, color_b, scale }` (scale > 0,
-//!   default 1: features per unit of object space) replaces `color` as the albedo.
+//!   default 1: features per unit of object space) replaces `color` as the albedo; so does
+//!   `texture = { kind = "volume", path }`, an RGB NRRD volume stretched over the unit cube,
+//!   which needs `store` and `resolution` (it is read through the store only).
 //! - `[[instance]]` (at least one): `mesh` and `material` by name, `scale` (> 0, default 1),
 //!   `rotate` (default `[0, 0, 0]`: degrees about the world x, then y, then z axis),
 //!   `translate` (default `[0, 0, 0]`); the object-to-world transform is
@@ -54,8 +56,10 @@ mod meshes;
 mod raw;
 mod resolve;
 mod types;
+mod volume;
 
 pub use camera::{DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_SPP};
 pub use error::SceneError;
 pub use meshes::DEFAULT_SPHERE_SUBDIVISIONS;
 pub use types::*;
+pub use volume::{VolumeTexture, MAX_VOLUME_TEXTURE_SIDE};

@@ -113,6 +113,7 @@ pub(super) enum RawTextureKind {
     Marble,
     Wood,
     Checker,
+    Volume,
 }
 
 /// `texture = { … }` of a material.
@@ -120,9 +121,10 @@ pub(super) enum RawTextureKind {
 #[serde(deny_unknown_fields)]
 pub(super) struct RawTexture {
     pub kind: Spanned<RawTextureKind>,
-    pub color_a: SVec3,
-    pub color_b: SVec3,
+    pub color_a: Option<SVec3>,
+    pub color_b: Option<SVec3>,
     pub scale: Option<Spanned<f32>>,
+    pub path: Option<Spanned<String>>,
     pub store: Option<Spanned<RawStoreKind>>,
     pub resolution: Option<Spanned<u32>>,
     pub filter: Option<Spanned<RawStoreFilter>>,

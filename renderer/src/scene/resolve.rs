@@ -49,7 +49,7 @@ impl Scene {
             .iter()
             .map(|m| {
                 let label = element_label("material", 0, Some(m.get_ref().name.get_ref()));
-                material::resolve(&doc, m, &label)
+                material::resolve(&doc, m, &label, base)
             })
             .collect::<Result<Vec<_>, _>>()?;
         if raw.instance.is_empty() {

@@ -1,6 +1,7 @@
 //! The resolved scene: what a scene file describes once it is parsed, validated and its meshes
 //! loaded. Everything the GPU upload and the integrator need, nothing about TOML.
 
+use super::volume::VolumeTexture;
 use crate::mesh::Mesh;
 use glam::{Affine3A, Vec3};
 use std::path::PathBuf;
@@ -119,7 +120,7 @@ pub struct Material {
 }
 
 /// A solid (3D) texture evaluated at the rest-pose object-space hit point.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SolidTexture {
     /// Which pattern.
     pub kind: SolidTextureKind,
@@ -129,6 +130,9 @@ pub struct SolidTexture {
     pub color_b: Vec3,
     /// Pattern frequency: features per unit of object space.
     pub scale: f32,
+    /// The voxels of a [`SolidTextureKind::Volume`] (shared, since a texture is cloned with
+    /// its material).
+    pub volume: Option<std::sync::Arc<VolumeTexture>>,
     /// When set, the pattern is baked into a sparse store over the mesh's surface voxels and the
     /// renderer reads the store instead of evaluating the pattern: how the structures that will
     /// hold synthesized matter are rendered and compared.
@@ -190,6 +194,9 @@ pub enum SolidTextureKind {
     Wood,
     /// A 3D checkerboard (exact, handy for tests).
     Checker,
+    /// An RGB volume read from a file (for example one `lazysolid solid` synthesized),
+    /// stretched over the unit cube; read only through a store.
+    Volume,
 }
 
 /// A placed mesh.

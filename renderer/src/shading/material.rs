@@ -78,12 +78,15 @@ pub(crate) fn texture_kind_code(kind: Option<SolidTextureKind>) -> u32 {
         Some(SolidTextureKind::Marble) => TEXTURE_MARBLE,
         Some(SolidTextureKind::Wood) => TEXTURE_WOOD,
         Some(SolidTextureKind::Checker) => TEXTURE_CHECKER,
+        // Read through its store only: the kernel never evaluates it (the flat colour, the
+        // volume's mean, stands in if it ever did).
+        Some(SolidTextureKind::Volume) => TEXTURE_NONE,
     }
 }
 
 impl From<&Material> for GpuMaterial {
     fn from(m: &Material) -> Self {
-        let texture = m.texture;
+        let texture = m.texture.as_ref();
         GpuMaterial {
             color: m.color.to_array(),
             kind: material_kind_code(m.kind),
@@ -122,6 +125,7 @@ mod tests {
                 color_a: Vec3::X,
                 color_b: Vec3::Y,
                 scale: 4.0,
+                volume: None,
                 store: None,
             }),
         };

@@ -9,6 +9,7 @@ pub mod output;
 pub mod render;
 pub mod resolution;
 pub mod solid;
+pub mod solid_render;
 pub mod synth;
 
 use lazysolid_compute::gpu::{Gpu, GpuOptions, Validation, ValidationLog};

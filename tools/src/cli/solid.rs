@@ -1,8 +1,10 @@
 //! `lazysolid solid EXEMPLAR [--ex IMG] [--ey IMG] [--ez IMG] --size N [--offset X,Y,Z]
 //! [--seed S] -o OUT.nrrd`: synthesize a box of the unbounded solid texture from 2D exemplars
-//! on the device, write it as NRRD with orthogonal and oblique slices and the candidate slab,
-//! and score the slices against their exemplars.
+//! on the device, write it as NRRD with orthogonal and oblique slices, the candidate slab and
+//! a render of a cube and a sphere carved out of it (`solid_render.rs`), and score the slices
+//! against their exemplars.
 
+use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
 use super::GlobalArgs;
 use anyhow::{ensure, Context};
@@ -19,6 +21,7 @@ use lazysolid_compute::synth::{
     histogram_distance, jitter_or_default, period_repetition, EnergyKernel, EnergyReport, Exemplar,
     SynthParams,
 };
+use lazysolid_renderer::output::{Operator, ToneMap};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -58,6 +61,10 @@ pub struct SolidArgs {
     /// level, 1 at the finest].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
+    /// Do not render the cube and sphere carved out of the volume (NAME.render.png and the
+    /// scene NAME.scene.toml it comes from).
+    #[arg(long)]
+    pub no_render: bool,
     /// Neither read nor write the on-disk cache of solid candidates (kept in
     /// LAZYSOLID_CACHE_DIR, else in the user's cache folder, e.g. ~/.cache/lazysolid).
     #[arg(long)]
@@ -374,8 +381,30 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.energy_samples,
     )?;
 
+    let volume = nrrd(&run.colours, n);
+    let render = if args.no_render {
+        None
+    } else {
+        let start = Instant::now();
+        let film = render_carved(&gpu, &volume, n)?;
+        Some((film, start.elapsed().as_secs_f64()))
+    };
+
     // Everything is computed; only now are files written, each complete or not at all.
-    write_atomic(&args.output, &nrrd(&run.colours, n))?;
+    write_atomic(&args.output, &volume)?;
+    let scene_path = args.output.with_extension("scene.toml");
+    let render_path = sibling(&args.output, "render");
+    if let Some((film, _)) = &render {
+        write_atomic(
+            &scene_path,
+            carved_scene(&file_name(&args.output), n).as_bytes(),
+        )?;
+        let tone_map = ToneMap {
+            exposure_ev: 0.0,
+            operator: Operator::AcesFitted,
+        };
+        lazysolid_renderer::output::write_png(film, &render_path, &tone_map)?;
+    }
     for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
         let (rgb, _) = slice(&run.synthesis, &run.colours, axis, n / 2);
         write_png(&sibling(&args.output, name), n, n, &rgb)?;
@@ -422,6 +451,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         run.voxels as f64 * 1e-6,
         run.voxel_updates as f64 * 1e-6
     );
+    if let Some((_, seconds)) = &render {
+        println!(
+            "render (GPU)      {seconds:8.3} s (a cube and a sphere carved out of the volume, octree store, {RENDER_SPP} spp): {} (scene {})",
+            render_path.display(),
+            scene_path.display()
+        );
+    }
     println!(
         "peak GPU memory of the synthesis {:.1} MiB",
         run.peak_bytes as f64 / (1 << 20) as f64
