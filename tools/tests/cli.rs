@@ -1377,3 +1377,51 @@ fn solid_names_each_bad_input_and_writes_nothing() {
     // Nothing but the inputs in the folder.
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 6);
 }
+
+/// `bench solid` end to end at the smallest size: the candidate row, the synthesis row, the
+/// cold and warm end-to-end rows (each checks what the candidate cache did), the peak memory,
+/// the quality table with its four variants and the figures.
+#[test]
+fn bench_solid_writes_times_quality_and_figures() {
+    let out = tempfile::tempdir().unwrap();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args([
+                "bench",
+                "solid",
+                "--quick",
+                "--exemplars",
+                "terra",
+                "--three",
+                "",
+            ])
+            .args(["--candidate-sides", "16", "--side", "16", "--sizes", "16"])
+            .args(["--passes", "1", "--energy-samples", "64"])
+            .args(["--runs", "1", "--warmup", "0"]),
+        out.path(),
+        &[
+            "terra 16² candidates",
+            "lazysolid gpu synthesis (wall)",
+            "lazysolid end-to-end cold (wall)",
+            "lazysolid end-to-end warm (wall)",
+            "terra 16³ peak GPU MiB",
+            "crossbar only",
+            "extruded E_z",
+            "2d synth",
+        ],
+    );
+    let implementations = bench.column("implementation");
+    assert_eq!(implementations.len(), 4, "{implementations:?}");
+    let figures = bench
+        .entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
+    // Four variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 4 * 3, "{quality}");
+    for name in ["terra-16-slices.png", "terra-slab.png", "quality.json"] {
+        assert!(figures.join(name).exists(), "{name}");
+    }
+    assert!(bench.stdout.contains("quality table"), "{}", bench.stdout);
+}

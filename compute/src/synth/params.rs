@@ -75,14 +75,14 @@ pub fn passes_or_default(given: &[u32], levels: u32) -> Vec<u32> {
 
 /// The default pass counts of a pyramid of `levels` levels, coarsest first.
 pub fn default_passes(levels: u32) -> Vec<u32> {
+    pass_schedule(levels, DEFAULT_PASSES, DEFAULT_FINEST_PASSES)
+}
+
+/// `levels` pass counts, coarsest first: `coarse` at every level but the finest, `finest`
+/// there (the shape of the 2D and the solid defaults).
+pub fn pass_schedule(levels: u32, coarse: u32, finest: u32) -> Vec<u32> {
     (0..levels)
-        .map(|l| {
-            if l + 1 == levels {
-                DEFAULT_FINEST_PASSES
-            } else {
-                DEFAULT_PASSES
-            }
-        })
+        .map(|l| if l + 1 == levels { finest } else { coarse })
         .collect()
 }
 

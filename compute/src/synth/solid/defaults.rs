@@ -17,6 +17,8 @@
 //! is cheap; the finest level, most of the voxels and the cost of lazy synthesis around a
 //! surface, gets one.
 
+use crate::synth::params::pass_schedule;
+
 /// Correction passes of every level but the finest.
 pub const DEFAULT_SOLID_PASSES: u32 = 2;
 
@@ -25,15 +27,7 @@ pub const DEFAULT_SOLID_FINEST_PASSES: u32 = 1;
 
 /// The default pass counts of a volume pyramid of `levels` levels, coarsest first.
 pub fn default_solid_passes(levels: u32) -> Vec<u32> {
-    (0..levels)
-        .map(|l| {
-            if l + 1 == levels {
-                DEFAULT_SOLID_FINEST_PASSES
-            } else {
-                DEFAULT_SOLID_PASSES
-            }
-        })
-        .collect()
+    pass_schedule(levels, DEFAULT_SOLID_PASSES, DEFAULT_SOLID_FINEST_PASSES)
 }
 
 /// `given` pass counts, or the solid defaults for `levels` levels when none were given (how
