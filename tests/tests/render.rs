@@ -8,7 +8,7 @@ use lazysolid_compute::store::{ColourSource, SparseStore};
 use lazysolid_compute::voxel::VoxelKeys;
 use lazysolid_renderer::diff::flip_images;
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_renderer::output::{write_exr, write_png, Film, Operator, ToneMap};
+use lazysolid_renderer::output::{srgb_eotf, write_exr, write_png, Film, Operator, ToneMap};
 use lazysolid_renderer::render::{PathTracer, SceneStore, SceneStores};
 use lazysolid_renderer::scene::{
     Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
@@ -477,14 +477,7 @@ fn store_records_follow_inserts() {
 fn volume_textures_render_through_their_store() {
     use lazysolid_renderer::scene::{SolidTexture, SolidTextureKind, VolumeTexture};
     let srgb = [200u8, 120, 60];
-    let linear = |v: u8| {
-        let x = v as f32 / 255.0;
-        if x <= 0.04045 {
-            x / 12.92
-        } else {
-            ((x + 0.055) / 1.055).powf(2.4)
-        }
-    };
+    let linear = |v: u8| srgb_eotf(v as f32 / 255.0);
     let flat = Vec3::new(linear(srgb[0]), linear(srgb[1]), linear(srgb[2]));
     let volume = |rgb: Vec<[u8; 3]>, size: [u32; 3]| {
         let mut m = material(MaterialKind::Lambertian, flat);

@@ -216,6 +216,21 @@ pub fn colours_by_key_cpu(
         .collect()
 }
 
+/// The colours of `keys` in a new buffer named `label`, one per key (at least one element, so
+/// an empty key set still has a buffer to point at).
+pub(crate) fn new_colours(
+    gpu: &Gpu,
+    store: &'static str,
+    label: &str,
+    keys: &VoxelKeys,
+    source: &ColourSource<'_>,
+    resolution: u32,
+) -> Result<GpuBuffer<u32>, StoreError> {
+    let mut buffer = GpuBuffer::<u32>::new(gpu, label, keys.len.max(1))?;
+    fill_colours(gpu, store, keys, source, resolution, (&mut buffer, 0), None)?;
+    Ok(buffer)
+}
+
 /// Writes the colours of `keys` into `dst[offset..offset + keys.len]`. With `required`, a
 /// buffer source only needs (and only writes) the keys whose flag is set; the others get 0.
 pub(crate) fn fill_colours(

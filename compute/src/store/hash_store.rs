@@ -4,7 +4,7 @@
 //! reserves the all-ones payload, so the colour itself does not fit; the index does.)
 //! Nearest = one query; trilinear = 8 queries over the interpolation voxels.
 
-use super::colours::{fill_colours, ColourSource};
+use super::colours::{fill_colours, new_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::keys::check_keys;
@@ -85,16 +85,7 @@ impl HashStore {
         check_keys(kernels, NAME, keys, resolution)?;
         let gpu = kernels.gpu.clone();
         let n = keys.len;
-        let mut buffer = GpuBuffer::<u32>::new(&gpu, "hash store colours", n)?;
-        fill_colours(
-            &gpu,
-            NAME,
-            keys,
-            colours,
-            resolution,
-            (&mut buffer, 0),
-            None,
-        )?;
+        let buffer = new_colours(&gpu, NAME, "hash store colours", keys, colours, resolution)?;
         let indices: Vec<u32> = (0..n as u32).collect();
         let payloads = GpuBuffer::from_slice(&gpu, "hash store colour indices", &indices)?;
         let table =

@@ -6,7 +6,7 @@
 //! searches; a full pool is reallocated at double size (reported) and, pointers being
 //! absolute addresses, copied as is. Layout: `glsl/include/store/octree.glsl`.
 
-use super::colours::{fill_colours, ColourSource};
+use super::colours::{new_colours, ColourSource};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::keys::check_keys;
@@ -286,15 +286,13 @@ impl OctreeStore {
         source: &ColourSource<'_>,
     ) -> Result<GpuBuffer<u32>, StoreError> {
         let gpu = &self.kernels.gpu;
-        let mut buffer = GpuBuffer::<u32>::new(gpu, "octree new colours", keys.len)?;
-        fill_colours(
+        let buffer = new_colours(
             gpu,
             NAME,
+            "octree new colours",
             keys,
             source,
             self.resolution,
-            (&mut buffer, 0),
-            None,
         )?;
         if !matches!(source, ColourSource::Marble { .. }) && keys.len > 0 {
             // Alpha is the high byte, so the smallest word has the smallest alpha: one

@@ -13,7 +13,7 @@
 //! reported in the [`StoreReport`]. The stored keys (and, for the blocked layout, the blocks)
 //! are kept on the host for that rebuild; device memory stays the hash's.
 
-use super::colours::{fill_colours, ColourSource, HostColours};
+use super::colours::{new_colours, ColourSource, HostColours};
 use super::error::StoreError;
 use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
 use super::keys::check_keys;
@@ -140,15 +140,13 @@ impl PerfectStore {
         check_keys(kernels, NAME, keys, resolution)?;
         let host_keys = keys.read()?;
         let gpu = kernels.gpu.clone();
-        let mut buffer = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(
+        let buffer = new_colours(
             &gpu,
             NAME,
+            "perfect store colours",
             keys,
             colours,
             resolution,
-            (&mut buffer, 0),
-            None,
         )?;
         let host_colours = buffer.read_range(0, keys.len)?;
         let mut store = PerfectStore {
@@ -401,15 +399,13 @@ impl SparseStore for PerfectStore {
         check_keys(&self.kernels, NAME, keys, self.resolution)?;
         let new_keys = keys.read()?;
         let gpu = self.kernels.gpu.clone();
-        let mut fresh = GpuBuffer::<u32>::new(&gpu, "perfect store colours", keys.len.max(1))?;
-        fill_colours(
+        let fresh = new_colours(
             &gpu,
             NAME,
+            "perfect store colours",
             keys,
             colours,
             self.resolution,
-            (&mut fresh, 0),
-            None,
         )?;
         let new_colours = fresh.read_range(0, keys.len)?;
         // Merge by key so the union stays sorted, as the voxelizer's sets are.

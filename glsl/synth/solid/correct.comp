@@ -86,9 +86,15 @@ void main() {
         counts[r] = U64Ptr(pc.table).v[9u + r];
     }
     int s = int(pc.spacing);
+    // The 19 voxels of the three planes through the voxel; the 8 corners (no zero offset)
+    // lie in none of them and are never read.
     uvec3 around[27];
     for (int n = 0; n < 27; n++) {
-        uvec3 q = uvec3(ivec3(local) + ivec3(n % 3, (n / 3) % 3, n / 9) - 1);
+        ivec3 d = ivec3(n % 3, (n / 3) % 3, n / 9) - 1;
+        if (d.x != 0 && d.y != 0 && d.z != 0) {
+            continue;
+        }
+        uvec3 q = uvec3(ivec3(local) + d);
         uint vi = (q.z * pc.size.y + q.y) * pc.size.x + q.x;
         around[n] = uvec3(U32Ptr(pc.triples).v[vi * 3u], U32Ptr(pc.triples).v[vi * 3u + 1u],
                           U32Ptr(pc.triples).v[vi * 3u + 2u]);

@@ -19,4 +19,4 @@ pub use film::Film;
 pub(crate) use png_io::write_rgb8;
 pub use png_io::{write_layer_png, write_png, LayerMapping};
 pub(crate) use tonemap::encode8;
-pub use tonemap::{srgb_oetf, Operator, ToneMap};
+pub use tonemap::{srgb_eotf, srgb_oetf, Operator, ToneMap};

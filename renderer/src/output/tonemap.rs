@@ -105,6 +105,16 @@ pub fn srgb_oetf(x: f32) -> f32 {
     }
 }
 
+/// The sRGB electro-optical transfer function (IEC 61966-2-1), the inverse of [`srgb_oetf`]:
+/// an encoded value on 0..1 to linear, `x / 12.92` up to 0.04045, else `((x + 0.055) / 1.055)^2.4`.
+pub fn srgb_eotf(x: f32) -> f32 {
+    if x <= 0.040_45 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 /// Display-linear 0..1 to the nearest 8-bit sRGB code.
 pub(crate) fn encode8(x: f32) -> u8 {
     (srgb_oetf(x.clamp(0.0, 1.0)) * 255.0).round() as u8

@@ -4,6 +4,7 @@
 //! resolution = … }`; the renderer reads it through the store only, since the kernel holds no
 //! 3D image.
 
+use crate::output::srgb_eotf;
 use std::path::{Path, PathBuf};
 
 /// Largest side of a volume texture along any axis.
@@ -140,20 +141,10 @@ impl VolumeTexture {
         let mut sum = [0f64; 3];
         for c in &self.rgb {
             for (s, &v) in sum.iter_mut().zip(c) {
-                *s += srgb_to_linear(v) as f64;
+                *s += srgb_eotf(v as f32 / 255.0) as f64;
             }
         }
         sum.map(|s| (s / self.rgb.len().max(1) as f64) as f32)
-    }
-}
-
-/// The sRGB electro-optical transfer function of an 8-bit value.
-fn srgb_to_linear(v: u8) -> f32 {
-    let x = v as f32 / 255.0;
-    if x <= 0.04045 {
-        x / 12.92
-    } else {
-        ((x + 0.055) / 1.055).powf(2.4)
     }
 }
 
