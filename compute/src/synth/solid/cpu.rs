@@ -46,32 +46,44 @@ pub fn upsample_jitter_3d(
     region: VolumeBox,
     parent: Option<&LevelTriples>,
 ) -> Vec<[u32; 3]> {
-    let m = analysis.side;
-    let h = analysis.levels[level as usize].spacing as i32;
     (0..region.voxels())
         .map(|i| {
             let p = region.position(i);
-            let base: [u32; 3] = match parent {
-                None => std::array::from_fn(|r| {
-                    let [a, b] = ROLE_AXES[r];
-                    let q = [p[a], p[b]].map(|v| (v.rem_euclid(m as i32) as u32 * h as u32) % m);
-                    q[0] | q[1] << 16
-                }),
-                Some(parent) => {
-                    let t = parent.triples[parent.region.index(p.map(|v| v.div_euclid(2)))];
-                    std::array::from_fn(|r| moved(t[r], project(r, p.map(|v| v & 1)), h, m))
-                }
-            };
-            let j = jitter3(
-                p,
-                level,
-                params.seed,
-                h as u32,
-                params.jitter[level as usize],
-            );
-            std::array::from_fn(|r| moved(base[r], project(r, j), 1, m))
+            let up = parent
+                .map(|parent| parent.triples[parent.region.index(p.map(|v| v.div_euclid(2)))]);
+            upsample_voxel(analysis, params, level, p, up)
         })
         .collect()
+}
+
+/// The upsampled and jittered triple of the voxel at absolute position `p` of `level`, from
+/// its parent's final triple (`None` at level 0, where the triple is the projection of the
+/// position times `h_0`). What lazy synthesis calls per voxel.
+pub fn upsample_voxel(
+    analysis: &SolidAnalysis,
+    params: &SynthParams,
+    level: u32,
+    p: [i32; 3],
+    parent: Option<[u32; 3]>,
+) -> [u32; 3] {
+    let m = analysis.side;
+    let h = analysis.levels[level as usize].spacing as i32;
+    let base: [u32; 3] = match parent {
+        None => std::array::from_fn(|r| {
+            let [a, b] = ROLE_AXES[r];
+            let q = [p[a], p[b]].map(|v| (v.rem_euclid(m as i32) as u32 * h as u32) % m);
+            q[0] | q[1] << 16
+        }),
+        Some(t) => std::array::from_fn(|r| moved(t[r], project(r, p.map(|v| v & 1)), h, m)),
+    };
+    let j = jitter3(
+        p,
+        level,
+        params.seed,
+        h as u32,
+        params.jitter[level as usize],
+    );
+    std::array::from_fn(|r| moved(base[r], project(r, j), 1, m))
 }
 
 /// The synthesized neighbourhoods of the three planes through the voxel whose 27 neighbours'
@@ -141,9 +153,6 @@ pub fn correct_subpass_3d(
     triples: &mut [[u32; 3]],
     subpass: Subpass,
 ) {
-    let m = analysis.side;
-    let h = analysis.levels[level as usize].spacing as i32;
-    let sets = &candidates.levels[level as usize];
     let span = subpass.update.class_span(subpass.class);
     let class_voxels: Vec<usize> = (0..span[2].1 as i32)
         .flat_map(|z| {
@@ -163,39 +172,55 @@ pub fn correct_subpass_3d(
                 let d = offset27(n);
                 triples[region.index([p[0] + d[0], p[1] + d[1], p[2] + d[2]])]
             });
-            let planes = plane_neighbourhoods(analysis, level, &around);
-            let current = around[13];
-            let mut best = (
-                triple_distance(analysis, level, &planes, current),
-                0u32,
-                current,
-            );
-            for (r, role_sets) in sets.iter().enumerate() {
-                // Each distinct shifted-back pixel once: a repeat has the same candidates.
-                let mut bases: Vec<u32> = plane_offsets(r)
-                    .iter()
-                    .map(|&d| {
-                        let t = around[((d[2] + 1) * 9 + (d[1] + 1) * 3 + d[0] + 1) as usize];
-                        let back = project(r, d).map(|v| -v);
-                        let (x, y) = unpack(moved(t[r], back, h, m));
-                        y * m + x
-                    })
-                    .collect();
-                bases.sort_unstable();
-                bases.dedup();
-                for base in bases {
-                    for &c in role_sets.of(base as usize) {
-                        let dist = triple_distance(analysis, level, &planes, c);
-                        best = best.min((dist, (c != current) as u32, c));
-                    }
-                }
-            }
-            best.2
+            correct_voxel(analysis, candidates, level, &around)
         })
         .collect();
     for (i, t) in class_voxels.into_iter().zip(updated) {
         triples[i] = t;
     }
+}
+
+/// The corrected triple of the voxel whose 3×3×3 neighbourhood (x fastest, 13 the centre)
+/// holds `around`: the current triple or the best candidate gathered in each role's plane
+/// (module docs). Only the 19 voxels of the three planes through the centre are read; the 8
+/// corners may hold anything. What lazy synthesis calls per voxel.
+pub fn correct_voxel(
+    analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
+    level: u32,
+    around: &[[u32; 3]; 27],
+) -> [u32; 3] {
+    let m = analysis.side;
+    let h = analysis.levels[level as usize].spacing as i32;
+    let sets = &candidates.levels[level as usize];
+    let planes = plane_neighbourhoods(analysis, level, around);
+    let current = around[13];
+    let mut best = (
+        triple_distance(analysis, level, &planes, current),
+        0u32,
+        current,
+    );
+    for (r, role_sets) in sets.iter().enumerate() {
+        // Each distinct shifted-back pixel once: a repeat has the same candidates.
+        let mut bases: Vec<u32> = plane_offsets(r)
+            .iter()
+            .map(|&d| {
+                let t = around[((d[2] + 1) * 9 + (d[1] + 1) * 3 + d[0] + 1) as usize];
+                let back = project(r, d).map(|v| -v);
+                let (x, y) = unpack(moved(t[r], back, h, m));
+                y * m + x
+            })
+            .collect();
+        bases.sort_unstable();
+        bases.dedup();
+        for base in bases {
+            for &c in role_sets.of(base as usize) {
+                let dist = triple_distance(analysis, level, &planes, c);
+                best = best.min((dist, (c != current) as u32, c));
+            }
+        }
+    }
+    best.2
 }
 
 /// Synthesizes `window` of the finest level on the CPU, keeping every level.
@@ -231,6 +256,15 @@ pub(crate) fn check_solid(
     window: VolumeBox,
 ) -> SynthResult<()> {
     check_box(window)?;
+    check_levels(analysis, candidates, params)
+}
+
+/// Checks that the candidates and the parameters have one entry per level of the analysis.
+pub(crate) fn check_levels(
+    analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
+    params: &SynthParams,
+) -> SynthResult<()> {
     let levels = analysis.levels.len();
     for (name, n) in [
         ("candidate levels", candidates.levels.len()),

@@ -12,6 +12,7 @@ mod cpu;
 mod defaults;
 pub(crate) mod gpu;
 mod jitter;
+pub mod lazy;
 mod loop_budget;
 mod plan;
 mod roles;
@@ -30,7 +31,9 @@ pub use candidates_cache::{
     CANDIDATES_FORMAT_VERSION,
 };
 pub use candidates_gpu::GpuCandidates;
-pub use cpu::{correct_subpass_3d, synthesize_solid_cpu, upsample_jitter_3d};
+pub use cpu::{
+    correct_subpass_3d, correct_voxel, synthesize_solid_cpu, upsample_jitter_3d, upsample_voxel,
+};
 pub use defaults::{
     default_solid_passes, solid_passes_or_default, DEFAULT_SOLID_FINEST_PASSES,
     DEFAULT_SOLID_PASSES,

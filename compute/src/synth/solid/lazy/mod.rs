@@ -1,0 +1,17 @@
+//! Lazy solid synthesis: only the voxels a set of requested finest-level voxels depends on,
+//! level by level, equal bit for bit to the full volume on the requested voxels (Dong et al.
+//! 2008; thesis 003 lines 1083–1096).
+
+mod deps;
+mod keys;
+mod state_cpu;
+
+pub use deps::{
+    class_index, dependencies_cpu, final_stage, subpass_class, version_at, Dependencies, LevelDeps,
+    PLANE_NEIGHBOURS,
+};
+pub use keys::{
+    check_request, lazy_key, lazy_position, tag, untag, LAZY_AXIS_BITS, LAZY_BIAS, MAX_LAZY_COORD,
+    STAGE_BITS, STAGE_MAX,
+};
+pub use state_cpu::LazySolidCpu;

@@ -1,0 +1,211 @@
+//! Lazy solid synthesis: the dependency sets and the sparse synthesizer against the full-volume
+//! synthesizer (bit for bit on every requested voxel, for scattered voxels, a sphere's surface
+//! voxels, a planar slab, and a union requested in two batches in either order).
+
+use lazysolid_compute::synth::solid::lazy::{
+    dependencies_cpu, lazy_key, LazySolidCpu, MAX_LAZY_COORD,
+};
+use lazysolid_compute::synth::solid::{
+    analyze_solid, candidates_cpu, default_solid_passes, synthesize_solid_cpu, CandidateParams,
+    SolidAnalysis, SolidCandidates, SolidExemplars, SolidSynthesis, VolumeBox,
+};
+use lazysolid_compute::synth::{default_jitter, SynthError, SynthParams};
+use lazysolid_tests::{exemplar_crop, rng};
+use rand::Rng;
+use std::collections::BTreeSet;
+use std::sync::OnceLock;
+
+type Case = (SolidAnalysis, SolidCandidates, SynthParams);
+
+/// A 16² leather crop in every role, the solid defaults, seed 5.
+fn case() -> &'static Case {
+    static CELL: OnceLock<Case> = OnceLock::new();
+    CELL.get_or_init(|| {
+        let exemplars = SolidExemplars::new(
+            exemplar_crop("leather.pat", 8, 8, 16, 16),
+            [None, None, None],
+        )
+        .unwrap();
+        let analysis = analyze_solid(&exemplars);
+        let candidates = candidates_cpu(&analysis, &CandidateParams::default()).unwrap();
+        let levels = analysis.levels.len() as u32;
+        let params = SynthParams::new(
+            levels,
+            5,
+            &default_solid_passes(levels),
+            &default_jitter(levels),
+        )
+        .unwrap();
+        (analysis, candidates, params)
+    })
+}
+
+/// The box every request set lies in.
+const BOX: VolumeBox = VolumeBox {
+    origin: [-6, -5, -7],
+    size: [14, 13, 12],
+};
+
+/// The full volume over [`BOX`]: the oracle.
+fn full() -> &'static SolidSynthesis {
+    static CELL: OnceLock<SolidSynthesis> = OnceLock::new();
+    CELL.get_or_init(|| {
+        let (analysis, candidates, params) = case();
+        synthesize_solid_cpu(analysis, candidates, params, BOX).unwrap()
+    })
+}
+
+fn oracle(p: [i32; 3]) -> [u32; 3] {
+    let f = full();
+    f.window_triples()[f.window.index(p)]
+}
+
+fn scattered() -> Vec<[i32; 3]> {
+    let mut r = rng(41);
+    (0..60)
+        .map(|_| std::array::from_fn(|a| BOX.origin[a] + r.random_range(0..BOX.size[a] as i32)))
+        .collect()
+}
+
+/// The voxels a sphere of radius 4.5 centred in the box passes through.
+fn sphere() -> Vec<[i32; 3]> {
+    let c = [1.0f32, 1.5, -1.0];
+    (0..BOX.voxels())
+        .map(|i| BOX.position(i))
+        .filter(|p| {
+            let d: f32 = (0..3)
+                .map(|a| (p[a] as f32 + 0.5 - c[a]).powi(2))
+                .sum::<f32>()
+                .sqrt();
+            (d - 4.5).abs() < 0.87
+        })
+        .collect()
+}
+
+/// A slab one voxel thick across the box.
+fn slab() -> Vec<[i32; 3]> {
+    (0..BOX.voxels())
+        .map(|i| BOX.position(i))
+        .filter(|p| p[2] == 2)
+        .collect()
+}
+
+fn check(name: &str, got: &[[u32; 3]], requested: &[[i32; 3]]) {
+    assert_eq!(got.len(), requested.len());
+    let differ: Vec<_> = requested
+        .iter()
+        .zip(got)
+        .filter(|(&p, &t)| oracle(p) != t)
+        .collect();
+    assert!(
+        differ.is_empty(),
+        "{name}: {} of {} voxels differ, first {:?}",
+        differ.len(),
+        requested.len(),
+        differ[0]
+    );
+}
+
+#[test]
+fn lazy_equals_the_full_volume_on_every_request_set() {
+    let (analysis, candidates, params) = case();
+    let sets = [
+        ("scattered", scattered()),
+        ("sphere", sphere()),
+        ("slab", slab()),
+    ];
+    for (name, set) in &sets {
+        let mut lazy = LazySolidCpu::new();
+        let got = lazy.request(analysis, candidates, params, set).unwrap();
+        check(name, &got, set);
+        // Far less than the full volume's work at the finest level.
+        let finest = *lazy.computed().last().unwrap();
+        let box_versions =
+            BOX.voxels() as u64 * (1 + params.passes.last().copied().unwrap() as u64);
+        println!(
+            "{name}: {} voxels, finest versions {finest} (box {box_versions}), state {} bytes",
+            set.len(),
+            lazy.bytes()
+        );
+    }
+    assert!(sphere().len() > 200 && slab().len() == 14 * 13);
+}
+
+#[test]
+fn two_batches_equal_one_request_of_their_union_in_either_order() {
+    let (analysis, candidates, params) = case();
+    let a = scattered();
+    let b = slab();
+    let union: Vec<[i32; 3]> = a.iter().chain(&b).copied().collect();
+    let mut once = LazySolidCpu::new();
+    check(
+        "union",
+        &once.request(analysis, candidates, params, &union).unwrap(),
+        &union,
+    );
+    for (first, second) in [(&a, &b), (&b, &a)] {
+        let mut lazy = LazySolidCpu::new();
+        let got1 = lazy.request(analysis, candidates, params, first).unwrap();
+        let after_first = lazy.computed().to_vec();
+        let got2 = lazy.request(analysis, candidates, params, second).unwrap();
+        check("first batch", &got1, first);
+        check("second batch", &got2, second);
+        // Nothing computed twice: the two batches together did exactly the union's work.
+        assert_eq!(lazy.computed(), once.computed());
+        assert_eq!(lazy.bytes(), once.bytes());
+        assert!(after_first.iter().sum::<u64>() < once.computed().iter().sum::<u64>());
+        // A repeated request computes nothing.
+        lazy.request(analysis, candidates, params, second).unwrap();
+        assert_eq!(lazy.computed(), once.computed());
+    }
+}
+
+#[test]
+fn dependency_sets_cover_only_what_is_needed() {
+    let (_, _, params) = case();
+    assert_eq!(
+        *params.passes.last().unwrap(),
+        1,
+        "one pass at the finest level"
+    );
+    let sizes = |p: [i32; 3]| -> Vec<usize> {
+        let deps = dependencies_cpu(&[lazy_key(p)], &params.passes, &|_, _| 0);
+        let finest: BTreeSet<u64> = deps.levels.last().unwrap().keys.iter().copied().collect();
+        assert!(finest.contains(&lazy_key(p)));
+        deps.levels.iter().map(|d| d.len()).collect()
+    };
+    // Class [0, 0, 0] is corrected first: it reads its 18 plane neighbours as upsampled.
+    let first = sizes([0, 0, 0]);
+    assert_eq!(*first.last().unwrap(), 19, "{first:?}");
+    // Class [0, 0, 1] is corrected last: its neighbours are corrected before it, and theirs.
+    let last = sizes([4, 2, -1]);
+    assert!(*last.last().unwrap() > 19 * 3, "{last:?}");
+    // Every level needs the parents of the next one, and fewer voxels than a dense box of its
+    // own extent.
+    for s in [first, last] {
+        assert!(s.iter().all(|&n| n > 0), "{s:?}");
+    }
+}
+
+#[test]
+fn requests_outside_the_key_range_are_refused() {
+    let (analysis, candidates, params) = case();
+    let mut lazy = LazySolidCpu::new();
+    let err = lazy
+        .request(analysis, candidates, params, &[[0, MAX_LAZY_COORD + 1, 0]])
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            SynthError::Parameter {
+                name: "requested voxel y",
+                ..
+            }
+        ),
+        "{err}"
+    );
+    let short = SynthParams::new(2, 0, &[1], &[0.5]).unwrap();
+    assert!(lazy
+        .request(analysis, candidates, &short, &[[0, 0, 0]])
+        .is_err());
+}
