@@ -14,12 +14,12 @@ use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
     analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
-    solid_passes_or_default, CandidateParams, GpuCandidates, GpuSolidSynthesizer, SolidExemplars,
-    SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
+    solid_jitter_or_default, solid_passes_or_default, CandidateParams, GpuCandidates,
+    GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP,
+    ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
-    histogram_distance, jitter_or_default, period_repetition, EnergyKernel, EnergyReport, Exemplar,
-    SynthParams,
+    histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar, SynthParams,
 };
 use lazysolid_renderer::output::{Operator, ToneMap};
 use std::io::Write;
@@ -54,7 +54,7 @@ pub struct SolidArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
     /// Jitter strength in 0..=1, one for all levels or one per level, coarsest first
-    /// [default: as `lazysolid synth`].
+    /// [default: 0.6, 0.5, 0.4, 0.3 at the four coarsest levels, 0.2 below].
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes, one for all levels or one per level, coarsest first [default: 2 per
@@ -274,7 +274,7 @@ pub fn synthesize_cube(
         levels,
         seed,
         &solid_passes_or_default(passes, levels),
-        &jitter_or_default(jitter, levels),
+        &solid_jitter_or_default(jitter, levels),
     )?;
     let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };
     let start = Instant::now();

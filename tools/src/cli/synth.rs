@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::synth::{
     analyze_cached, histogram_distance, jitter_or_default, passes_or_default, period_repetition,
     unpack, AnalysisParams, DiskCache, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer,
-    Region, SynthParams, DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD,
+    Region, SynthParams, DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -32,13 +32,17 @@ pub struct SynthArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
     /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first
-    /// [default: 0.6, 0.5, 0.4, 0.3 at the four coarsest levels, 0.2 below].
+    /// [default: 1.0, 0.8, 0.6, 0.4 at the four coarsest levels, 0.2 below].
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes, one for all levels or a comma-separated list, coarsest first
     /// [default: 4 at every level, 2 at the finest].
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
+    /// Added to the distance of a candidate whose coherent patch would span an exemplar
+    /// period (0 turns the test off; the default ranks such a candidate behind every other).
+    #[arg(long, default_value_t = DEFAULT_PERIOD_PENALTY)]
+    pub period_penalty: u32,
     /// Size of the k-coherence similarity sets.
     #[arg(short, long, default_value_t = DEFAULT_COHERENCE_K)]
     pub k: u32,
@@ -131,7 +135,8 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.seed,
         &passes_or_default(&args.passes, levels),
         &jitter_or_default(&args.jitter, levels),
-    )?;
+    )?
+    .with_period_penalty(args.period_penalty)?;
     let window = Region {
         origin: [args.offset.0, args.offset.1],
         size: [args.res.width, args.res.height],

@@ -35,7 +35,8 @@ pub use cpu::{
     correct_subpass_3d, correct_voxel, synthesize_solid_cpu, upsample_jitter_3d, upsample_voxel,
 };
 pub use defaults::{
-    default_solid_passes, solid_passes_or_default, DEFAULT_SOLID_FINEST_PASSES,
+    default_solid_jitter, default_solid_passes, solid_jitter_or_default, solid_passes_or_default,
+    DEFAULT_SOLID_COARSE_JITTER, DEFAULT_SOLID_FINEST_PASSES, DEFAULT_SOLID_FINE_JITTER,
     DEFAULT_SOLID_PASSES,
 };
 pub use gpu::GpuSolidSynthesizer;

@@ -70,7 +70,7 @@ pub struct SynthArgs {
     #[arg(long, default_value_t = 8)]
     pub quality_seeds: u32,
     /// Jitter strengths of lazysolid's synthesis, one for all levels or one per level (coarsest
-    /// first) [default: 0.6, 0.5, 0.4, 0.3 at the four coarsest levels, 0.2 below].
+    /// first) [default: 1.0, 0.8, 0.6, 0.4 at the four coarsest levels, 0.2 below].
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes of lazysolid's synthesis, one for all levels or one per level
