@@ -9,6 +9,7 @@ use crate::kernels::{hash, prims, store, synth, synth_solid, voxel};
 use crate::prims::push as prims_push;
 use crate::prims::segments;
 use crate::store::{colours, hash_store, octree, perfect_store, tiletree};
+use crate::synth::solid::lazy::gpu as lazy_gpu;
 use crate::synth::solid::{candidates_gpu as solid_candidates, gpu as solid_gpu};
 use crate::synth::{energy, gpu as synth_gpu};
 use crate::voxel::{gpu as voxel_gpu, keys};
@@ -75,6 +76,11 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<solid_candidates::CoherencePush>(&synth_solid::COHERENCE),
         of::<solid_gpu::UpsamplePush>(&synth_solid::UPSAMPLE_JITTER),
         of::<solid_gpu::CorrectPush>(&synth_solid::CORRECT),
+        of::<lazy_gpu::PreparePush>(&synth_solid::LAZY_PREPARE),
+        of::<lazy_gpu::AssignPush>(&synth_solid::LAZY_ASSIGN),
+        of::<lazy_gpu::LazyUpsamplePush>(&synth_solid::LAZY_UPSAMPLE),
+        of::<lazy_gpu::LazyCorrectPush>(&synth_solid::LAZY_CORRECT),
+        of::<lazy_gpu::GatherPush>(&synth_solid::LAZY_GATHER),
         of::<voxel_gpu::ColumnsPush>(&voxel::COLUMNS),
         of::<voxel_gpu::DilatePush>(&voxel::DILATE),
         of::<voxel_gpu::HitsPush>(&voxel::HITS),

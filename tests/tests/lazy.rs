@@ -3,14 +3,15 @@
 //! voxels, a planar slab, and a union requested in two batches in either order).
 
 use lazysolid_compute::synth::solid::lazy::{
-    dependencies_cpu, lazy_key, LazySolidCpu, MAX_LAZY_COORD,
+    dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MAX_LAZY_COORD,
 };
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cpu, default_solid_passes, synthesize_solid_cpu, CandidateParams,
-    SolidAnalysis, SolidCandidates, SolidExemplars, SolidSynthesis, VolumeBox,
+    analyze_solid, candidates_cpu, default_solid_jitter, default_solid_passes,
+    synthesize_solid_cpu, CandidateParams, SolidAnalysis, SolidCandidates, SolidExemplars,
+    SolidSynthesis, VolumeBox,
 };
-use lazysolid_compute::synth::{default_jitter, SynthError, SynthParams};
-use lazysolid_tests::{exemplar_crop, rng};
+use lazysolid_compute::synth::{SynthError, SynthParams};
+use lazysolid_tests::{exemplar_crop, rng, with_gpu};
 use rand::Rng;
 use std::collections::BTreeSet;
 use std::sync::OnceLock;
@@ -33,16 +34,19 @@ fn case() -> &'static Case {
             levels,
             5,
             &default_solid_passes(levels),
-            &default_jitter(levels),
+            &default_solid_jitter(levels),
         )
         .unwrap();
         (analysis, candidates, params)
     })
 }
 
+/// The resolution of the GPU state: the texture `[0, 16)³` holds [`BOX`].
+const RESOLUTION: u32 = 16;
+
 /// The box every request set lies in.
 const BOX: VolumeBox = VolumeBox {
-    origin: [-6, -5, -7],
+    origin: [2, 0, 1],
     size: [14, 13, 12],
 };
 
@@ -69,7 +73,7 @@ fn scattered() -> Vec<[i32; 3]> {
 
 /// The voxels a sphere of radius 4.5 centred in the box passes through.
 fn sphere() -> Vec<[i32; 3]> {
-    let c = [1.0f32, 1.5, -1.0];
+    let c = [9.0f32, 6.5, 7.0];
     (0..BOX.voxels())
         .map(|i| BOX.position(i))
         .filter(|p| {
@@ -208,4 +212,59 @@ fn requests_outside_the_key_range_are_refused() {
     assert!(lazy
         .request(analysis, candidates, &short, &[[0, 0, 0]])
         .is_err());
+}
+
+#[test]
+fn gpu_lazy_equals_the_full_volume_and_the_cpu_reference() {
+    let (analysis, candidates, params) = case();
+    let sets = [
+        ("scattered", scattered()),
+        ("sphere", sphere()),
+        ("slab", slab()),
+    ];
+    with_gpu(|gpu| {
+        for (name, set) in &sets {
+            let mut lazy =
+                GpuLazySolid::new(gpu, analysis, candidates, params, RESOLUTION).unwrap();
+            let (got, report) = lazy.request(set).unwrap();
+            check(name, &got, set);
+            let mut cpu = LazySolidCpu::new();
+            cpu.request(analysis, candidates, params, set).unwrap();
+            assert_eq!(
+                report.computed,
+                cpu.computed(),
+                "{name}: versions computed per level"
+            );
+        }
+        // Two batches in either order: the same triples, and together exactly the union's work.
+        let (a, b) = (scattered(), slab());
+        let union: Vec<[i32; 3]> = a.iter().chain(&b).copied().collect();
+        let mut once = LazySolidCpu::new();
+        once.request(analysis, candidates, params, &union).unwrap();
+        for (first, second) in [(&a, &b), (&b, &a)] {
+            let mut lazy =
+                GpuLazySolid::new(gpu, analysis, candidates, params, RESOLUTION).unwrap();
+            let (got1, r1) = lazy.request(first).unwrap();
+            let (got2, r2) = lazy.request(second).unwrap();
+            check("first batch", &got1, first);
+            check("second batch", &got2, second);
+            let total: Vec<u64> = r1
+                .computed
+                .iter()
+                .zip(&r2.computed)
+                .map(|(x, y)| x + y)
+                .collect();
+            assert_eq!(total, once.computed());
+            let (_, r3) = lazy.request(second).unwrap();
+            assert!(
+                r3.computed.iter().all(|&c| c == 0),
+                "a repeated request computes nothing"
+            );
+            assert!(lazy.bytes() > 0);
+        }
+        // Outside the texture: refused with the limit.
+        let mut lazy = GpuLazySolid::new(gpu, analysis, candidates, params, RESOLUTION).unwrap();
+        let err = lazy.request(&[[0, 16, 0]]).unwrap_err();
+        assert!(err.to_string().contains("0..16"), "{err}");
+    });
 }

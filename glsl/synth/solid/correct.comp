@@ -10,7 +10,7 @@
 // candidates, so it cannot change the choice), and a candidate's distance stops once its
 // partial sum exceeds the best (it cannot win). CPU reference: compute/src/synth/solid/cpu.rs.
 #include "common.glsl"
-#include "synth/solid.glsl"
+#include "synth/solid_correct.glsl"
 
 layout(push_constant, scalar) uniform Push {
     uint64_t triples;          // 3 packed coordinates per voxel, updated in place
@@ -27,51 +27,6 @@ layout(push_constant, scalar) uniform Push {
     uint spacing;
 } pc;
 
-ivec4 sums[3][8];
-uint64_t appearance[3];
-uint64_t records[3];
-uint64_t candidates[3];
-uint64_t counts[3];
-
-uint word_distance(ivec4 s, uint w) {
-    ivec4 d = s - 3 * synth_i8x4(w);
-    return uint(d.x * d.x + d.y * d.y + d.z * d.z + d.w * d.w);
-}
-
-uvec2 appearance_at(uint role, uint c, ivec2 d) {
-    uvec2 e = synth_unpack(solid_moved(c, d, pc.side));
-    return UVec2Ptr(appearance[role]).v[e.y * pc.side + e.x];
-}
-
-uint role_distance(uint r, uint c) {
-    uvec2 u = synth_unpack(c);
-    uint e = 2u * (u.y * pc.side + u.x);
-    uvec4 lo = UVec4Ptr(records[r]).v[e];
-    uvec4 hi = UVec4Ptr(records[r]).v[e + 1u];
-    return word_distance(sums[r][0], lo.x) + word_distance(sums[r][1], lo.y)
-        + word_distance(sums[r][2], lo.z) + word_distance(sums[r][3], lo.w)
-        + word_distance(sums[r][4], hi.x) + word_distance(sums[r][5], hi.y)
-        + word_distance(sums[r][6], hi.z) + word_distance(sums[r][7], hi.w);
-}
-
-// The distance of triple t, or some value above `bound` once the partial sum exceeds it.
-uint distance_of(uvec3 t, uint bound) {
-    uint dist = role_distance(0u, t.x);
-    if (dist > bound) return dist;
-    dist += role_distance(1u, t.y);
-    if (dist > bound) return dist;
-    return dist + role_distance(2u, t.z);
-}
-
-// (distance, 0 for the current triple else 1, triple) lexicographically smaller.
-bool better(uint d, uint rank, uvec3 t, uint bd, uint br, uvec3 bt) {
-    if (d != bd) return d < bd;
-    if (rank != br) return rank < br;
-    if (t.x != bt.x) return t.x < bt.x;
-    if (t.y != bt.y) return t.y < bt.y;
-    return t.z < bt.z;
-}
-
 void main() {
     uint i = uint(global_index());
     if (i >= pc.count.x * pc.count.y * pc.count.z) {
@@ -79,13 +34,6 @@ void main() {
     }
     uvec3 local = pc.first
         + 2u * uvec3(i % pc.count.x, (i / pc.count.x) % pc.count.y, i / (pc.count.x * pc.count.y));
-    for (uint r = 0; r < 3; r++) {
-        appearance[r] = U64Ptr(pc.table).v[r];
-        records[r] = U64Ptr(pc.table).v[3u + r];
-        candidates[r] = U64Ptr(pc.table).v[6u + r];
-        counts[r] = U64Ptr(pc.table).v[9u + r];
-    }
-    int s = int(pc.spacing);
     // The 19 voxels of the three planes through the voxel; the 8 corners (no zero offset)
     // lie in none of them and are never read.
     uvec3 around[27];
@@ -99,64 +47,7 @@ void main() {
         around[n] = uvec3(U32Ptr(pc.triples).v[vi * 3u], U32Ptr(pc.triples).v[vi * 3u + 1u],
                           U32Ptr(pc.triples).v[vi * 3u + 2u]);
     }
-    // Per role, the synthesized neighbourhood of the plane through the voxel: per diagonal
-    // (plane order (-1,-1), (1,-1), (-1,1), (1,1)) the sum of the appearance predicted by the
-    // diagonal voxel and the two edge voxels next to it.
-    for (uint r = 0; r < 3; r++) {
-        for (int j = 0; j < 4; j++) {
-            ivec2 d = ivec2(2 * (j & 1) - 1, 2 * (j >> 1) - 1);
-            ivec3 wd = r == 0u ? ivec3(0, d) : (r == 1u ? ivec3(d.x, 0, d.y) : ivec3(d, 0));
-            ivec3 wu = r == 0u ? ivec3(0, d.x, 0) : ivec3(d.x, 0, 0);
-            ivec3 wv = r == 2u ? ivec3(0, d.y, 0) : ivec3(0, 0, d.y);
-            uint cd = around[(wd.z + 1) * 9 + (wd.y + 1) * 3 + wd.x + 1][r];
-            uint cu = around[(wu.z + 1) * 9 + (wu.y + 1) * 3 + wu.x + 1][r];
-            uint cv = around[(wv.z + 1) * 9 + (wv.y + 1) * 3 + wv.x + 1][r];
-            uvec2 a = appearance_at(r, cd, ivec2(0));
-            uvec2 b = appearance_at(r, cu, ivec2(0, d.y * s));
-            uvec2 c = appearance_at(r, cv, ivec2(d.x * s, 0));
-            sums[r][2 * j] = synth_i8x4(a.x) + synth_i8x4(b.x) + synth_i8x4(c.x);
-            sums[r][2 * j + 1] = synth_i8x4(a.y) + synth_i8x4(b.y) + synth_i8x4(c.y);
-        }
-    }
-    uvec3 current = around[13];
-    uint best_d = distance_of(current, 0xffffffffu);
-    uint best_r = 0u;
-    uvec3 best_t = current;
-    for (uint r = 0; r < 3; r++) {
-        uint unique[9];
-        uint n_unique = 0u;
-        for (int n = 0; n < 9; n++) {
-            ivec2 d = ivec2(n % 3, n / 3) - 1;
-            ivec3 w = r == 0u ? ivec3(0, d) : (r == 1u ? ivec3(d.x, 0, d.y) : ivec3(d, 0));
-            uint c = around[(w.z + 1) * 9 + (w.y + 1) * 3 + w.x + 1][r];
-            uvec2 u = synth_unpack(solid_moved(c, -d * s, pc.side));
-            uint base = u.y * pc.side + u.x;
-            bool repeated = false;
-            for (uint m = 0u; m < n_unique; m++) {
-                repeated = repeated || unique[m] == base;
-            }
-            if (!repeated) {
-                unique[n_unique] = base;
-                n_unique++;
-            }
-        }
-        for (uint k = 0u; k < n_unique; k++) {
-            uint base = unique[k];
-            uint cnt = U32Ptr(counts[r]).v[base];
-            for (uint c = 0u; c < cnt; c++) {
-                uint slot = (base * SOLID_MAX_CANDIDATES + c) * 3u;
-                uvec3 t = uvec3(U32Ptr(candidates[r]).v[slot], U32Ptr(candidates[r]).v[slot + 1u],
-                                U32Ptr(candidates[r]).v[slot + 2u]);
-                uint dist = distance_of(t, best_d);
-                uint rank = t == current ? 0u : 1u;
-                if (better(dist, rank, t, best_d, best_r, best_t)) {
-                    best_d = dist;
-                    best_r = rank;
-                    best_t = t;
-                }
-            }
-        }
-    }
+    uvec3 best_t = solid_correct(around, pc.table, pc.side, pc.spacing);
     uint vi = (local.z * pc.size.y + local.y) * pc.size.x + local.x;
     U32Ptr(pc.triples).v[vi * 3u] = best_t.x;
     U32Ptr(pc.triples).v[vi * 3u + 1u] = best_t.y;

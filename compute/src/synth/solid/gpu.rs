@@ -217,6 +217,21 @@ impl GpuSolidSynthesizer {
         Ok((SolidSynthesis { window, levels }, times))
     }
 
+    /// Side of the exemplars.
+    pub(crate) fn side(&self) -> u32 {
+        self.side
+    }
+
+    /// Spacing of level `l`.
+    pub(crate) fn spacing(&self, l: usize) -> u32 {
+        self.levels[l].spacing
+    }
+
+    /// The table of level `l`'s 12 buffer addresses the correction reads.
+    pub(crate) fn level_table(&self, l: usize) -> &GpuBuffer<u64> {
+        &self.levels[l].table
+    }
+
     /// Bytes of the two largest consecutive level buffers (a level and its parent are alive
     /// together), plus the uploaded analysis and candidates: the peak GPU memory of a
     /// synthesis of `window` with `passes`.

@@ -27,11 +27,7 @@ pub const PLANE_NEIGHBOURS: [[i32; 3]; 18] = {
     let mut n = 0;
     let mut i: i32 = 0;
     while i < 27 {
-        let d = [
-            i % 3 - 1,
-            (i / 3) % 3 - 1,
-            i / 9 - 1,
-        ];
+        let d = [i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1];
         let zeros = (d[0] == 0) as u32 + (d[1] == 0) as u32 + (d[2] == 0) as u32;
         if zeros == 1 || zeros == 2 {
             out[n] = d;

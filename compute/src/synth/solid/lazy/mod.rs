@@ -3,6 +3,7 @@
 //! 2008; thesis 003 lines 1083–1096).
 
 mod deps;
+pub(crate) mod gpu;
 mod keys;
 mod state_cpu;
 
@@ -10,6 +11,7 @@ pub use deps::{
     class_index, dependencies_cpu, final_stage, subpass_class, version_at, Dependencies, LevelDeps,
     PLANE_NEIGHBOURS,
 };
+pub use gpu::{GpuLazySolid, LazyReport, LAZY_MARGIN};
 pub use keys::{
     check_request, lazy_key, lazy_position, tag, untag, LAZY_AXIS_BITS, LAZY_BIAS, MAX_LAZY_COORD,
     STAGE_BITS, STAGE_MAX,

@@ -1,0 +1,538 @@
+//! Lazy synthesis on the GPU. The state of every level lives in the project's coherent hash
+//! (a Robin Hood table with the coherent probe sequence, Morton keys of the voxel positions
+//! plus [`LAZY_MARGIN`]) whose payload is a slot, and per slot the versions computed so far
+//! (`passes + 1` triples) and their count. A request walks the dependency sets, then per level:
+//! looks up every needed voxel (`lazy_prepare.comp`), gives the new ones slots and inserts them
+//! (`lazy_assign.comp`, the scan, the table's insert), upsamples the voxels with no version
+//! (`lazy_upsample.comp`), and runs the `8 × passes` subpasses (`lazy_correct.comp`); the
+//! requested voxels' final triples are gathered at the end (`lazy_gather.comp`). The CPU
+//! reference is [`LazySolidCpu`](super::LazySolidCpu); both equal the full volume.
+//!
+//! Memory policy: every version of every voxel is kept (the table, `12 · (passes + 1)` bytes
+//! of versions and 4 bytes of count per voxel), so no later request recomputes anything;
+//! [`GpuLazySolid::bytes`] reports it.
+
+use super::deps::{dependencies_cpu, final_stage, subpass_class, version_at, Dependencies};
+use super::keys::{lazy_key, lazy_position};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
+use crate::hash::{
+    fastmod_multiplier, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable, Universe,
+};
+use crate::kernels::synth_solid;
+use crate::prims::Scan;
+use crate::synth::solid::analysis::SolidAnalysis;
+use crate::synth::solid::candidates::SolidCandidates;
+use crate::synth::solid::cpu::check_levels;
+use crate::synth::solid::gpu::GpuSolidSynthesizer;
+use crate::synth::{SynthError, SynthParams, SynthResult};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// Voxels of room around the requested `[0, R)³` at every level: the dependencies reach at
+/// most 5 voxels a side per pass and level along x (3 along y, 2 along z) plus half the
+/// reach of the level below, under 80 for the largest pass count.
+pub const LAZY_MARGIN: i32 = 96;
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct PreparePush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        flags: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct AssignPush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        offsets: DeviceAddress<'a>,
+        new_keys: DeviceAddress<'a>,
+        new_payloads: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        base: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LazyUpsamplePush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        side: u32,
+        spacing: u32,
+        seed: u32,
+        strength: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LazyCorrectPush<'a> {
+        levels: DeviceAddress<'a>,
+        table: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        need: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        stage: u32,
+        cls: u32,
+        version: u32,
+        side: u32,
+        spacing: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct GatherPush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        triples: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+    }
+}
+
+/// Words of one `LazyLevel` record of `glsl/include/synth/lazy.glsl` (56 bytes).
+const RECORD_WORDS: usize = 7;
+
+/// One level's state.
+struct LevelState {
+    universe: Universe,
+    table: Option<RobinHoodTable>,
+    versions: GpuBuffer<u32>,
+    counts: GpuBuffer<u32>,
+    stride: u32,
+    len: u32,
+    /// Versions per stored key, mirrored on the host for the dependency walk.
+    known: HashMap<u64, u8>,
+}
+
+impl LevelState {
+    fn record(&self) -> [u64; RECORD_WORDS] {
+        let (cells, size, bits, probe) = match &self.table {
+            Some(t) => (
+                t.cells_address().raw(),
+                t.table_size(),
+                t.format().key_bits,
+                t.config().probe.id(),
+            ),
+            None => (0, 0, 0, 0),
+        };
+        [
+            cells,
+            fastmod_multiplier(size.max(1)),
+            self.versions.address().raw(),
+            self.counts.address().raw(),
+            size as u64 | (bits as u64) << 32,
+            probe as u64 | (self.stride as u64) << 32,
+            LAZY_MARGIN as u32 as u64,
+        ]
+    }
+
+    fn bytes(&self) -> u64 {
+        self.table.as_ref().map_or(0, |t| t.bytes()) + self.versions.bytes() + self.counts.bytes()
+    }
+}
+
+/// What one request did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LazyReport {
+    /// Voxels in each level's dependency set, coarsest first.
+    pub needed: Vec<u64>,
+    /// Voxel versions computed at each level (upsampled or corrected), coarsest first.
+    pub computed: Vec<u64>,
+    /// Device time of the synthesis kernels, milliseconds.
+    pub gpu_ms: f64,
+    /// Wall time of the dependency walk on the host, milliseconds.
+    pub deps_ms: f64,
+}
+
+/// Lazy synthesis of one volume texture of resolution `R` (finest-level voxels `[0, R)³`) on
+/// the GPU, keeping its state between requests.
+pub struct GpuLazySolid {
+    gpu: Gpu,
+    synth: GpuSolidSynthesizer,
+    hash: Arc<HashKernels>,
+    scan: Scan,
+    prepare: Arc<Kernel>,
+    assign: Arc<Kernel>,
+    upsample: Arc<Kernel>,
+    correct: Arc<Kernel>,
+    gather: Arc<Kernel>,
+    params: SynthParams,
+    resolution: u32,
+    levels: Vec<LevelState>,
+    records: GpuBuffer<u64>,
+}
+
+/// Initial slots per level.
+const INITIAL_SLOTS: usize = 1024;
+
+impl GpuLazySolid {
+    /// Uploads the analysis and candidates for textures of `resolution`³ voxels synthesized
+    /// with `params`.
+    ///
+    /// # Errors
+    /// Parameters that do not fit the analysis, a resolution outside 1..=4096, or a GPU
+    /// failure.
+    pub fn new(
+        gpu: &Gpu,
+        analysis: &SolidAnalysis,
+        candidates: &SolidCandidates,
+        params: &SynthParams,
+        resolution: u32,
+    ) -> SynthResult<GpuLazySolid> {
+        check_levels(analysis, candidates, params)?;
+        if !(1..=4096).contains(&resolution) {
+            return Err(SynthError::Parameter {
+                name: "resolution",
+                value: resolution.to_string(),
+                limit: "must lie in 1..=4096".into(),
+            });
+        }
+        let n_levels = analysis.levels.len();
+        let mut levels = Vec::with_capacity(n_levels);
+        for l in 0..n_levels {
+            let shift = (n_levels - 1 - l) as u32;
+            let extent = resolution.div_ceil(1 << shift) + 2 * LAZY_MARGIN as u32;
+            let universe = Universe::new_3d([extent; 3], KeyLayout::Morton).map_err(|e| {
+                SynthError::Parameter {
+                    name: "resolution",
+                    value: resolution.to_string(),
+                    limit: e.to_string(),
+                }
+            })?;
+            let stride = params.passes[l] + 1;
+            levels.push(LevelState {
+                universe,
+                table: None,
+                versions: GpuBuffer::zeroed(
+                    gpu,
+                    format!("lazy versions level {l}"),
+                    INITIAL_SLOTS * 3 * stride as usize,
+                )?,
+                counts: GpuBuffer::zeroed(gpu, format!("lazy counts level {l}"), INITIAL_SLOTS)?,
+                stride,
+                len: 0,
+                known: HashMap::new(),
+            });
+        }
+        let records = GpuBuffer::zeroed(gpu, "lazy level records", n_levels * RECORD_WORDS)?;
+        let mut me = GpuLazySolid {
+            gpu: gpu.clone(),
+            synth: GpuSolidSynthesizer::new(gpu, analysis, candidates)?,
+            hash: HashKernels::new(gpu)?,
+            scan: Scan::new(gpu)?,
+            prepare: gpu.kernel(&synth_solid::LAZY_PREPARE)?,
+            assign: gpu.kernel(&synth_solid::LAZY_ASSIGN)?,
+            upsample: gpu.kernel(&synth_solid::LAZY_UPSAMPLE)?,
+            correct: gpu.kernel(&synth_solid::LAZY_CORRECT)?,
+            gather: gpu.kernel(&synth_solid::LAZY_GATHER)?,
+            params: params.clone(),
+            resolution,
+            levels,
+            records,
+        };
+        for l in 0..n_levels {
+            me.write_record(l)?;
+        }
+        Ok(me)
+    }
+
+    fn write_record(&mut self, l: usize) -> SynthResult<()> {
+        let record = self.levels[l].record();
+        self.records.write(l * RECORD_WORDS, &record)?;
+        Ok(())
+    }
+
+    /// Bytes of the kept state: tables, versions and counts of every level.
+    pub fn bytes(&self) -> u64 {
+        self.levels.iter().map(LevelState::bytes).sum::<u64>() + self.records.bytes()
+    }
+
+    /// Voxels stored per level, coarsest first.
+    pub fn stored(&self) -> Vec<u64> {
+        self.levels.iter().map(|l| l.len as u64).collect()
+    }
+
+    /// The dependency sets of `keys` given what is stored.
+    pub fn dependencies(&self, keys: &[u64]) -> Dependencies {
+        dependencies_cpu(keys, &self.params.passes, &|l, k| {
+            self.levels[l].known.get(&k).map_or(0, |&v| v as u32)
+        })
+    }
+
+    /// Synthesizes the finest-level voxels `requested` (positions in `[0, R)³`) and returns
+    /// their final triples in the same order.
+    ///
+    /// # Errors
+    /// A position outside the texture, state that would exceed the device's limits, or a GPU
+    /// failure.
+    pub fn request(&mut self, requested: &[[i32; 3]]) -> SynthResult<(Vec<[u32; 3]>, LazyReport)> {
+        let r = self.resolution as i32;
+        for p in requested {
+            if let Some(a) = (0..3).find(|&a| p[a] < 0 || p[a] >= r) {
+                return Err(SynthError::Parameter {
+                    name: [
+                        "requested voxel x",
+                        "requested voxel y",
+                        "requested voxel z",
+                    ][a],
+                    value: p[a].to_string(),
+                    limit: format!("must lie in 0..{r} (the texture's resolution)"),
+                });
+            }
+        }
+        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        let start = std::time::Instant::now();
+        let deps = self.dependencies(&keys);
+        let mut report = LazyReport {
+            deps_ms: start.elapsed().as_secs_f64() * 1e3,
+            ..LazyReport::default()
+        };
+        for (l, d) in deps.levels.iter().enumerate() {
+            report.needed.push(d.len() as u64);
+            let state = &self.levels[l];
+            let computed: u64 = (0..d.len())
+                .map(|i| {
+                    let had = state.known.get(&d.keys[i]).map_or(0, |&v| v as u32);
+                    d.versions_needed(i).saturating_sub(had) as u64
+                })
+                .sum();
+            report.computed.push(computed);
+            if computed == 0 {
+                continue;
+            }
+            report.gpu_ms += self.level(l, &d.keys, &d.need)?;
+            let state = &mut self.levels[l];
+            for i in 0..d.len() {
+                let v = state.known.entry(d.keys[i]).or_insert(0);
+                *v = (*v).max(d.versions_needed(i) as u8);
+            }
+        }
+        let finest = self.levels.len() - 1;
+        let n = keys.len();
+        if n == 0 {
+            return Ok((Vec::new(), report));
+        }
+        let keys_buf = GpuBuffer::from_slice(&self.gpu, "lazy requested keys", &keys)?;
+        let out = GpuBuffer::<[u32; 3]>::new(&self.gpu, "lazy requested triples", n)?;
+        let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy gather errors", 1)?;
+        self.gpu.submit(|rec| {
+            let push = GatherPush {
+                levels: self.records.address(),
+                keys: keys_buf.address(),
+                triples: out.address(),
+                errors: errors.address(),
+                n: n as u32,
+                level: finest as u32,
+            };
+            rec.dispatch(&self.gather, self.gather.groups_for(n as u64), &[], &push)
+        })?;
+        check_errors(&errors, "requested voxels missing or not final")?;
+        Ok((out.read()?, report))
+    }
+
+    /// Synthesizes level `l`'s needed voxels `keys` (with their last stages `need`); returns
+    /// the device time in milliseconds.
+    fn level(&mut self, l: usize, keys: &[u64], need: &[u8]) -> SynthResult<f64> {
+        let gpu = self.gpu.clone();
+        let n = keys.len();
+        let margin_lo = -LAZY_MARGIN;
+        let margin_hi = self.levels[l].universe.dims[0] as i32 - LAZY_MARGIN;
+        if let Some(&k) = keys.iter().find(|&&k| {
+            lazy_position(k)
+                .iter()
+                .any(|&v| v < margin_lo || v >= margin_hi)
+        }) {
+            return Err(SynthError::Parameter {
+                name: "lazy margin",
+                value: format!("{:?} at level {l}", lazy_position(k)),
+                limit: format!("dependencies must stay within {LAZY_MARGIN} voxels of the texture"),
+            });
+        }
+        let keys_buf = GpuBuffer::from_slice(&gpu, format!("lazy keys level {l}"), keys)?;
+        let need32: Vec<u32> = need.iter().map(|&v| v as u32).collect();
+        let need_buf = GpuBuffer::from_slice(&gpu, format!("lazy need level {l}"), &need32)?;
+        let slots = GpuBuffer::<u32>::new(&gpu, format!("lazy slots level {l}"), n)?;
+        let flags = GpuBuffer::<u32>::new(&gpu, format!("lazy new flags level {l}"), n)?;
+        let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy new count", 1)?;
+        gpu.submit(|rec| {
+            let push = PreparePush {
+                levels: self.records.address(),
+                keys: keys_buf.address(),
+                slots: slots.address(),
+                flags: flags.address(),
+                n: n as u32,
+                level: l as u32,
+            };
+            rec.dispatch(&self.prepare, self.prepare.groups_for(n as u64), &[], &push)?;
+            self.scan.record(rec, &flags, &flags, n, Some(&total))
+        })?;
+        let fresh = total.read()?[0] as usize;
+        if fresh > 0 {
+            self.reserve(l, self.levels[l].len as usize + fresh)?;
+            let new_keys = GpuBuffer::<u64>::new(&gpu, "lazy new keys", fresh)?;
+            let new_payloads = GpuBuffer::<u32>::new(&gpu, "lazy new slots", fresh)?;
+            gpu.submit(|rec| {
+                let push = AssignPush {
+                    levels: self.records.address(),
+                    keys: keys_buf.address(),
+                    slots: slots.address(),
+                    offsets: flags.address(),
+                    new_keys: new_keys.address(),
+                    new_payloads: new_payloads.address(),
+                    n: n as u32,
+                    level: l as u32,
+                    base: self.levels[l].len,
+                };
+                rec.dispatch(&self.assign, self.assign.groups_for(n as u64), &[], &push)
+            })?;
+            let state = &mut self.levels[l];
+            match &mut state.table {
+                Some(t) => {
+                    t.insert(&new_keys, &new_payloads, fresh)
+                        .map_err(|e| hash_error(l, e))?;
+                }
+                None => {
+                    let config = RobinHoodConfig {
+                        validate: true,
+                        ..RobinHoodConfig::default()
+                    };
+                    state.table = Some(
+                        RobinHoodTable::build(
+                            &self.hash,
+                            state.universe,
+                            &new_keys,
+                            &new_payloads,
+                            fresh,
+                            config,
+                        )
+                        .map_err(|e| hash_error(l, e))?,
+                    );
+                }
+            }
+            state.len += fresh as u32;
+            self.write_record(l)?;
+        }
+        let errors = GpuBuffer::<u32>::zeroed(&gpu, "lazy synthesis errors", 1)?;
+        let side = self.synth.side();
+        let spacing = self.synth.spacing(l);
+        let table = self.synth.level_table(l);
+        let passes = self.params.passes[l];
+        let ((), stamps) = gpu.submit_timed(|rec| {
+            rec.timestamp()?;
+            let push = LazyUpsamplePush {
+                levels: self.records.address(),
+                keys: keys_buf.address(),
+                slots: slots.address(),
+                errors: errors.address(),
+                n: n as u32,
+                level: l as u32,
+                side,
+                spacing,
+                seed: self.params.seed,
+                strength: self.params.jitter[l],
+            };
+            rec.dispatch(
+                &self.upsample,
+                self.upsample.groups_for(n as u64),
+                &[],
+                &push,
+            )?;
+            for stage in 1..=final_stage(passes) {
+                let cls = subpass_class(stage);
+                let push = LazyCorrectPush {
+                    levels: self.records.address(),
+                    table: table.address(),
+                    keys: keys_buf.address(),
+                    slots: slots.address(),
+                    need: need_buf.address(),
+                    errors: errors.address(),
+                    n: n as u32,
+                    level: l as u32,
+                    stage,
+                    cls,
+                    version: version_at(stage, cls),
+                    side,
+                    spacing,
+                };
+                rec.dispatch(&self.correct, self.correct.groups_for(n as u64), &[], &push)?;
+            }
+            rec.timestamp()
+        })?;
+        check_errors(&errors, "dependencies missing during synthesis")?;
+        Ok((stamps[1] - stamps[0]) * 1e-6)
+    }
+
+    /// Grows level `l`'s versions and counts to hold `slots` voxels.
+    fn reserve(&mut self, l: usize, slots: usize) -> SynthResult<()> {
+        let state = &mut self.levels[l];
+        let have = state.counts.len();
+        if slots <= have {
+            return Ok(());
+        }
+        let stride = state.stride as usize;
+        let grown = slots.max(have + have / 2).next_power_of_two();
+        let words = grown as u64 * 3 * stride as u64;
+        if words > u32::MAX as u64 {
+            return Err(SynthError::Parameter {
+                name: "lazy state",
+                value: format!("{grown} voxels at level {l}"),
+                limit: format!(
+                    "at most {} voxels per level (32-bit word indices)",
+                    u32::MAX as u64 / (3 * stride as u64)
+                ),
+            });
+        }
+        let versions = GpuBuffer::<u32>::zeroed(
+            &self.gpu,
+            format!("lazy versions level {l}"),
+            words as usize,
+        )?;
+        let counts = GpuBuffer::<u32>::zeroed(&self.gpu, format!("lazy counts level {l}"), grown)?;
+        let used = state.len as usize;
+        self.gpu.submit(|rec| {
+            rec.copy(&state.versions, 0, &versions, 0, used * 3 * stride)?;
+            rec.copy(&state.counts, 0, &counts, 0, used)
+        })?;
+        state.versions = versions;
+        state.counts = counts;
+        Ok(())
+    }
+}
+
+fn check_errors(errors: &GpuBuffer<u32>, what: &str) -> SynthResult<()> {
+    let e = errors.read()?[0];
+    if e != 0 {
+        return Err(SynthError::Parameter {
+            name: "lazy synthesis",
+            value: format!("{e} {what}"),
+            limit: "the dependency sets must cover every read".into(),
+        });
+    }
+    Ok(())
+}
+
+fn hash_error(level: usize, e: crate::hash::HashError) -> SynthError {
+    SynthError::Parameter {
+        name: "lazy state table",
+        value: format!("level {level}"),
+        limit: e.to_string(),
+    }
+}

@@ -1,0 +1,77 @@
+// Lazy solid synthesis state on the GPU (compute/src/synth/solid/lazy/gpu.rs): per level a
+// coherent Robin Hood table from the voxel's Morton key (its absolute position plus a margin)
+// to a slot, and per slot the versions computed so far (version j: the triple after pass j,
+// 0 the upsampled one) and their count. The host keeps one LazyLevel record per level in a
+// buffer; the kernels receive its address and the level.
+#ifndef LAZYSOLID_LAZY_GLSL
+#define LAZYSOLID_LAZY_GLSL
+
+#define CELL_BITS 64
+#include "morton.glsl"
+#include "hash/robin_hood_lookup.glsl"
+
+// Must match `LazyLevelRecord` in compute/src/synth/solid/lazy/gpu.rs (scalar layout, 56 bytes).
+struct LazyLevel {
+    uint64_t cells;        // the table's cells (unused while table_size is 0)
+    uint64_t fastmod_m;    // the table size's reciprocal
+    uint64_t versions;     // stride x 3 words per slot
+    uint64_t counts;       // versions computed per slot
+    uint table_size;       // 0 before the level's first voxel
+    uint key_bits;         // bits of key + 1 in a cell
+    uint probe;            // HASH_PROBE_COHERENT
+    uint stride;           // versions per slot: the level's passes + 1
+    int margin;            // added to positions before the Morton key
+    uint pad;
+};
+
+layout(buffer_reference, scalar, buffer_reference_align = 8) buffer LazyLevels { LazyLevel v[]; };
+
+// Bits per axis of a lazy key (compute/src/synth/solid/lazy/keys.rs) and its bias.
+const uint LAZY_AXIS_BITS_GLSL = 19u;
+const int LAZY_BIAS_GLSL = 1 << 18;
+
+// The absolute position of lazy key k.
+ivec3 lazy_position(uint64_t k) {
+    return ivec3(morton3_decode(k)) - LAZY_BIAS_GLSL;
+}
+
+// The table key of absolute position p.
+uint64_t lazy_table_key(LazyLevel l, ivec3 p) {
+    return morton3(uvec3(p + l.margin));
+}
+
+// The slot of position p, or HASH_NOT_FOUND.
+uint lazy_slot(LazyLevel l, ivec3 p) {
+    if (l.table_size == 0u) {
+        return HASH_NOT_FOUND;
+    }
+    return robin_hood_lookup(l.cells, l.table_size, l.fastmod_m, l.key_bits, l.probe, lazy_table_key(l, p));
+}
+
+// Version v of slot s.
+uvec3 lazy_version(LazyLevel l, uint s, uint v) {
+    uint w = (s * l.stride + v) * 3u;
+    return uvec3(U32Ptr(l.versions).v[w], U32Ptr(l.versions).v[w + 1u], U32Ptr(l.versions).v[w + 2u]);
+}
+
+void lazy_store(LazyLevel l, uint s, uint v, uvec3 t) {
+    uint w = (s * l.stride + v) * 3u;
+    U32Ptr(l.versions).v[w] = t.x;
+    U32Ptr(l.versions).v[w + 1u] = t.y;
+    U32Ptr(l.versions).v[w + 2u] = t.z;
+}
+
+// The place of p's parity class in the subpass order (CLASSES_3D, a Gray code with x fastest).
+uint lazy_class(ivec3 p) {
+    uint x = uint(p.x & 1), y = uint(p.y & 1), z = uint(p.z & 1);
+    uint g = x | (y << 1) | (z << 2);
+    // Inverse of the reflected Gray code: g ^ (g >> 1) ^ (g >> 2).
+    return g ^ (g >> 1u) ^ (g >> 2u);
+}
+
+// The version a voxel of class place `c` holds after stage `stage`.
+uint lazy_version_at(uint stage, uint c) {
+    return (stage + 7u - c) >> 3;
+}
+
+#endif
