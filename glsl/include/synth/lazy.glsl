@@ -21,7 +21,7 @@ struct LazyLevel {
     uint probe;            // HASH_PROBE_COHERENT
     uint stride;           // versions per slot: the level's passes + 1
     int margin;            // added to positions before the Morton key
-    uint pad;
+    uint extent;           // table positions lie in [0, extent) per axis
 };
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) buffer LazyLevels { LazyLevel v[]; };
@@ -30,9 +30,36 @@ layout(buffer_reference, scalar, buffer_reference_align = 8) buffer LazyLevels {
 const uint LAZY_AXIS_BITS_GLSL = 19u;
 const int LAZY_BIAS_GLSL = 1 << 18;
 
+// Low bits of a stage-tagged key: tagged = key << LAZY_STAGE_BITS | (LAZY_STAGE_MAX - stage).
+const uint LAZY_STAGE_BITS = 7u;
+const uint LAZY_STAGE_MAX = 127u;
+
+uint64_t lazy_untag_key(uint64_t t) {
+    return t >> LAZY_STAGE_BITS;
+}
+
+uint lazy_untag_stage(uint64_t t) {
+    return LAZY_STAGE_MAX - uint(t & uint64_t(LAZY_STAGE_MAX));
+}
+
+uint64_t lazy_tag(uint64_t k, uint stage) {
+    return (k << LAZY_STAGE_BITS) | uint64_t(LAZY_STAGE_MAX - stage);
+}
+
 // The absolute position of lazy key k.
 ivec3 lazy_position(uint64_t k) {
     return ivec3(morton3_decode(k)) - LAZY_BIAS_GLSL;
+}
+
+// The lazy key of absolute position p.
+uint64_t lazy_key(ivec3 p) {
+    return morton3(uvec3(p + LAZY_BIAS_GLSL));
+}
+
+// Whether p lies where the level's table can hold it.
+bool lazy_inside(LazyLevel l, ivec3 p) {
+    uvec3 q = uvec3(p + l.margin);
+    return all(lessThan(q, uvec3(l.extent)));
 }
 
 // The table key of absolute position p.
@@ -42,10 +69,16 @@ uint64_t lazy_table_key(LazyLevel l, ivec3 p) {
 
 // The slot of position p, or HASH_NOT_FOUND.
 uint lazy_slot(LazyLevel l, ivec3 p) {
-    if (l.table_size == 0u) {
+    if (l.table_size == 0u || !lazy_inside(l, p)) {
         return HASH_NOT_FOUND;
     }
     return robin_hood_lookup(l.cells, l.table_size, l.fastmod_m, l.key_bits, l.probe, lazy_table_key(l, p));
+}
+
+// Versions of position p computed so far (0 when it is not stored).
+uint lazy_known(LazyLevel l, ivec3 p) {
+    uint s = lazy_slot(l, p);
+    return s == HASH_NOT_FOUND ? 0u : U32Ptr(l.counts).v[s];
 }
 
 // Version v of slot s.
@@ -75,3 +108,4 @@ uint lazy_version_at(uint stage, uint c) {
 }
 
 #endif
+

@@ -25,6 +25,6 @@ void main() {
     uint rank = U32Ptr(pc.offsets).v[i];
     uint s = pc.base + rank;
     U32Ptr(pc.slots).v[i] = s;
-    U64Ptr(pc.new_keys).v[rank] = lazy_table_key(l, lazy_position(U64Ptr(pc.keys).v[i]));
+    U64Ptr(pc.new_keys).v[rank] = lazy_table_key(l, lazy_position(lazy_untag_key(U64Ptr(pc.keys).v[i])));
     U32Ptr(pc.new_payloads).v[rank] = s;
 }

@@ -12,9 +12,8 @@
 layout(push_constant, scalar) uniform Push {
     uint64_t levels;
     uint64_t table;    // the level's 12 analysis and candidate addresses (see correct.comp)
-    uint64_t keys;
+    uint64_t keys;     // stage-tagged: the last stage each voxel is needed at
     uint64_t slots;
-    uint64_t need;     // last stage each voxel is needed at
     uint64_t errors;   // out: counts missing neighbours (must stay 0)
     uint n;
     uint level;
@@ -27,10 +26,14 @@ layout(push_constant, scalar) uniform Push {
 
 void main() {
     uint i = uint(global_index());
-    if (i >= pc.n || U32Ptr(pc.need).v[i] < pc.stage) {
+    if (i >= pc.n) {
         return;
     }
-    ivec3 p = lazy_position(U64Ptr(pc.keys).v[i]);
+    uint64_t tk = U64Ptr(pc.keys).v[i];
+    if (lazy_untag_stage(tk) < pc.stage) {
+        return;
+    }
+    ivec3 p = lazy_position(lazy_untag_key(tk));
     if (lazy_class(p) != pc.cls) {
         return;
     }

@@ -6,9 +6,10 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t levels;   // LazyLevel records
-    uint64_t keys;     // the level's needed voxels (lazy keys)
+    uint64_t keys;     // the level's needed voxels (stage-tagged keys)
     uint64_t slots;    // out: slot, or HASH_NOT_FOUND
     uint64_t flags;    // out: 1 for a voxel not stored yet
+    uint64_t work;     // out: adds the versions this request computes
     uint n;
     uint level;
 } pc;
@@ -19,7 +20,14 @@ void main() {
         return;
     }
     LazyLevel l = LazyLevels(pc.levels).v[pc.level];
-    uint s = lazy_slot(l, lazy_position(U64Ptr(pc.keys).v[i]));
+    uint64_t t = U64Ptr(pc.keys).v[i];
+    ivec3 p = lazy_position(lazy_untag_key(t));
+    uint s = lazy_slot(l, p);
     U32Ptr(pc.slots).v[i] = s;
     U32Ptr(pc.flags).v[i] = s == HASH_NOT_FOUND ? 1u : 0u;
+    uint known = s == HASH_NOT_FOUND ? 0u : U32Ptr(l.counts).v[s];
+    uint needed = lazy_version_at(lazy_untag_stage(t), lazy_class(p)) + 1u;
+    if (needed > known) {
+        atomicAdd(U32Ptr(pc.work).v[0], needed - known);
+    }
 }

@@ -31,7 +31,7 @@ void main() {
     if (U32Ptr(l.counts).v[s] != 0u) {
         return;
     }
-    ivec3 p = lazy_position(U64Ptr(pc.keys).v[i]);
+    ivec3 p = lazy_position(lazy_untag_key(U64Ptr(pc.keys).v[i]));
     uint t[3];
     if (pc.level == 0u) {
         uvec3 q = ((uvec3(p & int(pc.side - 1u))) * pc.spacing) % pc.side;

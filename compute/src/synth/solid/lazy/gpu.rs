@@ -1,7 +1,10 @@
 //! Lazy synthesis on the GPU. The state of every level lives in the project's coherent hash
 //! (a Robin Hood table with the coherent probe sequence, Morton keys of the voxel positions
 //! plus [`LAZY_MARGIN`]) whose payload is a slot, and per slot the versions computed so far
-//! (`passes + 1` triples) and their count. A request walks the dependency sets, then per level:
+//! (`passes + 1` triples) and their count. A request walks the dependency sets on the GPU
+//! (`lazy_deps_expand.comp` per stage, the radix sort, `lazy_deps_unique.comp` keeping each
+//! voxel's last stage, `lazy_deps_parents.comp` between levels; the keys carry their stage in
+//! their low bits, see `keys.rs`), stopping at stored versions, then per level:
 //! looks up every needed voxel (`lazy_prepare.comp`), gives the new ones slots and inserts them
 //! (`lazy_assign.comp`, the scan, the table's insert), upsamples the voxels with no version
 //! (`lazy_upsample.comp`), and runs the `8 × passes` subpasses (`lazy_correct.comp`); the
@@ -12,20 +15,20 @@
 //! of versions and 4 bytes of count per voxel), so no later request recomputes anything;
 //! [`GpuLazySolid::bytes`] reports it.
 
-use super::deps::{dependencies_cpu, final_stage, subpass_class, version_at, Dependencies};
-use super::keys::{lazy_key, lazy_position};
+use super::deps::{final_stage, subpass_class, version_at, Dependencies, LevelDeps};
+use super::keys::{lazy_key, untag, LAZY_AXIS_BITS};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::hash::{
     fastmod_multiplier, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable, Universe,
 };
 use crate::kernels::synth_solid;
-use crate::prims::Scan;
+use crate::prims::{RadixSort, Scan, MAX_ELEMENTS};
 use crate::synth::solid::analysis::SolidAnalysis;
 use crate::synth::solid::candidates::SolidCandidates;
 use crate::synth::solid::cpu::check_levels;
 use crate::synth::solid::gpu::GpuSolidSynthesizer;
 use crate::synth::{SynthError, SynthParams, SynthResult};
-use std::collections::HashMap;
+use crate::voxel::SortUnique;
 use std::sync::Arc;
 
 /// Voxels of room around the requested `[0, R)³` at every level: the dependencies reach at
@@ -40,6 +43,7 @@ crate::push_block! {
         keys: DeviceAddress<'a>,
         slots: DeviceAddress<'a>,
         flags: DeviceAddress<'a>,
+        work: DeviceAddress<'a>,
         n: u32,
         level: u32,
     }
@@ -83,7 +87,6 @@ crate::push_block! {
         table: DeviceAddress<'a>,
         keys: DeviceAddress<'a>,
         slots: DeviceAddress<'a>,
-        need: DeviceAddress<'a>,
         errors: DeviceAddress<'a>,
         n: u32,
         level: u32,
@@ -107,6 +110,57 @@ crate::push_block! {
     }
 }
 
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ExpandPush<'a> {
+        levels: DeviceAddress<'a>,
+        tagged: DeviceAddress<'a>,
+        flags: DeviceAddress<'a>,
+        out_keys: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        stage: u32,
+        cls: u32,
+        version: u32,
+        write: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct TaggedUniquePush<'a> {
+        tagged: DeviceAddress<'a>,
+        flags: DeviceAddress<'a>,
+        out_keys: DeviceAddress<'a>,
+        n: u32,
+        write: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ParentsPush<'a> {
+        levels: DeviceAddress<'a>,
+        src: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        stage: u32,
+        mode: u32,
+    }
+}
+
+/// The key `lazy_deps_parents.comp` writes for a voxel with no parent to request; it sorts
+/// after every real key.
+const NO_KEY: u64 = (1 << (3 * LAZY_AXIS_BITS)) - 1;
+
+/// One level's dependency set on the GPU: sorted stage-tagged keys.
+struct LevelSet {
+    tagged: GpuBuffer<u64>,
+    len: usize,
+}
+
 /// Words of one `LazyLevel` record of `glsl/include/synth/lazy.glsl` (56 bytes).
 const RECORD_WORDS: usize = 7;
 
@@ -118,8 +172,6 @@ struct LevelState {
     counts: GpuBuffer<u32>,
     stride: u32,
     len: u32,
-    /// Versions per stored key, mirrored on the host for the dependency walk.
-    known: HashMap<u64, u8>,
 }
 
 impl LevelState {
@@ -140,7 +192,7 @@ impl LevelState {
             self.counts.address().raw(),
             size as u64 | (bits as u64) << 32,
             probe as u64 | (self.stride as u64) << 32,
-            LAZY_MARGIN as u32 as u64,
+            LAZY_MARGIN as u32 as u64 | (self.universe.dims[0] as u64) << 32,
         ]
     }
 
@@ -158,8 +210,10 @@ pub struct LazyReport {
     pub computed: Vec<u64>,
     /// Device time of the synthesis kernels, milliseconds.
     pub gpu_ms: f64,
-    /// Wall time of the dependency walk on the host, milliseconds.
+    /// Wall time of the dependency walk, milliseconds.
     pub deps_ms: f64,
+    /// Wall time of the whole request, milliseconds.
+    pub wall_ms: f64,
 }
 
 /// Lazy synthesis of one volume texture of resolution `R` (finest-level voxels `[0, R)³`) on
@@ -174,6 +228,11 @@ pub struct GpuLazySolid {
     upsample: Arc<Kernel>,
     correct: Arc<Kernel>,
     gather: Arc<Kernel>,
+    expand: Arc<Kernel>,
+    unique: Arc<Kernel>,
+    parents: Arc<Kernel>,
+    sort_unique: SortUnique,
+    sort: RadixSort,
     params: SynthParams,
     resolution: u32,
     levels: Vec<LevelState>,
@@ -229,7 +288,6 @@ impl GpuLazySolid {
                 counts: GpuBuffer::zeroed(gpu, format!("lazy counts level {l}"), INITIAL_SLOTS)?,
                 stride,
                 len: 0,
-                known: HashMap::new(),
             });
         }
         let records = GpuBuffer::zeroed(gpu, "lazy level records", n_levels * RECORD_WORDS)?;
@@ -243,6 +301,11 @@ impl GpuLazySolid {
             upsample: gpu.kernel(&synth_solid::LAZY_UPSAMPLE)?,
             correct: gpu.kernel(&synth_solid::LAZY_CORRECT)?,
             gather: gpu.kernel(&synth_solid::LAZY_GATHER)?,
+            expand: gpu.kernel(&synth_solid::LAZY_DEPS_EXPAND)?,
+            unique: gpu.kernel(&synth_solid::LAZY_DEPS_UNIQUE)?,
+            parents: gpu.kernel(&synth_solid::LAZY_DEPS_PARENTS)?,
+            sort_unique: SortUnique::new(gpu)?,
+            sort: RadixSort::new(gpu)?,
             params: params.clone(),
             resolution,
             levels,
@@ -270,20 +333,32 @@ impl GpuLazySolid {
         self.levels.iter().map(|l| l.len as u64).collect()
     }
 
-    /// The dependency sets of `keys` given what is stored.
-    pub fn dependencies(&self, keys: &[u64]) -> Dependencies {
-        dependencies_cpu(keys, &self.params.passes, &|l, k| {
-            self.levels[l].known.get(&k).map_or(0, |&v| v as u32)
-        })
-    }
-
-    /// Synthesizes the finest-level voxels `requested` (positions in `[0, R)³`) and returns
-    /// their final triples in the same order.
+    /// The dependency sets of the finest-level voxels `requested` given what is stored,
+    /// walked on the GPU and read back (what [`dependencies_cpu`](super::dependencies_cpu)
+    /// computes from the same stored versions).
     ///
     /// # Errors
-    /// A position outside the texture, state that would exceed the device's limits, or a GPU
-    /// failure.
-    pub fn request(&mut self, requested: &[[i32; 3]]) -> SynthResult<(Vec<[u32; 3]>, LazyReport)> {
+    /// As [`GpuLazySolid::request`].
+    pub fn dependencies(&mut self, requested: &[[i32; 3]]) -> SynthResult<Dependencies> {
+        self.check_requested(requested)?;
+        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        let sets = self.walk(&keys)?;
+        let mut levels = Vec::with_capacity(sets.len());
+        for set in &sets {
+            let tagged = if set.len == 0 {
+                Vec::new()
+            } else {
+                set.tagged.read_range(0, set.len)?
+            };
+            levels.push(LevelDeps {
+                keys: tagged.iter().map(|&t| untag(t).0).collect(),
+                need: tagged.iter().map(|&t| untag(t).1 as u8).collect(),
+            });
+        }
+        Ok(levels.into())
+    }
+
+    fn check_requested(&self, requested: &[[i32; 3]]) -> SynthResult<()> {
         let r = self.resolution as i32;
         for p in requested {
             if let Some(a) = (0..3).find(|&a| p[a] < 0 || p[a] >= r) {
@@ -298,36 +373,205 @@ impl GpuLazySolid {
                 });
             }
         }
-        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        if requested.len() > MAX_ELEMENTS / 8 {
+            return Err(SynthError::Parameter {
+                name: "requested voxels",
+                value: requested.len().to_string(),
+                limit: format!(
+                    "at most {} per request (split the request)",
+                    MAX_ELEMENTS / 8
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The dependency walk on the GPU: per level, finest first, the sorted stage-tagged keys.
+    fn walk(&mut self, keys: &[u64]) -> SynthResult<Vec<LevelSet>> {
+        let gpu = self.gpu.clone();
+        let n_levels = self.levels.len();
+        let empty = || -> SynthResult<LevelSet> {
+            Ok(LevelSet {
+                tagged: GpuBuffer::new(&gpu, "lazy empty set", 1)?,
+                len: 0,
+            })
+        };
+        let mut sets: Vec<LevelSet> = Vec::with_capacity(n_levels);
+        let errors = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk errors", 1)?;
+        let mut target = if keys.is_empty() {
+            None
+        } else {
+            let buf = GpuBuffer::from_slice(&gpu, "lazy requested keys", keys)?;
+            let unique =
+                self.sort_unique
+                    .run(&buf, keys.len(), 3 * LAZY_AXIS_BITS, "lazy requested set")?;
+            Some((unique.keys, unique.len))
+        };
+        for l in (0..n_levels).rev() {
+            let Some((plain, n)) = target.take().filter(|t| t.1 > 0) else {
+                sets.push(empty()?);
+                continue;
+            };
+            let last = final_stage(self.params.passes[l]);
+            let mut tagged = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), n)?;
+            gpu.submit(|rec| {
+                let push = ParentsPush {
+                    levels: self.records.address(),
+                    src: plain.address(),
+                    dst: tagged.address(),
+                    n: n as u32,
+                    level: l as u32,
+                    stage: last,
+                    mode: 1,
+                };
+                rec.dispatch(&self.parents, self.parents.groups_for(n as u64), &[], &push)
+            })?;
+            let mut len = n;
+            for stage in (1..=last).rev() {
+                let cls = subpass_class(stage);
+                let flags = GpuBuffer::<u32>::new(&gpu, "lazy walk flags", len)?;
+                let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk count", 1)?;
+                let count = ExpandPush {
+                    levels: self.records.address(),
+                    tagged: tagged.address(),
+                    flags: flags.address(),
+                    out_keys: DeviceAddress::NULL,
+                    errors: errors.address(),
+                    n: len as u32,
+                    level: l as u32,
+                    stage,
+                    cls,
+                    version: version_at(stage, cls),
+                    write: 0,
+                };
+                gpu.submit(|rec| {
+                    let k = &self.expand;
+                    rec.dispatch(k, k.groups_for(len as u64), &[], &count)?;
+                    self.scan.record(rec, &flags, &flags, len, Some(&total))
+                })?;
+                let grow = total.read()?[0] as usize;
+                if grow == 0 {
+                    continue;
+                }
+                let m = len + 18 * grow;
+                if m > MAX_ELEMENTS {
+                    return Err(SynthError::Parameter {
+                        name: "lazy dependency set",
+                        value: format!("{m} entries at level {l}"),
+                        limit: format!("at most {MAX_ELEMENTS} (split the request)"),
+                    });
+                }
+                let out = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), m)?;
+                let heads = GpuBuffer::<u32>::new(&gpu, "lazy walk heads", m)?;
+                let kept = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk kept", 1)?;
+                gpu.submit(|rec| {
+                    let k = &self.expand;
+                    let write = ExpandPush {
+                        out_keys: out.address(),
+                        write: 1,
+                        ..count
+                    };
+                    rec.dispatch(k, k.groups_for(len as u64), &[], &write)?;
+                    self.sort.record_u64(rec, &out, None, m, 64)?;
+                    let u = &self.unique;
+                    let p = TaggedUniquePush {
+                        tagged: out.address(),
+                        flags: heads.address(),
+                        out_keys: DeviceAddress::NULL,
+                        n: m as u32,
+                        write: 0,
+                    };
+                    rec.dispatch(u, u.groups_for(m as u64), &[], &p)?;
+                    self.scan.record(rec, &heads, &heads, m, Some(&kept))
+                })?;
+                let next_len = kept.read()?[0] as usize;
+                let next = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), next_len)?;
+                gpu.submit(|rec| {
+                    let u = &self.unique;
+                    let p = TaggedUniquePush {
+                        tagged: out.address(),
+                        flags: heads.address(),
+                        out_keys: next.address(),
+                        n: m as u32,
+                        write: 1,
+                    };
+                    rec.dispatch(u, u.groups_for(m as u64), &[], &p)
+                })?;
+                tagged = next;
+                len = next_len;
+            }
+            if l > 0 {
+                let parents =
+                    GpuBuffer::<u64>::new(&gpu, format!("lazy parents of level {l}"), len)?;
+                gpu.submit(|rec| {
+                    let push = ParentsPush {
+                        levels: self.records.address(),
+                        src: tagged.address(),
+                        dst: parents.address(),
+                        n: len as u32,
+                        level: l as u32,
+                        stage: 0,
+                        mode: 0,
+                    };
+                    rec.dispatch(
+                        &self.parents,
+                        self.parents.groups_for(len as u64),
+                        &[],
+                        &push,
+                    )
+                })?;
+                let unique =
+                    self.sort_unique
+                        .run(&parents, len, 3 * LAZY_AXIS_BITS, "lazy parents")?;
+                let mut count = unique.len;
+                if count > 0 && unique.keys.read_range(count - 1, 1)?[0] == NO_KEY {
+                    count -= 1;
+                }
+                target = Some((unique.keys, count));
+            }
+            sets.push(LevelSet { tagged, len });
+        }
+        let e = errors.read()?[0];
+        if e != 0 {
+            return Err(SynthError::Parameter {
+                name: "lazy margin",
+                value: format!("{e} dependencies outside the state's extent"),
+                limit: format!("dependencies must stay within {LAZY_MARGIN} voxels of the texture"),
+            });
+        }
+        sets.reverse();
+        Ok(sets)
+    }
+
+    /// Synthesizes the finest-level voxels `requested` (positions in `[0, R)³`) and returns
+    /// their final triples in the same order.
+    ///
+    /// # Errors
+    /// A position outside the texture, state that would exceed the device's limits, or a GPU
+    /// failure.
+    pub fn request(&mut self, requested: &[[i32; 3]]) -> SynthResult<(Vec<[u32; 3]>, LazyReport)> {
         let start = std::time::Instant::now();
-        let deps = self.dependencies(&keys);
+        self.check_requested(requested)?;
+        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        let sets = self.walk(&keys)?;
         let mut report = LazyReport {
             deps_ms: start.elapsed().as_secs_f64() * 1e3,
             ..LazyReport::default()
         };
-        for (l, d) in deps.levels.iter().enumerate() {
-            report.needed.push(d.len() as u64);
-            let state = &self.levels[l];
-            let computed: u64 = (0..d.len())
-                .map(|i| {
-                    let had = state.known.get(&d.keys[i]).map_or(0, |&v| v as u32);
-                    d.versions_needed(i).saturating_sub(had) as u64
-                })
-                .sum();
-            report.computed.push(computed);
-            if computed == 0 {
-                continue;
-            }
-            report.gpu_ms += self.level(l, &d.keys, &d.need)?;
-            let state = &mut self.levels[l];
-            for i in 0..d.len() {
-                let v = state.known.entry(d.keys[i]).or_insert(0);
-                *v = (*v).max(d.versions_needed(i) as u8);
-            }
+        for (l, set) in sets.iter().enumerate() {
+            report.needed.push(set.len as u64);
+            let (work, ms) = if set.len == 0 {
+                (0, 0.0)
+            } else {
+                self.level(l, set)?
+            };
+            report.computed.push(work);
+            report.gpu_ms += ms;
         }
         let finest = self.levels.len() - 1;
         let n = keys.len();
         if n == 0 {
+            report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
             return Ok((Vec::new(), report));
         }
         let keys_buf = GpuBuffer::from_slice(&self.gpu, "lazy requested keys", &keys)?;
@@ -345,39 +589,28 @@ impl GpuLazySolid {
             rec.dispatch(&self.gather, self.gather.groups_for(n as u64), &[], &push)
         })?;
         check_errors(&errors, "requested voxels missing or not final")?;
-        Ok((out.read()?, report))
+        let triples = out.read()?;
+        report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok((triples, report))
     }
 
-    /// Synthesizes level `l`'s needed voxels `keys` (with their last stages `need`); returns
-    /// the device time in milliseconds.
-    fn level(&mut self, l: usize, keys: &[u64], need: &[u8]) -> SynthResult<f64> {
+    /// Synthesizes level `l`'s dependency set; returns the versions computed and the device
+    /// time in milliseconds.
+    fn level(&mut self, l: usize, set: &LevelSet) -> SynthResult<(u64, f64)> {
         let gpu = self.gpu.clone();
-        let n = keys.len();
-        let margin_lo = -LAZY_MARGIN;
-        let margin_hi = self.levels[l].universe.dims[0] as i32 - LAZY_MARGIN;
-        if let Some(&k) = keys.iter().find(|&&k| {
-            lazy_position(k)
-                .iter()
-                .any(|&v| v < margin_lo || v >= margin_hi)
-        }) {
-            return Err(SynthError::Parameter {
-                name: "lazy margin",
-                value: format!("{:?} at level {l}", lazy_position(k)),
-                limit: format!("dependencies must stay within {LAZY_MARGIN} voxels of the texture"),
-            });
-        }
-        let keys_buf = GpuBuffer::from_slice(&gpu, format!("lazy keys level {l}"), keys)?;
-        let need32: Vec<u32> = need.iter().map(|&v| v as u32).collect();
-        let need_buf = GpuBuffer::from_slice(&gpu, format!("lazy need level {l}"), &need32)?;
+        let n = set.len;
+        let keys_buf = &set.tagged;
         let slots = GpuBuffer::<u32>::new(&gpu, format!("lazy slots level {l}"), n)?;
         let flags = GpuBuffer::<u32>::new(&gpu, format!("lazy new flags level {l}"), n)?;
         let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy new count", 1)?;
+        let work = GpuBuffer::<u32>::zeroed(&gpu, "lazy work", 1)?;
         gpu.submit(|rec| {
             let push = PreparePush {
                 levels: self.records.address(),
                 keys: keys_buf.address(),
                 slots: slots.address(),
                 flags: flags.address(),
+                work: work.address(),
                 n: n as u32,
                 level: l as u32,
             };
@@ -385,6 +618,10 @@ impl GpuLazySolid {
             self.scan.record(rec, &flags, &flags, n, Some(&total))
         })?;
         let fresh = total.read()?[0] as usize;
+        let work = work.read()?[0] as u64;
+        if work == 0 {
+            return Ok((0, 0.0));
+        }
         if fresh > 0 {
             self.reserve(l, self.levels[l].len as usize + fresh)?;
             let new_keys = GpuBuffer::<u64>::new(&gpu, "lazy new keys", fresh)?;
@@ -462,7 +699,6 @@ impl GpuLazySolid {
                     table: table.address(),
                     keys: keys_buf.address(),
                     slots: slots.address(),
-                    need: need_buf.address(),
                     errors: errors.address(),
                     n: n as u32,
                     level: l as u32,
@@ -477,7 +713,7 @@ impl GpuLazySolid {
             rec.timestamp()
         })?;
         check_errors(&errors, "dependencies missing during synthesis")?;
-        Ok((stamps[1] - stamps[0]) * 1e-6)
+        Ok((work, (stamps[1] - stamps[0]) * 1e-6))
     }
 
     /// Grows level `l`'s versions and counts to hold `slots` voxels.
