@@ -81,6 +81,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<lazy_gpu::LazyUpsamplePush>(&synth_solid::LAZY_UPSAMPLE),
         of::<lazy_gpu::LazyCorrectPush>(&synth_solid::LAZY_CORRECT),
         of::<lazy_gpu::GatherPush>(&synth_solid::LAZY_GATHER),
+        of::<lazy_gpu::ColoursPush>(&synth_solid::LAZY_COLOURS),
         of::<lazy_gpu::ExpandPush>(&synth_solid::LAZY_DEPS_EXPAND),
         of::<lazy_gpu::TaggedUniquePush>(&synth_solid::LAZY_DEPS_UNIQUE),
         of::<lazy_gpu::ParentsPush>(&synth_solid::LAZY_DEPS_PARENTS),

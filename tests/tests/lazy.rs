@@ -2,21 +2,30 @@
 //! synthesizer (bit for bit on every requested voxel, for scattered voxels, a sphere's surface
 //! voxels, a planar slab, and a union requested in two batches in either order).
 
+use glam::{Vec3, Vec4};
+use lazysolid_compute::hash::morton_decode;
+use lazysolid_compute::hash::perfect::PerfectAccess;
+use lazysolid_compute::store::tiletree;
+use lazysolid_compute::store::{
+    unpack_rgba8, ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, PerfectStore,
+    SparseStore, StoreKernels, TileTree, TileTreeConfig,
+};
 use lazysolid_compute::synth::solid::lazy::{
     dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MAX_LAZY_COORD,
 };
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cpu, default_solid_jitter, default_solid_passes,
-    synthesize_solid_cpu, CandidateParams, SolidAnalysis, SolidCandidates, SolidExemplars,
-    SolidSynthesis, VolumeBox,
+    analyze_solid, candidates_cpu, default_solid_jitter, default_solid_passes, pack_rgb,
+    synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates,
+    SolidExemplars, SolidSynthesis, VolumeBox,
 };
 use lazysolid_compute::synth::{SynthError, SynthParams};
-use lazysolid_tests::{exemplar_crop, rng, with_gpu};
+use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_tests::{exemplar_crop, rng, unit_mesh, with_gpu};
 use rand::Rng;
 use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
-type Case = (SolidAnalysis, SolidCandidates, SynthParams);
+type Case = (SolidExemplars, SolidAnalysis, SolidCandidates, SynthParams);
 
 /// A 16² leather crop in every role, the solid defaults, seed 5.
 fn case() -> &'static Case {
@@ -37,7 +46,7 @@ fn case() -> &'static Case {
             &default_solid_jitter(levels),
         )
         .unwrap();
-        (analysis, candidates, params)
+        (exemplars, analysis, candidates, params)
     })
 }
 
@@ -54,7 +63,7 @@ const BOX: VolumeBox = VolumeBox {
 fn full() -> &'static SolidSynthesis {
     static CELL: OnceLock<SolidSynthesis> = OnceLock::new();
     CELL.get_or_init(|| {
-        let (analysis, candidates, params) = case();
+        let (_, analysis, candidates, params) = case();
         synthesize_solid_cpu(analysis, candidates, params, BOX).unwrap()
     })
 }
@@ -112,7 +121,7 @@ fn check(name: &str, got: &[[u32; 3]], requested: &[[i32; 3]]) {
 
 #[test]
 fn lazy_equals_the_full_volume_on_every_request_set() {
-    let (analysis, candidates, params) = case();
+    let (_, analysis, candidates, params) = case();
     let sets = [
         ("scattered", scattered()),
         ("sphere", sphere()),
@@ -137,7 +146,7 @@ fn lazy_equals_the_full_volume_on_every_request_set() {
 
 #[test]
 fn two_batches_equal_one_request_of_their_union_in_either_order() {
-    let (analysis, candidates, params) = case();
+    let (_, analysis, candidates, params) = case();
     let a = scattered();
     let b = slab();
     let union: Vec<[i32; 3]> = a.iter().chain(&b).copied().collect();
@@ -166,7 +175,7 @@ fn two_batches_equal_one_request_of_their_union_in_either_order() {
 
 #[test]
 fn dependency_sets_cover_only_what_is_needed() {
-    let (_, _, params) = case();
+    let (_, _, _, params) = case();
     assert_eq!(
         *params.passes.last().unwrap(),
         1,
@@ -193,7 +202,7 @@ fn dependency_sets_cover_only_what_is_needed() {
 
 #[test]
 fn requests_outside_the_key_range_are_refused() {
-    let (analysis, candidates, params) = case();
+    let (_, analysis, candidates, params) = case();
     let mut lazy = LazySolidCpu::new();
     let err = lazy
         .request(analysis, candidates, params, &[[0, MAX_LAZY_COORD + 1, 0]])
@@ -216,7 +225,7 @@ fn requests_outside_the_key_range_are_refused() {
 
 #[test]
 fn gpu_lazy_equals_the_full_volume_and_the_cpu_reference() {
-    let (analysis, candidates, params) = case();
+    let (_, analysis, candidates, params) = case();
     let sets = [
         ("scattered", scattered()),
         ("sphere", sphere()),
@@ -225,7 +234,8 @@ fn gpu_lazy_equals_the_full_volume_and_the_cpu_reference() {
     with_gpu(|gpu| {
         for (name, set) in &sets {
             let mut lazy =
-                GpuLazySolid::new(gpu, analysis, candidates, params, RESOLUTION).unwrap();
+                GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION)
+                    .unwrap();
             let (got, report) = lazy.request(set).unwrap();
             check(name, &got, set);
             let mut cpu = LazySolidCpu::new();
@@ -243,7 +253,8 @@ fn gpu_lazy_equals_the_full_volume_and_the_cpu_reference() {
         once.request(analysis, candidates, params, &union).unwrap();
         for (first, second) in [(&a, &b), (&b, &a)] {
             let mut lazy =
-                GpuLazySolid::new(gpu, analysis, candidates, params, RESOLUTION).unwrap();
+                GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION)
+                    .unwrap();
             let (got1, r1) = lazy.request(first).unwrap();
             let (got2, r2) = lazy.request(second).unwrap();
             check("first batch", &got1, first);
@@ -263,8 +274,109 @@ fn gpu_lazy_equals_the_full_volume_and_the_cpu_reference() {
             assert!(lazy.bytes() > 0);
         }
         // Outside the texture: refused with the limit.
-        let mut lazy = GpuLazySolid::new(gpu, analysis, candidates, params, RESOLUTION).unwrap();
+        let mut lazy =
+            GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION).unwrap();
         let err = lazy.request(&[[0, 16, 0]]).unwrap_err();
         assert!(err.to_string().contains("0..16"), "{err}");
+    });
+}
+
+/// Colours of the interpolation voxels of the bunny at 16³ and of its surface voxels (a second,
+/// incremental request), synthesized lazily on the GPU, equal the full volume's; the coherent
+/// hash, the N³ tree and the perfect hash built from them return those colours at every voxel
+/// centre, and the TileTree's tiles hold them at every texel.
+#[test]
+fn stores_filled_by_lazy_synthesis_hold_the_full_volume_colours() {
+    let (exemplars, analysis, candidates, params) = case();
+    let m = unit_mesh("bunny00.off");
+    let r = RESOLUTION;
+    with_gpu(|gpu| {
+        let window = VolumeBox {
+            origin: [0; 3],
+            size: [r; 3],
+        };
+        let full = GpuSolidSynthesizer::new(gpu, analysis, candidates)
+            .unwrap()
+            .synthesize(analysis, candidates, params, window, false, &mut |_| {})
+            .unwrap()
+            .0;
+        let colours = full.colours(exemplars);
+        let want = move |p: [u32; 3]| -> u32 {
+            pack_rgb(colours[window.index(p.map(|v| v as i32))]) | 0xff00_0000
+        };
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let interp = v.interpolation(&m.positions, &m.triangles, r).unwrap();
+        let surface = v.surface(&m.positions, &m.triangles, r).unwrap();
+        let mut lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
+        let (c_interp, first) = lazy.colours(&interp).unwrap();
+        let (c_surface, second) = lazy.colours(&surface).unwrap();
+        let total =
+            |r: &lazysolid_compute::synth::solid::lazy::LazyReport| r.computed.iter().sum::<u64>();
+        assert!(
+            total(&second) < total(&first) / 4,
+            "the surface mostly reuses the first request"
+        );
+        for (keys, c) in [(&interp, &c_interp), (&surface, &c_surface)] {
+            let (k, c) = (keys.read().unwrap(), c.read().unwrap());
+            let bad = k
+                .iter()
+                .zip(&c)
+                .filter(|(&k, &c)| want(morton_decode(k, 3)) != c)
+                .count();
+            assert_eq!(
+                bad,
+                0,
+                "{bad} of {} lazily synthesized colours differ",
+                k.len()
+            );
+        }
+        let keys = interp.read().unwrap();
+        let centres: Vec<Vec3> = keys
+            .iter()
+            .map(|&k| (glam::UVec3::from(morton_decode(k, 3)).as_vec3() + 0.5) / r as f32)
+            .collect();
+        let expect: Vec<Vec4> = keys
+            .iter()
+            .map(|&k| unpack_rgba8(want(morton_decode(k, 3))))
+            .collect();
+        let source = ColourSource::Buffer {
+            keys: &interp,
+            colours: &c_interp,
+        };
+        let check = |name: &str, got: Vec<Vec4>| {
+            let bad = got.iter().zip(&expect).filter(|(a, b)| a != b).count();
+            assert_eq!(bad, 0, "{name}: {bad} of {} voxels differ", expect.len());
+        };
+        let hash = HashStore::build(&kernels, r, &interp, &source, Default::default()).unwrap();
+        check("hash", hash.lookup(&centres, Filter::Nearest).unwrap());
+        let config = OctreeConfig::for_resolution(r).unwrap();
+        let (octree, _) = OctreeStore::build(&kernels, r, &interp, &source, config).unwrap();
+        check("octree", octree.lookup(&centres, Filter::Nearest).unwrap());
+        let perfect =
+            PerfectStore::build(&kernels, r, &interp, &source, PerfectAccess::Unconstrained)
+                .unwrap();
+        check(
+            "perfect",
+            perfect.lookup(&centres, Filter::Nearest).unwrap(),
+        );
+        let tiles = ColourSource::Buffer {
+            keys: &surface,
+            colours: &c_surface,
+        };
+        let (tree, _) = TileTree::build(
+            &kernels,
+            &m.positions,
+            &m.triangles,
+            r,
+            &tiles,
+            TileTreeConfig::default(),
+        )
+        .unwrap();
+        let reference = ColourSource::Fn(&want);
+        let texels = tiletree::fill_cpu(tree.plan(), &reference.to_host().unwrap());
+        let map = tree.map_words().unwrap();
+        let bad = map.iter().zip(&texels).filter(|(a, b)| a != b).count();
+        assert_eq!(bad, 0, "tiletree: {bad} of {} words differ", map.len());
     });
 }

@@ -3,6 +3,7 @@
 
 pub mod harness;
 mod hash;
+mod lazy;
 mod plot;
 mod prims;
 mod psh;
@@ -33,6 +34,9 @@ pub enum BenchCommand {
     /// Solid synthesis from 2D exemplars: candidate and synthesis times, per-axis quality
     /// beside the 2D synthesizer and two ablations.
     Solid(solid::SolidArgs),
+    /// Lazy solid synthesis around mesh surfaces: voxels synthesized per level, time, kept
+    /// state, against the full volume and the thesis.
+    Lazy(lazy::LazyArgs),
     /// Thesis Table 4.1: memory and lookup speed of every sparse texture structure over a mesh
     /// at one equivalent resolution, seen from a fixed 800×800 viewpoint, with pictures.
     Textures(textures::TexturesArgs),
@@ -62,6 +66,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Trace(a) => &a.common,
         BenchCommand::Synth(a) => &a.common,
         BenchCommand::Solid(a) => &a.common,
+        BenchCommand::Lazy(a) => &a.common,
         BenchCommand::Textures(a) => &a.common,
     };
     check_writable_dir("--out-dir", &common.out_dir)?;
@@ -72,6 +77,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Trace(args) => trace::run(&args, global),
         BenchCommand::Synth(args) => synth::run(&args, global),
         BenchCommand::Solid(args) => solid::run(&args, global),
+        BenchCommand::Lazy(args) => lazy::run(&args, global),
         BenchCommand::Textures(args) => textures::run(&args, global),
     }
 }

@@ -19,16 +19,18 @@ use super::deps::{final_stage, subpass_class, version_at, Dependencies, LevelDep
 use super::keys::{lazy_key, untag, LAZY_AXIS_BITS};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::hash::{
-    fastmod_multiplier, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable, Universe,
+    fastmod_multiplier, morton_decode, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable,
+    Universe,
 };
 use crate::kernels::synth_solid;
 use crate::prims::{RadixSort, Scan, MAX_ELEMENTS};
-use crate::synth::solid::analysis::SolidAnalysis;
+use crate::synth::solid::analysis::{pack_rgb, SolidAnalysis};
 use crate::synth::solid::candidates::SolidCandidates;
 use crate::synth::solid::cpu::check_levels;
 use crate::synth::solid::gpu::GpuSolidSynthesizer;
+use crate::synth::solid::roles::{SolidExemplars, ROLES};
 use crate::synth::{SynthError, SynthParams, SynthResult};
-use crate::voxel::SortUnique;
+use crate::voxel::{SortUnique, VoxelKeys};
 use std::sync::Arc;
 
 /// Voxels of room around the requested `[0, R)³` at every level: the dependencies reach at
@@ -107,6 +109,20 @@ crate::push_block! {
         errors: DeviceAddress<'a>,
         n: u32,
         level: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ColoursPush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        rgb: DeviceAddress<'a>,
+        colours: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        side: u32,
     }
 }
 
@@ -228,6 +244,7 @@ pub struct GpuLazySolid {
     upsample: Arc<Kernel>,
     correct: Arc<Kernel>,
     gather: Arc<Kernel>,
+    colour: Arc<Kernel>,
     expand: Arc<Kernel>,
     unique: Arc<Kernel>,
     parents: Arc<Kernel>,
@@ -237,6 +254,8 @@ pub struct GpuLazySolid {
     resolution: u32,
     levels: Vec<LevelState>,
     records: GpuBuffer<u64>,
+    /// The three roles' exemplar colours, packed RGB, role after role.
+    rgb: GpuBuffer<u32>,
 }
 
 /// Initial slots per level.
@@ -251,6 +270,7 @@ impl GpuLazySolid {
     /// failure.
     pub fn new(
         gpu: &Gpu,
+        exemplars: &SolidExemplars,
         analysis: &SolidAnalysis,
         candidates: &SolidCandidates,
         params: &SynthParams,
@@ -291,6 +311,13 @@ impl GpuLazySolid {
             });
         }
         let records = GpuBuffer::zeroed(gpu, "lazy level records", n_levels * RECORD_WORDS)?;
+        let side = analysis.side;
+        let rgb: Vec<u32> = (0..ROLES)
+            .flat_map(|r| {
+                let e = exemplars.role(r);
+                (0..side * side).map(move |i| pack_rgb(e.at(i % side, i / side)))
+            })
+            .collect();
         let mut me = GpuLazySolid {
             gpu: gpu.clone(),
             synth: GpuSolidSynthesizer::new(gpu, analysis, candidates)?,
@@ -301,6 +328,7 @@ impl GpuLazySolid {
             upsample: gpu.kernel(&synth_solid::LAZY_UPSAMPLE)?,
             correct: gpu.kernel(&synth_solid::LAZY_CORRECT)?,
             gather: gpu.kernel(&synth_solid::LAZY_GATHER)?,
+            colour: gpu.kernel(&synth_solid::LAZY_COLOURS)?,
             expand: gpu.kernel(&synth_solid::LAZY_DEPS_EXPAND)?,
             unique: gpu.kernel(&synth_solid::LAZY_DEPS_UNIQUE)?,
             parents: gpu.kernel(&synth_solid::LAZY_DEPS_PARENTS)?,
@@ -310,6 +338,7 @@ impl GpuLazySolid {
             resolution,
             levels,
             records,
+            rgb: GpuBuffer::from_slice(gpu, "lazy exemplar colours", &rgb)?,
         };
         for l in 0..n_levels {
             me.write_record(l)?;
@@ -384,6 +413,69 @@ impl GpuLazySolid {
             });
         }
         Ok(())
+    }
+
+    /// Synthesizes the voxels `keys` (sorted Morton keys of positions in the `R³` grid: a
+    /// mesh's surface or interpolation voxels, a cut's) and returns their RGBA8 colours on the
+    /// device in key order, ready as a
+    /// [`ColourSource::Buffer`](crate::store::ColourSource::Buffer) for any store.
+    ///
+    /// # Errors
+    /// As [`GpuLazySolid::request`].
+    pub fn colours(&mut self, keys: &VoxelKeys) -> SynthResult<(GpuBuffer<u32>, LazyReport)> {
+        let start = std::time::Instant::now();
+        let positions: Vec<[i32; 3]> = if keys.is_empty() {
+            Vec::new()
+        } else {
+            keys.read()?
+                .iter()
+                .map(|&k| morton_decode(k, 3).map(|v| v as i32))
+                .collect()
+        };
+        self.check_requested(&positions)?;
+        let lazy: Vec<u64> = positions.iter().map(|&p| lazy_key(p)).collect();
+        let mut report = self.synthesize(&lazy, start)?;
+        let n = keys.len();
+        let colours = GpuBuffer::<u32>::new(&self.gpu, "lazy colours", n.max(1))?;
+        if n > 0 {
+            let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy colour errors", 1)?;
+            self.gpu.submit(|rec| {
+                let push = ColoursPush {
+                    levels: self.records.address(),
+                    keys: keys.keys.address(),
+                    rgb: self.rgb.address(),
+                    colours: colours.address(),
+                    errors: errors.address(),
+                    n: n as u32,
+                    level: (self.levels.len() - 1) as u32,
+                    side: self.synth.side(),
+                };
+                rec.dispatch(&self.colour, self.colour.groups_for(n as u64), &[], &push)
+            })?;
+            check_errors(&errors, "voxels missing or not final")?;
+        }
+        report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok((colours, report))
+    }
+
+    /// The dependency walk and the synthesis of every level for the lazy keys `keys`.
+    fn synthesize(&mut self, keys: &[u64], start: std::time::Instant) -> SynthResult<LazyReport> {
+        let sets = self.walk(keys)?;
+        let mut report = LazyReport {
+            deps_ms: start.elapsed().as_secs_f64() * 1e3,
+            ..LazyReport::default()
+        };
+        for (l, set) in sets.iter().enumerate() {
+            report.needed.push(set.len as u64);
+            let (work, ms) = if set.len == 0 {
+                (0, 0.0)
+            } else {
+                self.level(l, set)?
+            };
+            report.computed.push(work);
+            report.gpu_ms += ms;
+        }
+        Ok(report)
     }
 
     /// The dependency walk on the GPU: per level, finest first, the sorted stage-tagged keys.
@@ -553,21 +645,7 @@ impl GpuLazySolid {
         let start = std::time::Instant::now();
         self.check_requested(requested)?;
         let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
-        let sets = self.walk(&keys)?;
-        let mut report = LazyReport {
-            deps_ms: start.elapsed().as_secs_f64() * 1e3,
-            ..LazyReport::default()
-        };
-        for (l, set) in sets.iter().enumerate() {
-            report.needed.push(set.len as u64);
-            let (work, ms) = if set.len == 0 {
-                (0, 0.0)
-            } else {
-                self.level(l, set)?
-            };
-            report.computed.push(work);
-            report.gpu_ms += ms;
-        }
+        let mut report = self.synthesize(&keys, start)?;
         let finest = self.levels.len() - 1;
         let n = keys.len();
         if n == 0 {

@@ -1,0 +1,175 @@
+//! `lazysolid bench lazy`: lazy solid synthesis around mesh surfaces (thesis 003 lines
+//! 1083–1096). Per mesh and equivalent resolution R: the interpolation voxels of the surface
+//! (what trilinear lookups read) are requested from a fresh lazy state; the table gives the
+//! request's wall time (dependency walk, synthesis, read-back) and its device time, and the
+//! notes the voxels needed and computed per level, their share of R³, the kept state's bytes
+//! and the full volume's, next to the thesis' figures.
+
+use super::harness::{time_cpu, Bench, Throughput};
+use super::CommonArgs;
+use crate::cli::{assets, GlobalArgs};
+use anyhow::{ensure, Context};
+use clap::Args;
+use lazysolid_compute::hash::morton_decode;
+use lazysolid_compute::synth::cache::DiskCache;
+use lazysolid_compute::synth::solid::lazy::{GpuLazySolid, LazyReport};
+use lazysolid_compute::synth::solid::{
+    analyze_solid, candidates_cached, default_solid_jitter, default_solid_passes, CandidateParams,
+    GpuCandidates, SolidExemplars,
+};
+use lazysolid_compute::synth::{Exemplar, SynthParams};
+use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_renderer::mesh::Mesh;
+use std::cell::RefCell;
+use std::path::PathBuf;
+
+/// What to measure.
+#[derive(Args)]
+pub struct LazyArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Meshes: names in the assets' meshes or paths to OFF or OBJ files; each is normalized
+    /// into the unit cube.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "armadillo,bunny00,ChineseDragon-10kv"
+    )]
+    pub meshes: Vec<String>,
+    /// Equivalent resolutions R (the texture is R³ voxels over the unit cube).
+    #[arg(long, value_delimiter = ',', default_value = "256,512,1024")]
+    pub voxel_res: Vec<u32>,
+    /// The exemplar playing every role: a name in the assets' exemplars or a path.
+    #[arg(long, default_value = "terra")]
+    pub exemplar: String,
+    /// Where named exemplars live; default: the assets' exemplars.
+    #[arg(long, value_name = "DIR")]
+    pub exemplar_dir: Option<PathBuf>,
+    /// Seed of the jitter.
+    #[arg(long, default_value_t = 3)]
+    pub seed: u32,
+    /// Only the first mesh at the first resolution.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// Thesis figures for the same meshes at 1024³ (003 lines 1090–1096).
+const THESIS: &str = "thesis (2008 GPU): 4.1 s (dragon) to 17 s, storage 17.1 to 54 MB, \
+                      about 0.42 % of the 1024³ voxels synthesized";
+
+/// Runs the suite.
+pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    let (meshes, sizes) = if args.quick {
+        (&args.meshes[..1], &args.voxel_res[..1])
+    } else {
+        (&args.meshes[..], &args.voxel_res[..])
+    };
+    ensure!(
+        !meshes.is_empty() && !sizes.is_empty(),
+        "--meshes and --voxel-res need a value"
+    );
+    for &r in sizes {
+        ensure!(
+            (16..=2048).contains(&r),
+            "--voxel-res {r}: must lie in 16..=2048"
+        );
+    }
+    let gpu = global.gpu()?;
+    let path = assets::exemplar("--exemplar", &args.exemplar, args.exemplar_dir.as_deref())?;
+    let exemplar =
+        Exemplar::load(&path).with_context(|| format!("loading --exemplar {}", path.display()))?;
+    let exemplars = SolidExemplars::new(exemplar, [None, None, None])?;
+    let analysis = analyze_solid(&exemplars);
+    let cache = DiskCache::user().ok();
+    let (candidates, _) = candidates_cached(
+        &exemplars,
+        &CandidateParams::default(),
+        cache.as_ref(),
+        || GpuCandidates::new(&gpu)?.compute(&analysis, &CandidateParams::default(), &mut |_| {}),
+    )?;
+    let levels = analysis.levels.len() as u32;
+    let params = SynthParams::new(
+        levels,
+        args.seed,
+        &default_solid_passes(levels),
+        &default_solid_jitter(levels),
+    )?;
+    let mut bench = Bench::new(
+        "bench-lazy",
+        &gpu,
+        &args.common,
+        (meshes.len() * sizes.len()) as u64,
+    )?;
+    let mut notes: Vec<(String, f64)> = vec![
+        ("seed".into(), args.seed as f64),
+        ("exemplar side".into(), analysis.side as f64),
+    ];
+    let mut voxelizer = Voxelizer::new(&gpu)?;
+    for name in meshes {
+        let mesh_path = assets::mesh("--meshes", name)?;
+        let mesh = Mesh::load_unit_cube(&mesh_path)
+            .with_context(|| format!("loading --meshes {}", mesh_path.display()))?;
+        for &r in sizes {
+            bench.status(format!("{name} {r}³: voxelizing"));
+            let (keys, voxelize_ms) =
+                time_cpu(|| voxelizer.interpolation(&mesh.positions, &mesh.triangles, r));
+            let keys = keys?.read()?;
+            let requested: Vec<[i32; 3]> = keys
+                .iter()
+                .map(|&k| morton_decode(k, 3).map(|v| v as i32))
+                .collect();
+            let last = RefCell::new((LazyReport::default(), 0u64));
+            let case = format!("{name} {r}³");
+            bench.case(
+                &case,
+                requested.len() as u64,
+                "gpu lazy (wall)",
+                Throughput::Elements,
+                None,
+                || {
+                    let mut lazy =
+                        GpuLazySolid::new(&gpu, &exemplars, &analysis, &candidates, &params, r)?;
+                    let (result, ms) = time_cpu(|| lazy.request(&requested));
+                    let (_, report) = result?;
+                    *last.borrow_mut() = (report.clone(), lazy.bytes());
+                    Ok(ms)
+                },
+            )?;
+            let (report, bytes) = last.into_inner();
+            let full = (r as f64).powi(3);
+            let computed: u64 = report.computed.iter().sum();
+            let finest = *report.needed.last().unwrap_or(&0) as f64;
+            let add = |notes: &mut Vec<(String, f64)>, what: &str, v: f64| {
+                notes.push((format!("{case}: {what}"), v));
+            };
+            add(&mut notes, "requested voxels", requested.len() as f64);
+            add(
+                &mut notes,
+                "requested % of R³",
+                100.0 * requested.len() as f64 / full,
+            );
+            add(
+                &mut notes,
+                "finest-level voxels synthesized % of R³",
+                100.0 * finest / full,
+            );
+            add(
+                &mut notes,
+                "voxels synthesized, all levels",
+                report.needed.iter().sum::<u64>() as f64,
+            );
+            add(&mut notes, "voxel versions computed", computed as f64);
+            add(&mut notes, "dependency walk ms", report.deps_ms);
+            add(&mut notes, "synthesis device ms", report.gpu_ms);
+            add(&mut notes, "kept state MB", bytes as f64 / 1e6);
+            add(&mut notes, "full volume MB (RGB8)", full * 3.0 / 1e6);
+            add(&mut notes, "voxelization ms", voxelize_ms);
+            for (l, n) in report.needed.iter().enumerate() {
+                add(&mut notes, &format!("level {l} voxels"), *n as f64);
+            }
+        }
+    }
+    println!("{THESIS}");
+    bench.finish(&notes)?;
+    Ok(())
+}
