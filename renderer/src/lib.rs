@@ -12,6 +12,7 @@
 //!   by `build.rs`, and the constants they share with the Rust code.
 
 pub mod accel;
+pub mod assets;
 pub mod diff;
 pub mod glint;
 pub mod mesh;

@@ -1003,3 +1003,73 @@ fn volume_textures_read_their_file_through_a_store() {
         "{e}"
     );
 }
+
+/// `kind = "synthesized"`: an exemplar by path (relative to the scene) or asset name, read
+/// through a store; a missing file, an unknown name, an unreadable image and a missing store
+/// each name the file, the line and the field.
+#[test]
+fn synthesized_textures_name_their_exemplar_and_store() {
+    let (dir, scene) = scene_dir(&[("bad.png", "not a png")]);
+    let texture = |fields: &str| {
+        edit(
+            15,
+            &format!("texture = {{ kind = \"synthesized\", {fields} }}"),
+        )
+    };
+    let e = Scene::parse(
+        &texture("exemplar = \"ex/missing.png\", resolution = 64, store = \"coherent_hash\""),
+        &scene,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, SceneError::MissingFile { line: 15, .. }),
+        "{e:?}"
+    );
+    assert_eq!(
+        e.to_string(),
+        format!(
+            "{}:15: material \"white\".texture.exemplar: {} does not exist",
+            scene.display(),
+            dir.path().join("ex/missing.png").display()
+        )
+    );
+    let e = Scene::parse(
+        &texture("exemplar = \"bad.png\", resolution = 64, store = \"octree\""),
+        &scene,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains(":15: material \"white\".texture.exemplar: ") && e.contains("bad.png"),
+        "{e}"
+    );
+    let e = Scene::parse(
+        &texture("exemplar = \"no_such_exemplar\", resolution = 64, store = \"octree\""),
+        &scene,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains(":15: material \"white\".texture.exemplar: ")
+            && (e.contains("no exemplar named \"no_such_exemplar\"") || e.contains("assets/")),
+        "{e}"
+    );
+    expect(
+        &texture("exemplar = \"leather\""),
+        15,
+        "material \"white\".texture.store: missing: a synthesized texture is read through a store",
+    );
+    expect(
+        &texture("exemplar = \"leather\", resolution = 64, store = \"kd_tree\""),
+        15,
+        "material \"white\".texture.store",
+    );
+    expect(
+        &edit(
+            15,
+            "texture = { kind = \"marble\", color_a = [1, 1, 1], color_b = [0, 0, 0], seed = 3 }",
+        ),
+        15,
+        "material \"white\".texture.seed",
+    );
+}

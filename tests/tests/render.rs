@@ -298,6 +298,13 @@ fn reference_interior() {
     check_reference("interior");
 }
 
+/// The bunny carved out of matter synthesized lazily from an exemplar (a coherent-hash store
+/// filled by lazy synthesis of its surface voxels only).
+#[test]
+fn reference_synthesized() {
+    check_reference("synthesized");
+}
+
 /// Scenes built in code skip the loader's checks; the path tracer refuses what it cannot render
 /// with an error instead of a panic.
 #[test]
@@ -491,6 +498,7 @@ fn volume_textures_render_through_their_store() {
                 size,
                 rgb,
             })),
+            synthesized: None,
             store: Some(StoreSpec {
                 kind: StoreKind::Octree,
                 resolution: 16,

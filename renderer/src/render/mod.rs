@@ -9,4 +9,6 @@ mod stores;
 pub use error::RenderError;
 pub use frame::GpuFrame;
 pub use path_tracer::{PassReport, PathTracer, RenderStats};
-pub use stores::{BakedStoreInfo, GpuStoreRecord, SceneStore, SceneStores, NO_STORE};
+pub use stores::{
+    BakedStoreInfo, GpuStoreRecord, SceneStore, SceneStores, SynthesisInfo, NO_STORE,
+};

@@ -8,7 +8,7 @@
 
 use super::error::RenderError;
 use crate::output::encode8;
-use crate::scene::{Scene, StoreFilter, StoreKind};
+use crate::scene::{Scene, StoreFilter, StoreKind, StoreSpec, SynthesizedSpec};
 use crate::shader_constants::{
     STORE_FILTER_NEAREST, STORE_FILTER_TRILINEAR, STORE_KIND_HASH, STORE_KIND_OCTREE,
     STORE_KIND_PERFECT, STORE_KIND_TILETREE,
@@ -24,8 +24,16 @@ use lazysolid_compute::store::{
     PerfectStore, PerfectStoreParams, SparseStore, StoreKernels, TileTree, TileTreeConfig,
     TileTreeParams,
 };
-use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_compute::synth::cache::DiskCache;
+use lazysolid_compute::synth::solid::lazy::GpuLazySolid;
+use lazysolid_compute::synth::solid::{
+    analyze_solid, candidates_cached, default_solid_jitter, default_solid_passes, CandidateParams,
+    GpuCandidates, SolidExemplars,
+};
+use lazysolid_compute::synth::{Exemplar, SynthParams};
+use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use std::collections::HashMap;
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -111,8 +119,10 @@ pub struct BakedStoreInfo {
     pub texels: u64,
     /// Exact GPU bytes.
     pub bytes: u64,
-    /// Voxelization and fill time.
+    /// Voxelization and fill time (with the synthesis, for a synthesized texture).
     pub build_time: Duration,
+    /// For a synthesized texture: what its lazy synthesis did.
+    pub synthesis: Option<SynthesisInfo>,
 }
 
 /// Every store of a scene, the records the kernel reads (which hold the buffers they point
@@ -134,11 +144,49 @@ fn pack_srgb8(albedo: Vec3) -> u32 {
     r | g << 8 | b << 16 | 255 << 24
 }
 
-/// What the stores of one scene share while they are built.
+/// What lazy synthesis did for one baked store.
+#[derive(Clone, Copy, Debug)]
+pub struct SynthesisInfo {
+    /// Voxel versions computed over all levels (upsampled or corrected).
+    pub versions: u64,
+    /// Voxels the request needed at the finest level.
+    pub finest: u64,
+    /// Bytes of the kept synthesis state of the texture (shared by its stores).
+    pub state_bytes: u64,
+}
+
+/// What the stores of one scene share while they are built: kernels, the voxelizer, and one
+/// lazy synthesis state per synthesized texture (exemplar, seed, resolution), so meshes that
+/// share a texture share its voxels and nothing is synthesized twice.
 struct Baker<'a> {
     gpu: &'a Gpu,
     kernels: Option<Arc<StoreKernels>>,
     voxelizer: Option<Voxelizer>,
+    lazy: HashMap<(PathBuf, u32, u32), GpuLazySolid>,
+}
+
+/// The lazy synthesis state of exemplar `spec` at resolution `r`: the analysis, the candidates
+/// (through the user's candidate cache) and the solid defaults.
+fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, String> {
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    let image = Exemplar::load(&spec.exemplar).map_err(|x| e(&x))?;
+    let exemplars = SolidExemplars::new(image, [None, None, None]).map_err(|x| e(&x))?;
+    let analysis = analyze_solid(&exemplars);
+    let cache = DiskCache::user().ok();
+    let params = CandidateParams::default();
+    let (candidates, _) = candidates_cached(&exemplars, &params, cache.as_ref(), || {
+        GpuCandidates::new(gpu)?.compute(&analysis, &params, &mut |_| {})
+    })
+    .map_err(|x| e(&x))?;
+    let levels = analysis.levels.len() as u32;
+    let synth = SynthParams::new(
+        levels,
+        spec.seed,
+        &default_solid_passes(levels),
+        &default_solid_jitter(levels),
+    )
+    .map_err(|x| e(&x))?;
+    GpuLazySolid::new(gpu, &exemplars, &analysis, &candidates, &synth, r).map_err(|x| e(&x))
 }
 
 impl Baker<'_> {
@@ -148,7 +196,7 @@ impl Baker<'_> {
         scene: &Scene,
         mesh: usize,
         material: usize,
-    ) -> Result<SceneStore, RenderError> {
+    ) -> Result<(SceneStore, Option<SynthesisInfo>), RenderError> {
         let material = &scene.materials[material];
         let mesh = &scene.meshes[mesh];
         let spec = material
@@ -175,8 +223,55 @@ impl Baker<'_> {
                 pack_srgb8(solid_texture_albedo(&gm, centre))
             }
         };
-        let source = ColourSource::Fn(&colour);
         let (positions, triangles) = (&mesh.mesh.positions, &mesh.mesh.triangles);
+        let context = |e: &dyn std::fmt::Display| {
+            RenderError::Settings(format!(
+                "{}: baking material {:?} on mesh {:?}: {e}",
+                scene.source.display(),
+                material.name,
+                mesh.name
+            ))
+        };
+        if let Some(synth) = material
+            .texture
+            .as_ref()
+            .and_then(|t| t.synthesized.clone())
+        {
+            let voxelizer = match &mut self.voxelizer {
+                Some(v) => v,
+                None => self
+                    .voxelizer
+                    .insert(Voxelizer::new(gpu).map_err(store_error)?),
+            };
+            // The TileTree's texels are surface voxels; trilinear reads need the interpolation
+            // voxels.
+            let keys = match (spec.kind, spec.filter) {
+                (StoreKind::TileTree, _) | (_, StoreFilter::Nearest) => {
+                    voxelizer.surface(positions, triangles, r)
+                }
+                (_, StoreFilter::Trilinear) => voxelizer.interpolation(positions, triangles, r),
+            }
+            .map_err(|e| context(&e))?;
+            let key = (synth.exemplar.clone(), synth.seed, r);
+            if !self.lazy.contains_key(&key) {
+                let state = lazy_state(gpu, &synth, r).map_err(|e| context(&e))?;
+                self.lazy.insert(key.clone(), state);
+            }
+            let lazy = self.lazy.get_mut(&key).expect("inserted above");
+            let (colours, report) = lazy.colours(&keys).map_err(|e| context(&e))?;
+            let stats = SynthesisInfo {
+                versions: report.computed.iter().sum(),
+                finest: report.needed.last().copied().unwrap_or(0),
+                state_bytes: lazy.bytes(),
+            };
+            let source = ColourSource::Buffer {
+                keys: &keys,
+                colours: &colours,
+            };
+            let store = self.fill(&kernels, spec, positions, triangles, &keys, &source)?;
+            return Ok((store, Some(stats)));
+        }
+        let source = ColourSource::Fn(&colour);
         if spec.kind == StoreKind::TileTree {
             let (s, _) = TileTree::build(
                 &kernels,
@@ -187,7 +282,7 @@ impl Baker<'_> {
                 TileTreeConfig::default(),
             )
             .map_err(store_error)?;
-            return Ok(SceneStore::TileTree(s));
+            return Ok((SceneStore::TileTree(s), None));
         }
         let voxelizer = match &mut self.voxelizer {
             Some(v) => v,
@@ -199,30 +294,52 @@ impl Baker<'_> {
             StoreFilter::Nearest => voxelizer.surface(positions, triangles, r),
             StoreFilter::Trilinear => voxelizer.interpolation(positions, triangles, r),
         }
-        .map_err(|e| {
-            RenderError::Settings(format!(
-                "{}: baking material {:?} on mesh {:?}: {e}",
-                scene.source.display(),
-                material.name,
-                mesh.name
-            ))
-        })?;
+        .map_err(|e| context(&e))?;
+        Ok((
+            self.fill(&kernels, spec, positions, triangles, &keys, &source)?,
+            None,
+        ))
+    }
+
+    /// Builds the store `spec` asks for over `keys` (the TileTree: over the mesh) with the
+    /// colours of `source`.
+    fn fill(
+        &self,
+        kernels: &Arc<StoreKernels>,
+        spec: StoreSpec,
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        keys: &VoxelKeys,
+        source: &ColourSource<'_>,
+    ) -> Result<SceneStore, RenderError> {
+        let r = spec.resolution;
         Ok(match spec.kind {
             StoreKind::CoherentHash => SceneStore::Hash(
-                HashStore::build(&kernels, r, &keys, &source, RobinHoodConfig::default())
+                HashStore::build(kernels, r, keys, source, RobinHoodConfig::default())
                     .map_err(store_error)?,
             ),
             StoreKind::Octree => {
                 let config = OctreeConfig::for_resolution(r).map_err(store_error)?;
                 let (s, _) =
-                    OctreeStore::build(&kernels, r, &keys, &source, config).map_err(store_error)?;
+                    OctreeStore::build(kernels, r, keys, source, config).map_err(store_error)?;
                 SceneStore::Octree(s)
             }
             StoreKind::PerfectHash => SceneStore::Perfect(
-                PerfectStore::build(&kernels, r, &keys, &source, PerfectAccess::Constrained)
+                PerfectStore::build(kernels, r, keys, source, PerfectAccess::Constrained)
                     .map_err(store_error)?,
             ),
-            StoreKind::TileTree => unreachable!("built from the mesh above"),
+            StoreKind::TileTree => {
+                let (s, _) = TileTree::build(
+                    kernels,
+                    positions,
+                    triangles,
+                    r,
+                    source,
+                    TileTreeConfig::default(),
+                )
+                .map_err(store_error)?;
+                SceneStore::TileTree(s)
+            }
         })
     }
 }
@@ -241,6 +358,7 @@ impl SceneStores {
             gpu,
             kernels: None,
             voxelizer: None,
+            lazy: HashMap::new(),
         };
         for (i, inst) in scene.instances.iter().enumerate() {
             let material = &scene.materials[inst.material];
@@ -252,7 +370,7 @@ impl SceneStores {
                 continue;
             }
             let start = Instant::now();
-            let store = baker.bake(scene, inst.mesh, inst.material)?;
+            let (store, synthesis) = baker.bake(scene, inst.mesh, inst.material)?;
             let (texels, bytes) = store.size();
             info.push(BakedStoreInfo {
                 mesh: scene.meshes[inst.mesh].name.clone(),
@@ -262,6 +380,7 @@ impl SceneStores {
                 texels,
                 bytes,
                 build_time: start.elapsed(),
+                synthesis,
             });
             let slot = stores.len() as u32;
             stores.push((store, spec.filter));

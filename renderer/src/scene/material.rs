@@ -10,7 +10,7 @@ use super::raw::{
 use super::volume::VolumeTexture;
 use super::{
     Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind, StoreFilter, StoreKind,
-    StoreSpec,
+    StoreSpec, SynthesizedSpec,
 };
 use glam::Vec3;
 use std::ops::Range;
@@ -266,7 +266,13 @@ fn texture(
         RawTextureKind::Wood => SolidTextureKind::Wood,
         RawTextureKind::Checker => SolidTextureKind::Checker,
         RawTextureKind::Volume => return volume_texture(doc, raw, &table, label, base, store),
+        RawTextureKind::Synthesized => {
+            return synthesized_texture(doc, raw, &table, label, base, store)
+        }
     };
+    let why = "only kind = \"synthesized\" has it";
+    doc.reject(&raw.exemplar, label, "exemplar", why)?;
+    doc.reject(&raw.seed, label, "seed", why)?;
     doc.reject(
         &raw.path,
         label,
@@ -285,6 +291,7 @@ fn texture(
             None => 1.0,
         },
         volume: None,
+        synthesized: None,
         store,
     })
 }
@@ -334,6 +341,85 @@ fn volume_texture(
         color_b: mean,
         scale: 1.0,
         volume: Some(Arc::new(volume)),
+        synthesized: None,
+        store,
+    })
+}
+
+/// A `kind = "synthesized"` texture table: an exemplar (asset name, or path relative to the
+/// scene) synthesized lazily into the store `store`.
+fn synthesized_texture(
+    doc: &Doc,
+    raw: &RawTexture,
+    table: &Range<usize>,
+    label: &str,
+    base: &Path,
+    store: Option<StoreSpec>,
+) -> Result<SolidTexture, SceneError> {
+    let why = "a synthesized texture takes its colours from its exemplar";
+    doc.reject(&raw.color_a, label, "color_a", why)?;
+    doc.reject(&raw.color_b, label, "color_b", why)?;
+    doc.reject(&raw.scale, label, "scale", why)?;
+    doc.reject(
+        &raw.path,
+        label,
+        "path",
+        "a synthesized texture names its `exemplar`",
+    )?;
+    let exemplar = doc.require(
+        &raw.exemplar,
+        table,
+        label,
+        "exemplar",
+        "a synthesized texture names its exemplar (an asset name such as \"terra\", or a path)",
+    )?;
+    if store.is_none() {
+        return Err(doc.invalid(
+            raw.kind.span(),
+            join(label, "store"),
+            "missing: a synthesized texture is read through a store (give `store` and \
+             `resolution`)",
+        ));
+    }
+    let field = join(label, "exemplar");
+    let file = crate::assets::exemplar(exemplar.get_ref(), base)
+        .map_err(|problem| doc.invalid(exemplar.span(), field.clone(), problem))?;
+    if !file.exists() {
+        return Err(SceneError::MissingFile {
+            file: doc.file.to_path_buf(),
+            line: doc.line(exemplar.span().start),
+            field,
+            missing: file,
+        });
+    }
+    let image = lazysolid_compute::synth::Exemplar::load(&file)
+        .map_err(|e| doc.invalid(exemplar.span(), field.clone(), e.to_string()))?;
+    lazysolid_compute::synth::solid::SolidExemplars::new(image.clone(), [None, None, None])
+        .map_err(|e| doc.invalid(exemplar.span(), field, e.to_string()))?;
+    let n = (image.width * image.height) as f64;
+    let mut sum = [0f64; 3];
+    for y in 0..image.height {
+        for x in 0..image.width {
+            for (s, v) in sum.iter_mut().zip(image.at(x, y)) {
+                *s += crate::output::srgb_eotf(v as f32 / 255.0) as f64;
+            }
+        }
+    }
+    let mean = Vec3::from_array(sum.map(|s| (s / n) as f32));
+    let seed = match &raw.seed {
+        Some(s) => *s.get_ref(),
+        None => 1,
+    };
+    Ok(SolidTexture {
+        kind: SolidTextureKind::Synthesized,
+        color_a: mean,
+        color_b: mean,
+        scale: 1.0,
+        volume: None,
+        synthesized: Some(SynthesizedSpec {
+            exemplar: file,
+            seed,
+        }),
         store,
     })
 }

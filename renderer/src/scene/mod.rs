@@ -30,7 +30,9 @@
 //!   `texture = { kind = "marble" | "wood" | "checker", color_a, color_b, scale }` (scale > 0,
 //!   default 1: features per unit of object space) replaces `color` as the albedo; so does
 //!   `texture = { kind = "volume", path }`, an RGB NRRD volume stretched over the unit cube,
-//!   which needs `store` and `resolution` (it is read through the store only).
+//!   which needs `store` and `resolution` (it is read through the store only); and so does
+//!   `texture = { kind = "synthesized", exemplar, seed }`, matter synthesized lazily from an
+//!   exemplar (asset name or path) over the unit cube.
 //! - `[[instance]]` (at least one): `mesh` and `material` by name, `scale` (> 0, default 1),
 //!   `rotate` (default `[0, 0, 0]`: degrees about the world x, then y, then z axis),
 //!   `translate` (default `[0, 0, 0]`); the object-to-world transform is

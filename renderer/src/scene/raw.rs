@@ -114,6 +114,7 @@ pub(super) enum RawTextureKind {
     Wood,
     Checker,
     Volume,
+    Synthesized,
 }
 
 /// `texture = { … }` of a material.
@@ -125,6 +126,8 @@ pub(super) struct RawTexture {
     pub color_b: Option<SVec3>,
     pub scale: Option<Spanned<f32>>,
     pub path: Option<Spanned<String>>,
+    pub exemplar: Option<Spanned<String>>,
+    pub seed: Option<Spanned<u32>>,
     pub store: Option<Spanned<RawStoreKind>>,
     pub resolution: Option<Spanned<u32>>,
     pub filter: Option<Spanned<RawStoreFilter>>,

@@ -133,10 +133,22 @@ pub struct SolidTexture {
     /// The voxels of a [`SolidTextureKind::Volume`] (shared, since a texture is cloned with
     /// its material).
     pub volume: Option<std::sync::Arc<VolumeTexture>>,
+    /// The exemplar and seed of a [`SolidTextureKind::Synthesized`] texture.
+    pub synthesized: Option<SynthesizedSpec>,
     /// When set, the pattern is baked into a sparse store over the mesh's surface voxels and the
     /// renderer reads the store instead of evaluating the pattern: how the structures that will
     /// hold synthesized matter are rendered and compared.
     pub store: Option<StoreSpec>,
+}
+
+/// A solid texture synthesized from a 2D exemplar playing all three roles (lazily: only the
+/// voxels the store needs are synthesized).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SynthesizedSpec {
+    /// The exemplar image (GIMP pattern, PNG or JPEG).
+    pub exemplar: std::path::PathBuf,
+    /// Seed of the synthesis's jitter.
+    pub seed: u32,
 }
 
 /// Which sparse store holds a baked solid texture, at what resolution, read how.
@@ -197,6 +209,9 @@ pub enum SolidTextureKind {
     /// An RGB volume read from a file (for example one `lazysolid solid` synthesized),
     /// stretched over the unit cube; read only through a store.
     Volume,
+    /// Matter synthesized from a 2D exemplar over the unit cube, lazily (only the voxels its
+    /// store needs); read only through a store.
+    Synthesized,
 }
 
 /// A placed mesh.

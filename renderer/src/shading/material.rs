@@ -81,6 +81,7 @@ pub(crate) fn texture_kind_code(kind: Option<SolidTextureKind>) -> u32 {
         // Read through its store only: the kernel never evaluates it (the flat colour, the
         // volume's mean, stands in if it ever did).
         Some(SolidTextureKind::Volume) => TEXTURE_NONE,
+        Some(SolidTextureKind::Synthesized) => TEXTURE_NONE,
     }
 }
 
@@ -126,6 +127,7 @@ mod tests {
                 color_b: Vec3::Y,
                 scale: 4.0,
                 volume: None,
+                synthesized: None,
                 store: None,
             }),
         };

@@ -12,46 +12,9 @@
 use anyhow::{bail, Context};
 use std::path::{Path, PathBuf};
 
-/// Environment variable naming the asset folder (the one holding `meshes/` and `exemplars/`).
-pub const ASSETS_ENV: &str = "LAZYSOLID_ASSETS";
-
 /// The asset folder by the rule above, or an error saying where it looked.
 pub fn asset_root() -> anyhow::Result<PathBuf> {
-    if let Some(dir) = std::env::var_os(ASSETS_ENV).filter(|d| !d.is_empty()) {
-        let dir = PathBuf::from(dir);
-        if !dir.is_dir() {
-            bail!("{ASSETS_ENV}={}: no such folder", dir.display());
-        }
-        return Ok(dir);
-    }
-    let mut starts = Vec::new();
-    if let Some(exe_dir) = std::env::current_exe()
-        .ok()
-        .and_then(|e| e.parent().map(Path::to_path_buf))
-    {
-        starts.push(exe_dir);
-    }
-    if let Ok(cwd) = std::env::current_dir() {
-        starts.push(cwd);
-    }
-    for start in &starts {
-        if let Some(dir) = start
-            .ancestors()
-            .map(|a| a.join("assets"))
-            .find(|a| a.is_dir())
-        {
-            return Ok(dir);
-        }
-    }
-    bail!(
-        "no assets/ folder above {} (set {ASSETS_ENV}, or run scripts/fetch-assets.sh in the \
-         repository)",
-        starts
-            .iter()
-            .map(|s| s.display().to_string())
-            .collect::<Vec<_>>()
-            .join(" or ")
-    )
+    lazysolid_renderer::assets::asset_root().map_err(anyhow::Error::msg)
 }
 
 /// Whether `value` names a file rather than an asset.

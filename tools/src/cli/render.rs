@@ -114,6 +114,15 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             b.bytes as f64 / 1e6,
             b.build_time.as_secs_f64()
         );
+        if let Some(s) = b.synthesis {
+            eprintln!(
+                "  synthesized lazily: {} voxel versions over all levels, {} voxels at the \
+                 finest, {:.1} MB of kept synthesis state",
+                s.versions,
+                s.finest,
+                s.state_bytes as f64 / 1e6
+            );
+        }
     }
     let bar = ProgressBar::new(s.spp as u64);
     bar.set_style(
