@@ -6,6 +6,7 @@
 //! and the full volume's, next to the thesis' figures.
 
 use super::harness::{time_cpu, Bench, Throughput};
+use super::plot::rgb_image;
 use super::CommonArgs;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
@@ -14,8 +15,8 @@ use lazysolid_compute::hash::morton_decode;
 use lazysolid_compute::synth::cache::DiskCache;
 use lazysolid_compute::synth::solid::lazy::{GpuLazySolid, LazyReport};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cached, default_solid_jitter, default_solid_passes, CandidateParams,
-    GpuCandidates, SolidExemplars,
+    analyze_solid, candidates_cached, default_solid_jitter, default_solid_passes, voxel_colour,
+    CandidateParams, GpuCandidates, SolidExemplars,
 };
 use lazysolid_compute::synth::{Exemplar, SynthParams};
 use lazysolid_compute::voxel::Voxelizer;
@@ -104,6 +105,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         ("seed".into(), args.seed as f64),
         ("exemplar side".into(), analysis.side as f64),
     ];
+    let dir = bench.artifact_dir()?;
     let mut voxelizer = Voxelizer::new(&gpu)?;
     for name in meshes {
         let mesh_path = assets::mesh("--meshes", name)?;
@@ -168,8 +170,86 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 add(&mut notes, &format!("level {l} voxels"), *n as f64);
             }
         }
+        // The matter inside: the mid-z cross-section of the first resolution, synthesized as a
+        // second request into a state that already holds the surface.
+        let r = sizes[0];
+        bench.status(format!("{name} {r}³: cross-section"));
+        let mut lazy = GpuLazySolid::new(&gpu, &exemplars, &analysis, &candidates, &params, r)?;
+        let keys = voxelizer
+            .interpolation(&mesh.positions, &mesh.triangles, r)?
+            .read()?;
+        let surface: Vec<[i32; 3]> = keys
+            .iter()
+            .map(|&k| morton_decode(k, 3).map(|v| v as i32))
+            .collect();
+        lazy.request(&surface)?;
+        let z = r / 2;
+        let inside = section_mask(&mesh, r, z);
+        let cut: Vec<[i32; 3]> = (0..r * r)
+            .filter(|&i| inside[i as usize])
+            .map(|i| [(i % r) as i32, (i / r) as i32, z as i32])
+            .collect();
+        let (triples, report) = lazy.request(&cut)?;
+        let mut pixels = vec![40u8; (r * r * 3) as usize];
+        for (p, t) in cut.iter().zip(&triples) {
+            // Image rows top down: y up in the mesh.
+            let row = r - 1 - p[1] as u32;
+            let at = ((row * r + p[0] as u32) * 3) as usize;
+            pixels[at..at + 3].copy_from_slice(&voxel_colour(&exemplars, *t));
+        }
+        let stem = std::path::Path::new(name)
+            .file_stem()
+            .map_or(name.clone(), |s| s.to_string_lossy().into_owned());
+        let path = dir.join(format!("{stem}-{r}-section-z{z}.png"));
+        rgb_image(&path, r, r, pixels)?;
+        let case = format!("{name} {r}³ cross-section z = {z}");
+        notes.push((format!("{case}: voxels"), cut.len() as f64));
+        notes.push((
+            format!("{case}: voxel versions computed after the surface"),
+            report.computed.iter().sum::<u64>() as f64,
+        ));
+        notes.push((format!("{case}: wall ms"), report.wall_ms));
     }
     println!("{THESIS}");
     bench.finish(&notes)?;
     Ok(())
+}
+
+/// Which voxels of the plane `z` (voxel centres, `r`² of them, x fastest) lie inside the closed
+/// mesh: the parity of the surface crossings of the line along x through each row's centres.
+fn section_mask(mesh: &Mesh, r: u32, z: u32) -> Vec<bool> {
+    let zc = (z as f32 + 0.5) / r as f32;
+    let mut rows: Vec<Vec<f32>> = vec![Vec::new(); r as usize];
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        let (lo, hi) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
+        if zc < a.z.min(b.z).min(c.z) || zc > a.z.max(b.z).max(c.z) {
+            continue;
+        }
+        let first = ((lo * r as f32 - 0.5).ceil().max(0.0)) as u32;
+        let last = ((hi * r as f32 - 0.5).floor().min(r as f32 - 1.0)) as i64;
+        for y in first as i64..=last {
+            let yc = (y as f32 + 0.5) / r as f32;
+            // Barycentric coordinates of (yc, zc) in the triangle projected on the y-z plane.
+            let d = (b.y - a.y) * (c.z - a.z) - (c.y - a.y) * (b.z - a.z);
+            if d == 0.0 {
+                continue;
+            }
+            let u = ((yc - a.y) * (c.z - a.z) - (c.y - a.y) * (zc - a.z)) / d;
+            let v = ((b.y - a.y) * (zc - a.z) - (yc - a.y) * (b.z - a.z)) / d;
+            if u >= 0.0 && v >= 0.0 && u + v < 1.0 {
+                rows[y as usize].push(a.x + u * (b.x - a.x) + v * (c.x - a.x));
+            }
+        }
+    }
+    let mut mask = vec![false; (r * r) as usize];
+    for (y, xs) in rows.iter_mut().enumerate() {
+        xs.sort_by(f32::total_cmp);
+        for x in 0..r {
+            let xc = (x as f32 + 0.5) / r as f32;
+            let crossings = xs.iter().take_while(|&&v| v < xc).count();
+            mask[y * r as usize + x as usize] = crossings % 2 == 1;
+        }
+    }
+    mask
 }
