@@ -26,11 +26,8 @@ use lazysolid_compute::store::{
 };
 use lazysolid_compute::synth::cache::DiskCache;
 use lazysolid_compute::synth::solid::lazy::GpuLazySolid;
-use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cached, default_solid_jitter, default_solid_passes, CandidateParams,
-    GpuCandidates, SolidExemplars,
-};
-use lazysolid_compute::synth::{Exemplar, SynthParams};
+use lazysolid_compute::synth::solid::SolidExemplars;
+use lazysolid_compute::synth::{Exemplar, SynthError};
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -165,28 +162,13 @@ struct Baker<'a> {
     lazy: HashMap<(PathBuf, u32, u32), GpuLazySolid>,
 }
 
-/// The lazy synthesis state of exemplar `spec` at resolution `r`: the analysis, the candidates
-/// (through the user's candidate cache) and the solid defaults.
-fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, String> {
-    let e = |e: &dyn std::fmt::Display| e.to_string();
-    let image = Exemplar::load(&spec.exemplar).map_err(|x| e(&x))?;
-    let exemplars = SolidExemplars::new(image, [None, None, None]).map_err(|x| e(&x))?;
-    let analysis = analyze_solid(&exemplars);
+/// The lazy synthesis state of exemplar `spec` at resolution `r`, with the solid defaults and
+/// the candidates through the user's cache.
+fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, SynthError> {
+    let image = Exemplar::load(&spec.exemplar)?;
+    let exemplars = SolidExemplars::new(image, [None, None, None])?;
     let cache = DiskCache::user().ok();
-    let params = CandidateParams::default();
-    let (candidates, _) = candidates_cached(&exemplars, &params, cache.as_ref(), || {
-        GpuCandidates::new(gpu)?.compute(&analysis, &params, &mut |_| {})
-    })
-    .map_err(|x| e(&x))?;
-    let levels = analysis.levels.len() as u32;
-    let synth = SynthParams::new(
-        levels,
-        spec.seed,
-        &default_solid_passes(levels),
-        &default_solid_jitter(levels),
-    )
-    .map_err(|x| e(&x))?;
-    GpuLazySolid::new(gpu, &exemplars, &analysis, &candidates, &synth, r).map_err(|x| e(&x))
+    GpuLazySolid::with_defaults(gpu, &exemplars, spec.seed, r, cache.as_ref())
 }
 
 impl Baker<'_> {

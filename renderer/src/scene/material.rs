@@ -316,22 +316,9 @@ fn volume_texture(
         "path",
         "a volume texture names its NRRD file",
     )?;
-    if store.is_none() {
-        return Err(doc.invalid(
-            raw.kind.span(),
-            join(label, "store"),
-            "missing: a volume texture is read through a store (give `store` and `resolution`)",
-        ));
-    }
+    require_store(doc, raw, label, store, "a volume texture")?;
     let file = base.join(path.get_ref());
-    if !file.exists() {
-        return Err(SceneError::MissingFile {
-            file: doc.file.to_path_buf(),
-            line: doc.line(path.span().start),
-            field: join(label, "path"),
-            missing: file,
-        });
-    }
+    must_exist(doc, path.span().start, join(label, "path"), &file)?;
     let volume = VolumeTexture::load(&file)
         .map_err(|problem| doc.invalid(path.span(), join(label, "path"), problem))?;
     let mean = Vec3::from_array(volume.mean_linear());
@@ -373,25 +360,11 @@ fn synthesized_texture(
         "exemplar",
         "a synthesized texture names its exemplar (an asset name such as \"terra\", or a path)",
     )?;
-    if store.is_none() {
-        return Err(doc.invalid(
-            raw.kind.span(),
-            join(label, "store"),
-            "missing: a synthesized texture is read through a store (give `store` and \
-             `resolution`)",
-        ));
-    }
+    require_store(doc, raw, label, store, "a synthesized texture")?;
     let field = join(label, "exemplar");
     let file = crate::assets::exemplar(exemplar.get_ref(), base)
         .map_err(|problem| doc.invalid(exemplar.span(), field.clone(), problem))?;
-    if !file.exists() {
-        return Err(SceneError::MissingFile {
-            file: doc.file.to_path_buf(),
-            line: doc.line(exemplar.span().start),
-            field,
-            missing: file,
-        });
-    }
+    must_exist(doc, exemplar.span().start, field.clone(), &file)?;
     let image = lazysolid_compute::synth::Exemplar::load(&file)
         .map_err(|e| doc.invalid(exemplar.span(), field.clone(), e.to_string()))?;
     lazysolid_compute::synth::solid::SolidExemplars::new(image.clone(), [None, None, None])
@@ -421,6 +394,37 @@ fn synthesized_texture(
             seed,
         }),
         store,
+    })
+}
+
+/// The error of a texture (`what`) read through a store only that names none.
+fn require_store(
+    doc: &Doc,
+    raw: &RawTexture,
+    label: &str,
+    store: Option<StoreSpec>,
+    what: &str,
+) -> Result<(), SceneError> {
+    match store {
+        Some(_) => Ok(()),
+        None => Err(doc.invalid(
+            raw.kind.span(),
+            join(label, "store"),
+            format!("missing: {what} is read through a store (give `store` and `resolution`)"),
+        )),
+    }
+}
+
+/// The error of a file a scene names at byte `at` (field `field`) that does not exist.
+fn must_exist(doc: &Doc, at: usize, field: String, file: &Path) -> Result<(), SceneError> {
+    if file.exists() {
+        return Ok(());
+    }
+    Err(SceneError::MissingFile {
+        file: doc.file.to_path_buf(),
+        line: doc.line(at),
+        field,
+        missing: file.to_path_buf(),
     })
 }
 

@@ -14,11 +14,8 @@ use clap::Args;
 use lazysolid_compute::hash::morton_decode;
 use lazysolid_compute::synth::cache::DiskCache;
 use lazysolid_compute::synth::solid::lazy::{GpuLazySolid, LazyReport};
-use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cached, default_solid_jitter, default_solid_passes, voxel_colour,
-    CandidateParams, GpuCandidates, SolidExemplars,
-};
-use lazysolid_compute::synth::{Exemplar, SynthParams};
+use lazysolid_compute::synth::solid::{voxel_colour, SolidExemplars};
+use lazysolid_compute::synth::Exemplar;
 use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::mesh::Mesh;
 use std::cell::RefCell;
@@ -80,21 +77,12 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let exemplar =
         Exemplar::load(&path).with_context(|| format!("loading --exemplar {}", path.display()))?;
     let exemplars = SolidExemplars::new(exemplar, [None, None, None])?;
-    let analysis = analyze_solid(&exemplars);
     let cache = DiskCache::user().ok();
-    let (candidates, _) = candidates_cached(
-        &exemplars,
-        &CandidateParams::default(),
-        cache.as_ref(),
-        || GpuCandidates::new(&gpu)?.compute(&analysis, &CandidateParams::default(), &mut |_| {}),
-    )?;
-    let levels = analysis.levels.len() as u32;
-    let params = SynthParams::new(
-        levels,
-        args.seed,
-        &default_solid_passes(levels),
-        &default_solid_jitter(levels),
-    )?;
+    let state = |r: u32| {
+        GpuLazySolid::with_defaults(&gpu, &exemplars, args.seed, r, cache.as_ref())
+            .context("the lazy synthesis state")
+    };
+    let side = exemplars.side();
     let mut bench = Bench::new(
         "bench-lazy",
         &gpu,
@@ -103,7 +91,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     )?;
     let mut notes: Vec<(String, f64)> = vec![
         ("seed".into(), args.seed as f64),
-        ("exemplar side".into(), analysis.side as f64),
+        ("exemplar side".into(), side as f64),
     ];
     let dir = bench.artifact_dir()?;
     let mut voxelizer = Voxelizer::new(&gpu)?;
@@ -129,8 +117,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 Throughput::Elements,
                 None,
                 || {
-                    let mut lazy =
-                        GpuLazySolid::new(&gpu, &exemplars, &analysis, &candidates, &params, r)?;
+                    let mut lazy = state(r)?;
                     let (result, ms) = time_cpu(|| lazy.request(&requested));
                     let (_, report) = result?;
                     *last.borrow_mut() = (report.clone(), lazy.bytes());
@@ -174,7 +161,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         // second request into a state that already holds the surface.
         let r = sizes[0];
         bench.status(format!("{name} {r}³: cross-section"));
-        let mut lazy = GpuLazySolid::new(&gpu, &exemplars, &analysis, &candidates, &params, r)?;
+        let mut lazy = state(r)?;
         let keys = voxelizer
             .interpolation(&mesh.positions, &mesh.triangles, r)?
             .read()?;

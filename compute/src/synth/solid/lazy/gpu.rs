@@ -16,7 +16,7 @@
 //! [`GpuLazySolid::bytes`] reports it.
 
 use super::deps::{final_stage, subpass_class, version_at, Dependencies, LevelDeps};
-use super::keys::{lazy_key, untag, LAZY_AXIS_BITS};
+use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::hash::{
     fastmod_multiplier, morton_decode, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable,
@@ -24,9 +24,14 @@ use crate::hash::{
 };
 use crate::kernels::synth_solid;
 use crate::prims::{RadixSort, Scan, MAX_ELEMENTS};
-use crate::synth::solid::analysis::{pack_rgb, SolidAnalysis};
+use crate::synth::cache::DiskCache;
+use crate::synth::solid::analysis::{analyze_solid, pack_rgb, SolidAnalysis};
+use crate::synth::solid::candidates::CandidateParams;
 use crate::synth::solid::candidates::SolidCandidates;
+use crate::synth::solid::candidates_cache::candidates_cached;
+use crate::synth::solid::candidates_gpu::GpuCandidates;
 use crate::synth::solid::cpu::check_levels;
+use crate::synth::solid::defaults::{default_solid_jitter, default_solid_passes};
 use crate::synth::solid::gpu::GpuSolidSynthesizer;
 use crate::synth::solid::roles::{SolidExemplars, ROLES};
 use crate::synth::{SynthError, SynthParams, SynthResult};
@@ -346,6 +351,34 @@ impl GpuLazySolid {
         Ok(me)
     }
 
+    /// The lazy state of `exemplars` at `resolution` with the solid synthesizer's defaults and
+    /// `seed`: the analysis, and the candidates through `cache` (computed on the GPU on a
+    /// miss). How scenes and `bench lazy` make one.
+    ///
+    /// # Errors
+    /// As [`GpuLazySolid::new`], and candidate or cache failures.
+    pub fn with_defaults(
+        gpu: &Gpu,
+        exemplars: &SolidExemplars,
+        seed: u32,
+        resolution: u32,
+        cache: Option<&DiskCache>,
+    ) -> SynthResult<GpuLazySolid> {
+        let analysis = analyze_solid(exemplars);
+        let params = CandidateParams::default();
+        let (candidates, _) = candidates_cached(exemplars, &params, cache, || {
+            GpuCandidates::new(gpu)?.compute(&analysis, &params, &mut |_| {})
+        })?;
+        let levels = analysis.levels.len() as u32;
+        let synth = SynthParams::new(
+            levels,
+            seed,
+            &default_solid_passes(levels),
+            &default_solid_jitter(levels),
+        )?;
+        GpuLazySolid::new(gpu, exemplars, &analysis, &candidates, &synth, resolution)
+    }
+
     fn write_record(&mut self, l: usize) -> SynthResult<()> {
         let record = self.levels[l].record();
         self.records.write(l * RECORD_WORDS, &record)?;
@@ -389,18 +422,9 @@ impl GpuLazySolid {
 
     fn check_requested(&self, requested: &[[i32; 3]]) -> SynthResult<()> {
         let r = self.resolution as i32;
-        for p in requested {
-            if let Some(a) = (0..3).find(|&a| p[a] < 0 || p[a] >= r) {
-                return Err(SynthError::Parameter {
-                    name: [
-                        "requested voxel x",
-                        "requested voxel y",
-                        "requested voxel z",
-                    ][a],
-                    value: p[a].to_string(),
-                    limit: format!("must lie in 0..{r} (the texture's resolution)"),
-                });
-            }
+        let limit = format!("must lie in 0..{r} (the texture's resolution)");
+        for &p in requested {
+            check_within(p, 0..r, &limit)?;
         }
         if requested.len() > MAX_ELEMENTS / 8 {
             return Err(SynthError::Parameter {

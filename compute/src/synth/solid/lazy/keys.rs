@@ -51,20 +51,32 @@ pub fn untag(t: u64) -> (u64, u32) {
 /// # Errors
 /// [`SynthError::Parameter`] naming the coordinate and the limit.
 pub fn check_request(p: [i32; 3]) -> SynthResult<()> {
-    for (a, v) in p.into_iter().enumerate() {
-        if v.abs() > MAX_LAZY_COORD {
-            return Err(SynthError::Parameter {
-                name: [
-                    "requested voxel x",
-                    "requested voxel y",
-                    "requested voxel z",
-                ][a],
-                value: v.to_string(),
-                limit: format!("each coordinate must lie in -{MAX_LAZY_COORD}..={MAX_LAZY_COORD}"),
-            });
-        }
+    check_within(
+        p,
+        -MAX_LAZY_COORD..MAX_LAZY_COORD + 1,
+        &format!("each coordinate must lie in -{MAX_LAZY_COORD}..={MAX_LAZY_COORD}"),
+    )
+}
+
+/// Checks that every coordinate of requested position `p` lies in `range`; the error names
+/// the coordinate and says `limit`.
+pub(crate) fn check_within(
+    p: [i32; 3],
+    range: std::ops::Range<i32>,
+    limit: &str,
+) -> SynthResult<()> {
+    match (0..3).find(|&a| !range.contains(&p[a])) {
+        Some(a) => Err(SynthError::Parameter {
+            name: [
+                "requested voxel x",
+                "requested voxel y",
+                "requested voxel z",
+            ][a],
+            value: p[a].to_string(),
+            limit: limit.to_string(),
+        }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 #[cfg(test)]
