@@ -577,6 +577,14 @@ impl GpuLazySolid {
                         limit: format!("at most {MAX_ELEMENTS} (split the request)"),
                     });
                 }
+                let info = gpu.info();
+                check_fits(
+                    &format!("the dependency set of level {l}"),
+                    m as u64 * 8,
+                    self.bytes() + m as u64 * 24,
+                    info.max_memory_allocation_size.min(info.max_buffer_size),
+                    info.heap_size,
+                )?;
                 let out = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), m)?;
                 let heads = GpuBuffer::<u32>::new(&gpu, "lazy walk heads", m)?;
                 let kept = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk kept", 1)?;
@@ -838,6 +846,17 @@ impl GpuLazySolid {
                 ),
             });
         }
+        let info = self.gpu.info();
+        let kept = self.levels.iter().map(LevelState::bytes).sum::<u64>();
+        let old = self.levels[l].versions.bytes() + self.levels[l].counts.bytes();
+        check_fits(
+            &format!("the versions of level {l}"),
+            words * 4,
+            kept - old + words * 4 + grown as u64 * 4,
+            info.max_memory_allocation_size.min(info.max_buffer_size),
+            info.heap_size,
+        )?;
+        let state = &mut self.levels[l];
         let versions = GpuBuffer::<u32>::zeroed(
             &self.gpu,
             format!("lazy versions level {l}"),
@@ -853,6 +872,41 @@ impl GpuLazySolid {
         state.counts = counts;
         Ok(())
     }
+}
+
+/// Share of the device heap the kept state and one step's buffers may take: the rest is left
+/// to the radix sort's scratch, the stores and the renderer.
+const HEAP_SHARE: f64 = 0.75;
+
+/// Refuses a buffer of `bytes` (`what`) over the device's largest allocation `max_alloc`, or a
+/// request whose kept state and buffers (`total` bytes) would pass [`HEAP_SHARE`] of `heap`,
+/// naming the limit.
+fn check_fits(what: &str, bytes: u64, total: u64, max_alloc: u64, heap: u64) -> SynthResult<()> {
+    let mib = |b: u64| format!("{:.1} MiB", b as f64 / (1u64 << 20) as f64);
+    if bytes > max_alloc {
+        return Err(SynthError::Parameter {
+            name: "lazy synthesis request",
+            value: format!("{} for {what}", mib(bytes)),
+            limit: format!(
+                "the device's largest buffer is {} (request fewer voxels at once, or a lower \
+                 resolution)",
+                mib(max_alloc)
+            ),
+        });
+    }
+    let budget = (heap as f64 * HEAP_SHARE) as u64;
+    if total > budget {
+        return Err(SynthError::Parameter {
+            name: "lazy synthesis request",
+            value: format!("{} of kept state and buffers at {what}", mib(total)),
+            limit: format!(
+                "{:.0} % of the device heap, {} (request fewer voxels, or a lower resolution)",
+                HEAP_SHARE * 100.0,
+                mib(budget)
+            ),
+        });
+    }
+    Ok(())
 }
 
 fn check_errors(errors: &GpuBuffer<u32>, what: &str) -> SynthResult<()> {
@@ -872,5 +926,42 @@ fn hash_error(level: usize, e: crate::hash::HashError) -> SynthError {
         name: "lazy state table",
         value: format!("level {level}"),
         limit: e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_fits;
+
+    #[test]
+    fn requests_past_the_device_limits_are_refused_with_the_limit() {
+        let mib = 1u64 << 20;
+        assert!(check_fits("x", 10 * mib, 100 * mib, 128 * mib, 2048 * mib).is_ok());
+        let e = check_fits(
+            "the versions of level 6",
+            200 * mib,
+            300 * mib,
+            128 * mib,
+            2048 * mib,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("200.0 MiB for the versions of level 6") && e.contains("128.0 MiB"),
+            "{e}"
+        );
+        let e = check_fits(
+            "the dependency set of level 5",
+            10 * mib,
+            1600 * mib,
+            128 * mib,
+            2048 * mib,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("1600.0 MiB") && e.contains("75 % of the device heap, 1536.0 MiB"),
+            "{e}"
+        );
     }
 }
