@@ -11,12 +11,19 @@ use super::CommonArgs;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
+use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::hash::morton_decode;
+use lazysolid_compute::hash::perfect::PerfectAccess;
+use lazysolid_compute::hash::RobinHoodConfig;
+use lazysolid_compute::store::{
+    ColourSource, HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore, StoreKernels,
+    TileTree, TileTreeConfig,
+};
 use lazysolid_compute::synth::cache::DiskCache;
 use lazysolid_compute::synth::solid::lazy::{GpuLazySolid, LazyReport};
 use lazysolid_compute::synth::solid::{voxel_colour, SolidExemplars};
 use lazysolid_compute::synth::Exemplar;
-use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -103,12 +110,13 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             bench.status(format!("{name} {r}³: voxelizing"));
             let (keys, voxelize_ms) =
                 time_cpu(|| voxelizer.interpolation(&mesh.positions, &mesh.triangles, r));
-            let keys = keys?.read()?;
+            let interp = keys?;
+            let keys = interp.read()?;
             let requested: Vec<[i32; 3]> = keys
                 .iter()
                 .map(|&k| morton_decode(k, 3).map(|v| v as i32))
                 .collect();
-            let last = RefCell::new((LazyReport::default(), 0u64));
+            let last = RefCell::new(None::<(LazyReport, GpuLazySolid)>);
             let case = format!("{name} {r}³");
             bench.case(
                 &case,
@@ -120,11 +128,14 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     let mut lazy = state(r)?;
                     let (result, ms) = time_cpu(|| lazy.request(&requested));
                     let (_, report) = result?;
-                    *last.borrow_mut() = (report.clone(), lazy.bytes());
+                    *last.borrow_mut() = Some((report, lazy));
                     Ok(ms)
                 },
             )?;
-            let (report, bytes) = last.into_inner();
+            let (report, mut lazy) = last.into_inner().context("no measured run")?;
+            let bytes = lazy.bytes();
+            bench.status(format!("{name} {r}³: filling the stores"));
+            let stores = store_bytes(&gpu, &mut lazy, &mut voxelizer, &mesh, &interp, r)?;
             let full = (r as f64).powi(3);
             let computed: u64 = report.computed.iter().sum();
             let finest = *report.needed.last().unwrap_or(&0) as f64;
@@ -148,6 +159,9 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 report.needed.iter().sum::<u64>() as f64,
             );
             add(&mut notes, "voxel versions computed", computed as f64);
+            for (store, b) in stores {
+                add(&mut notes, &format!("store MB: {store}"), b as f64 / 1e6);
+            }
             add(&mut notes, "dependency walk ms", report.deps_ms);
             add(&mut notes, "synthesis device ms", report.gpu_ms);
             add(&mut notes, "kept state MB", bytes as f64 / 1e6);
@@ -239,4 +253,52 @@ fn section_mask(mesh: &Mesh, r: u32, z: u32) -> Vec<bool> {
         }
     }
     mask
+}
+
+/// Bytes of each store filled from the lazy state's colours: the coherent hash, the N³ tree
+/// and the perfect hash over the interpolation voxels `interp` (trilinear reads), the TileTree
+/// over the mesh (its texels from the surface voxels, an incremental request).
+fn store_bytes(
+    gpu: &Gpu,
+    lazy: &mut GpuLazySolid,
+    voxelizer: &mut Voxelizer,
+    mesh: &Mesh,
+    interp: &VoxelKeys,
+    r: u32,
+) -> anyhow::Result<Vec<(&'static str, u64)>> {
+    let kernels = StoreKernels::new(gpu)?;
+    let (colours, _) = lazy.colours(interp)?;
+    let source = ColourSource::Buffer {
+        keys: interp,
+        colours: &colours,
+    };
+    let hash = HashStore::build(&kernels, r, interp, &source, RobinHoodConfig::default())?;
+    let (octree, _) = OctreeStore::build(
+        &kernels,
+        r,
+        interp,
+        &source,
+        OctreeConfig::for_resolution(r)?,
+    )?;
+    let perfect = PerfectStore::build(&kernels, r, interp, &source, PerfectAccess::Constrained)?;
+    let surface = voxelizer.surface(&mesh.positions, &mesh.triangles, r)?;
+    let (texels, _) = lazy.colours(&surface)?;
+    let tiles = ColourSource::Buffer {
+        keys: &surface,
+        colours: &texels,
+    };
+    let (tree, _) = TileTree::build(
+        &kernels,
+        &mesh.positions,
+        &mesh.triangles,
+        r,
+        &tiles,
+        TileTreeConfig::default(),
+    )?;
+    Ok(vec![
+        ("coherent hash (trilinear)", hash.bytes()),
+        ("octree (trilinear)", octree.bytes()),
+        ("perfect hash (trilinear)", perfect.bytes()),
+        ("tiletree", tree.bytes()),
+    ])
 }
