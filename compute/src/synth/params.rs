@@ -46,33 +46,36 @@ pub const DEFAULT_PERIOD_PENALTY: u32 = MAX_PERIOD_PENALTY;
 
 /// The default jitter strengths of a pyramid of `levels` levels, coarsest first.
 pub fn default_jitter(levels: u32) -> Vec<f32> {
+    jitter_schedule(levels, &DEFAULT_COARSE_JITTER, DEFAULT_FINE_JITTER)
+}
+
+/// `levels` jitter strengths, coarsest first: `coarse` at the coarsest levels, `fine` at every
+/// level below them (the shape of the 2D and the solid defaults).
+pub fn jitter_schedule(levels: u32, coarse: &[f32], fine: f32) -> Vec<f32> {
     (0..levels as usize)
-        .map(|l| {
-            DEFAULT_COARSE_JITTER
-                .get(l)
-                .copied()
-                .unwrap_or(DEFAULT_FINE_JITTER)
-        })
+        .map(|l| coarse.get(l).copied().unwrap_or(fine))
         .collect()
+}
+
+/// `given` per-level values, or `default` when none were given (how the command line reads
+/// an absent `--passes` or `--jitter`).
+pub fn given_or<T: Clone>(given: &[T], default: impl FnOnce() -> Vec<T>) -> Vec<T> {
+    if given.is_empty() {
+        default()
+    } else {
+        given.to_vec()
+    }
 }
 
 /// `given` jitter strengths, or the defaults for `levels` levels when none were given.
 pub fn jitter_or_default(given: &[f32], levels: u32) -> Vec<f32> {
-    if given.is_empty() {
-        default_jitter(levels)
-    } else {
-        given.to_vec()
-    }
+    given_or(given, || default_jitter(levels))
 }
 
 /// `given` pass counts, or the defaults for `levels` levels when none were given (how the
 /// command line reads an absent `--passes`).
 pub fn passes_or_default(given: &[u32], levels: u32) -> Vec<u32> {
-    if given.is_empty() {
-        default_passes(levels)
-    } else {
-        given.to_vec()
-    }
+    given_or(given, || default_passes(levels))
 }
 
 /// The default pass counts of a pyramid of `levels` levels, coarsest first.

@@ -214,100 +214,82 @@ impl Baker<'_> {
                 mesh.name
             ))
         };
-        if let Some(synth) = material
+        let synth = material
             .texture
             .as_ref()
-            .and_then(|t| t.synthesized.clone())
-        {
+            .and_then(|t| t.synthesized.clone());
+        // The voxels the store holds: the surface voxels for nearest reads, the interpolation
+        // voxels for trilinear reads; a TileTree builds its tiles from the mesh and needs
+        // voxels only for a synthesized texture, whose texels come from the surface voxels.
+        let keys = if spec.kind == StoreKind::TileTree && synth.is_none() {
+            None
+        } else {
             let voxelizer = match &mut self.voxelizer {
                 Some(v) => v,
                 None => self
                     .voxelizer
                     .insert(Voxelizer::new(gpu).map_err(store_error)?),
             };
-            // The TileTree's texels are surface voxels; trilinear reads need the interpolation
-            // voxels.
             let keys = match (spec.kind, spec.filter) {
                 (StoreKind::TileTree, _) | (_, StoreFilter::Nearest) => {
                     voxelizer.surface(positions, triangles, r)
                 }
                 (_, StoreFilter::Trilinear) => voxelizer.interpolation(positions, triangles, r),
-            }
-            .map_err(|e| context(&e))?;
-            let key = (synth.exemplar.clone(), synth.seed, r);
-            if !self.lazy.contains_key(&key) {
-                let state = lazy_state(gpu, &synth, r).map_err(|e| context(&e))?;
-                self.lazy.insert(key.clone(), state);
-            }
-            let lazy = self.lazy.get_mut(&key).expect("inserted above");
-            let (colours, report) = lazy.colours(&keys).map_err(|e| context(&e))?;
-            let stats = SynthesisInfo {
-                versions: report.computed.iter().sum(),
-                finest: report.needed.last().copied().unwrap_or(0),
-                state_bytes: lazy.bytes(),
             };
-            let source = ColourSource::Buffer {
-                keys: &keys,
-                colours: &colours,
-            };
-            let store = self.fill(&kernels, spec, positions, triangles, &keys, &source)?;
-            return Ok((store, Some(stats)));
-        }
-        let source = ColourSource::Fn(&colour);
-        if spec.kind == StoreKind::TileTree {
-            let (s, _) = TileTree::build(
-                &kernels,
-                positions,
-                triangles,
-                r,
-                &source,
-                TileTreeConfig::default(),
-            )
-            .map_err(store_error)?;
-            return Ok((SceneStore::TileTree(s), None));
-        }
-        let voxelizer = match &mut self.voxelizer {
-            Some(v) => v,
-            None => self
-                .voxelizer
-                .insert(Voxelizer::new(gpu).map_err(store_error)?),
+            Some(keys.map_err(|e| context(&e))?)
         };
-        let keys = match spec.filter {
-            StoreFilter::Nearest => voxelizer.surface(positions, triangles, r),
-            StoreFilter::Trilinear => voxelizer.interpolation(positions, triangles, r),
-        }
-        .map_err(|e| context(&e))?;
-        Ok((
-            self.fill(&kernels, spec, positions, triangles, &keys, &source)?,
-            None,
-        ))
+        let (colours, stats) = match (&synth, &keys) {
+            (Some(synth), Some(keys)) => {
+                let key = (synth.exemplar.clone(), synth.seed, r);
+                if !self.lazy.contains_key(&key) {
+                    let state = lazy_state(gpu, synth, r).map_err(|e| context(&e))?;
+                    self.lazy.insert(key.clone(), state);
+                }
+                let lazy = self.lazy.get_mut(&key).expect("inserted above");
+                let (colours, report) = lazy.colours(keys).map_err(|e| context(&e))?;
+                let stats = SynthesisInfo {
+                    versions: report.computed.iter().sum(),
+                    finest: report.needed.last().copied().unwrap_or(0),
+                    state_bytes: lazy.bytes(),
+                };
+                (Some(colours), Some(stats))
+            }
+            _ => (None, None),
+        };
+        let source = match (&keys, &colours) {
+            (Some(keys), Some(colours)) => ColourSource::Buffer { keys, colours },
+            _ => ColourSource::Fn(&colour),
+        };
+        let store = self.fill(&kernels, spec, positions, triangles, keys.as_ref(), &source)?;
+        Ok((store, stats))
     }
 
-    /// Builds the store `spec` asks for over `keys` (the TileTree: over the mesh) with the
-    /// colours of `source`.
+    /// Builds the store `spec` asks for over `keys` (the TileTree: over the mesh, without
+    /// keys) with the colours of `source`.
     fn fill(
         &self,
         kernels: &Arc<StoreKernels>,
         spec: StoreSpec,
         positions: &[Vec3],
         triangles: &[[u32; 3]],
-        keys: &VoxelKeys,
+        keys: Option<&VoxelKeys>,
         source: &ColourSource<'_>,
     ) -> Result<SceneStore, RenderError> {
         let r = spec.resolution;
+        let keys = || keys.expect("every store but the TileTree is given its voxels");
         Ok(match spec.kind {
             StoreKind::CoherentHash => SceneStore::Hash(
-                HashStore::build(kernels, r, keys, source, RobinHoodConfig::default())
+                HashStore::build(kernels, r, keys(), source, RobinHoodConfig::default())
                     .map_err(store_error)?,
             ),
             StoreKind::Octree => {
                 let config = OctreeConfig::for_resolution(r).map_err(store_error)?;
                 let (s, _) =
-                    OctreeStore::build(kernels, r, keys, source, config).map_err(store_error)?;
+                    OctreeStore::build(kernels, r, keys(), source, config).map_err(store_error)?;
                 SceneStore::Octree(s)
             }
             StoreKind::PerfectHash => SceneStore::Perfect(
-                PerfectStore::build(kernels, r, keys, source, PerfectAccess::Constrained)
+                PerfectStore::build(kernels, r, keys(), source, PerfectAccess::Constrained)
                     .map_err(store_error)?,
             ),
             StoreKind::TileTree => {

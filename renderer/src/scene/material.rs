@@ -7,7 +7,7 @@ use super::raw::{
     RawMaterial, RawMaterialKind, RawPreset, RawStoreFilter, RawStoreKind, RawTexture,
     RawTextureKind,
 };
-use super::volume::VolumeTexture;
+use super::volume::{mean_linear, VolumeTexture};
 use super::{
     Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind, StoreFilter, StoreKind,
     StoreSpec, SynthesizedSpec,
@@ -305,10 +305,12 @@ fn volume_texture(
     base: &Path,
     store: Option<StoreSpec>,
 ) -> Result<SolidTexture, SceneError> {
-    let why = "a volume texture has its colours in its file and spans the unit cube";
-    doc.reject(&raw.color_a, label, "color_a", why)?;
-    doc.reject(&raw.color_b, label, "color_b", why)?;
-    doc.reject(&raw.scale, label, "scale", why)?;
+    reject_pattern(
+        doc,
+        raw,
+        label,
+        "a volume texture has its colours in its file and spans the unit cube",
+    )?;
     let path = doc.require(
         &raw.path,
         table,
@@ -343,10 +345,12 @@ fn synthesized_texture(
     base: &Path,
     store: Option<StoreSpec>,
 ) -> Result<SolidTexture, SceneError> {
-    let why = "a synthesized texture takes its colours from its exemplar";
-    doc.reject(&raw.color_a, label, "color_a", why)?;
-    doc.reject(&raw.color_b, label, "color_b", why)?;
-    doc.reject(&raw.scale, label, "scale", why)?;
+    reject_pattern(
+        doc,
+        raw,
+        label,
+        "a synthesized texture takes its colours from its exemplar",
+    )?;
     doc.reject(
         &raw.path,
         label,
@@ -369,16 +373,8 @@ fn synthesized_texture(
         .map_err(|e| doc.invalid(exemplar.span(), field.clone(), e.to_string()))?;
     lazysolid_compute::synth::solid::SolidExemplars::new(image.clone(), [None, None, None])
         .map_err(|e| doc.invalid(exemplar.span(), field, e.to_string()))?;
-    let n = (image.width * image.height) as f64;
-    let mut sum = [0f64; 3];
-    for y in 0..image.height {
-        for x in 0..image.width {
-            for (s, v) in sum.iter_mut().zip(image.at(x, y)) {
-                *s += crate::output::srgb_eotf(v as f32 / 255.0) as f64;
-            }
-        }
-    }
-    let mean = Vec3::from_array(sum.map(|s| (s / n) as f32));
+    let (w, h) = (image.width, image.height);
+    let mean = Vec3::from_array(mean_linear((0..w * h).map(|i| image.at(i % w, i / w))));
     let seed = match &raw.seed {
         Some(s) => *s.get_ref(),
         None => 1,
@@ -395,6 +391,14 @@ fn synthesized_texture(
         }),
         store,
     })
+}
+
+/// The errors of a procedural pattern's fields (`color_a`, `color_b`, `scale`) on a texture
+/// that has none, saying `why`.
+fn reject_pattern(doc: &Doc, raw: &RawTexture, label: &str, why: &str) -> Result<(), SceneError> {
+    doc.reject(&raw.color_a, label, "color_a", why)?;
+    doc.reject(&raw.color_b, label, "color_b", why)?;
+    doc.reject(&raw.scale, label, "scale", why)
 }
 
 /// The error of a texture (`what`) read through a store only that names none.

@@ -138,14 +138,20 @@ impl VolumeTexture {
 
     /// The mean colour in linear RGB (a flat stand-in for previews).
     pub fn mean_linear(&self) -> [f32; 3] {
-        let mut sum = [0f64; 3];
-        for c in &self.rgb {
-            for (s, &v) in sum.iter_mut().zip(c) {
-                *s += srgb_eotf(v as f32 / 255.0) as f64;
-            }
-        }
-        sum.map(|s| (s / self.rgb.len().max(1) as f64) as f32)
+        mean_linear(self.rgb.iter().copied())
     }
+}
+
+/// The mean in linear RGB of sRGB-encoded colours (a texture's flat stand-in for previews).
+pub(crate) fn mean_linear(colours: impl Iterator<Item = [u8; 3]>) -> [f32; 3] {
+    let (mut sum, mut n) = ([0f64; 3], 0usize);
+    for c in colours {
+        for (s, v) in sum.iter_mut().zip(c) {
+            *s += srgb_eotf(v as f32 / 255.0) as f64;
+        }
+        n += 1;
+    }
+    sum.map(|s| (s / n.max(1) as f64) as f32)
 }
 
 #[cfg(test)]

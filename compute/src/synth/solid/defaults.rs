@@ -17,7 +17,7 @@
 //! is cheap; the finest level, most of the voxels and the cost of lazy synthesis around a
 //! surface, gets one.
 
-use crate::synth::params::pass_schedule;
+use crate::synth::params::{given_or, jitter_schedule, pass_schedule};
 
 /// Jitter strengths of the volume synthesizer's coarsest levels, coarsest first; finer levels
 /// take [`DEFAULT_SOLID_FINE_JITTER`]. The 2D synthesizer's previous schedule: the solid keeps
@@ -31,23 +31,16 @@ pub const DEFAULT_SOLID_FINE_JITTER: f32 = 0.2;
 
 /// The default jitter strengths of a volume pyramid of `levels` levels, coarsest first.
 pub fn default_solid_jitter(levels: u32) -> Vec<f32> {
-    (0..levels as usize)
-        .map(|l| {
-            DEFAULT_SOLID_COARSE_JITTER
-                .get(l)
-                .copied()
-                .unwrap_or(DEFAULT_SOLID_FINE_JITTER)
-        })
-        .collect()
+    jitter_schedule(
+        levels,
+        &DEFAULT_SOLID_COARSE_JITTER,
+        DEFAULT_SOLID_FINE_JITTER,
+    )
 }
 
 /// `given` jitter strengths, or the solid defaults for `levels` levels when none were given.
 pub fn solid_jitter_or_default(given: &[f32], levels: u32) -> Vec<f32> {
-    if given.is_empty() {
-        default_solid_jitter(levels)
-    } else {
-        given.to_vec()
-    }
+    given_or(given, || default_solid_jitter(levels))
 }
 
 /// Correction passes of every level but the finest.
@@ -64,9 +57,5 @@ pub fn default_solid_passes(levels: u32) -> Vec<u32> {
 /// `given` pass counts, or the solid defaults for `levels` levels when none were given (how
 /// the command line reads an absent `--passes`).
 pub fn solid_passes_or_default(given: &[u32], levels: u32) -> Vec<u32> {
-    if given.is_empty() {
-        default_solid_passes(levels)
-    } else {
-        given.to_vec()
-    }
+    given_or(given, || default_solid_passes(levels))
 }

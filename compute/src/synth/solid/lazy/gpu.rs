@@ -17,7 +17,7 @@
 
 use super::deps::{final_stage, subpass_class, version_at, Dependencies, LevelDeps};
 use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
-use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
+use crate::gpu::{DeviceAddress, DeviceRecords, Gpu, GpuBuffer, Kernel, PushValue};
 use crate::hash::{
     fastmod_multiplier, morton_decode, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable,
     Universe,
@@ -182,8 +182,23 @@ struct LevelSet {
     len: usize,
 }
 
-/// Words of one `LazyLevel` record of `glsl/include/synth/lazy.glsl` (56 bytes).
-const RECORD_WORDS: usize = 7;
+crate::push_block! {
+    /// One level as the kernels see it: `LazyLevel` in `glsl/include/synth/lazy.glsl`,
+    /// borrowing the level's table, versions and counts.
+    #[derive(Clone, Copy)]
+    pub(crate) struct LazyLevelRecord<'a> {
+        cells: DeviceAddress<'a>,
+        fastmod_m: u64,
+        versions: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        table_size: u32,
+        key_bits: u32,
+        probe: u32,
+        stride: u32,
+        margin: i32,
+        extent: u32,
+    }
+}
 
 /// One level's state.
 struct LevelState {
@@ -196,25 +211,28 @@ struct LevelState {
 }
 
 impl LevelState {
-    fn record(&self) -> [u64; RECORD_WORDS] {
-        let (cells, size, bits, probe) = match &self.table {
+    fn record(&self) -> LazyLevelRecord<'_> {
+        let (cells, table_size, key_bits, probe) = match &self.table {
             Some(t) => (
-                t.cells_address().raw(),
+                t.cells_address(),
                 t.table_size(),
                 t.format().key_bits,
                 t.config().probe.id(),
             ),
-            None => (0, 0, 0, 0),
+            None => (DeviceAddress::NULL, 0, 0, 0),
         };
-        [
+        LazyLevelRecord {
             cells,
-            fastmod_multiplier(size.max(1)),
-            self.versions.address().raw(),
-            self.counts.address().raw(),
-            size as u64 | (bits as u64) << 32,
-            probe as u64 | (self.stride as u64) << 32,
-            LAZY_MARGIN as u32 as u64 | (self.universe.dims[0] as u64) << 32,
-        ]
+            fastmod_m: fastmod_multiplier(table_size.max(1)),
+            versions: self.versions.address(),
+            counts: self.counts.address(),
+            table_size,
+            key_bits,
+            probe,
+            stride: self.stride,
+            margin: LAZY_MARGIN,
+            extent: self.universe.dims[0],
+        }
     }
 
     fn bytes(&self) -> u64 {
@@ -258,7 +276,8 @@ pub struct GpuLazySolid {
     params: SynthParams,
     resolution: u32,
     levels: Vec<LevelState>,
-    records: GpuBuffer<u64>,
+    /// Every level's record, rewritten whenever a level's table or buffers change.
+    records: DeviceRecords,
     /// The three roles' exemplar colours, packed RGB, role after role.
     rgb: GpuBuffer<u32>,
 }
@@ -315,7 +334,8 @@ impl GpuLazySolid {
                 len: 0,
             });
         }
-        let records = GpuBuffer::zeroed(gpu, "lazy level records", n_levels * RECORD_WORDS)?;
+        let records: Vec<LazyLevelRecord<'_>> = levels.iter().map(LevelState::record).collect();
+        let records = DeviceRecords::new(gpu, "lazy level records", &records)?;
         let side = analysis.side;
         let rgb: Vec<u32> = (0..ROLES)
             .flat_map(|r| {
@@ -323,7 +343,7 @@ impl GpuLazySolid {
                 (0..side * side).map(move |i| pack_rgb(e.at(i % side, i / side)))
             })
             .collect();
-        let mut me = GpuLazySolid {
+        let me = GpuLazySolid {
             gpu: gpu.clone(),
             synth: GpuSolidSynthesizer::new(gpu, analysis, candidates)?,
             hash: HashKernels::new(gpu)?,
@@ -345,9 +365,6 @@ impl GpuLazySolid {
             records,
             rgb: GpuBuffer::from_slice(gpu, "lazy exemplar colours", &rgb)?,
         };
-        for l in 0..n_levels {
-            me.write_record(l)?;
-        }
         Ok(me)
     }
 
@@ -379,15 +396,18 @@ impl GpuLazySolid {
         GpuLazySolid::new(gpu, exemplars, &analysis, &candidates, &synth, resolution)
     }
 
-    fn write_record(&mut self, l: usize) -> SynthResult<()> {
-        let record = self.levels[l].record();
-        self.records.write(l * RECORD_WORDS, &record)?;
+    /// Rewrites the records the kernels read (they keep the buffers they point into alive).
+    fn write_records(&mut self) -> SynthResult<()> {
+        let records: Vec<LazyLevelRecord<'_>> =
+            self.levels.iter().map(LevelState::record).collect();
+        self.records = DeviceRecords::new(&self.gpu, "lazy level records", &records)?;
         Ok(())
     }
 
     /// Bytes of the kept state: tables, versions and counts of every level.
     pub fn bytes(&self) -> u64 {
-        self.levels.iter().map(LevelState::bytes).sum::<u64>() + self.records.bytes()
+        let record = <LazyLevelRecord<'_> as PushValue>::SIZE as u64;
+        self.levels.iter().map(LevelState::bytes).sum::<u64>() + record * self.levels.len() as u64
     }
 
     /// Voxels stored per level, coarsest first.
@@ -775,7 +795,7 @@ impl GpuLazySolid {
                 }
             }
             state.len += fresh as u32;
-            self.write_record(l)?;
+            self.write_records()?;
         }
         let errors = GpuBuffer::<u32>::zeroed(&gpu, "lazy synthesis errors", 1)?;
         let side = self.synth.side();
