@@ -115,3 +115,9 @@ pub const SOLID_MAX_CANDIDATES: u32 = 12;
 /// Longest crossbar strip: the crossbar ranking loops over S² pairs of N samples, and llvmpipe
 /// stops an invocation after 65535 loop iterations in all (65² · (11 + 1) ≈ 51 k).
 pub const SOLID_MAX_STRIP: u32 = 11;
+
+/// Words of a TileTree leaf record (origin, depth and face mask; per face its tile's map corner
+/// and rectangle): `store/tiletree.glsl` strides by it.
+pub const TILETREE_LEAF_WORDS: u32 = 14;
+/// Words of a TileTree tile record of the fill kernels (`store/tiletree_build.glsl`).
+pub const TILETREE_TILE_WORDS: u32 = 12;

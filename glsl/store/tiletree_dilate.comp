@@ -17,16 +17,16 @@ void main() {
         return;
     }
     TileRecord tile = tiletree_tile(tiletree_tile_of(t));
-    uint stored = tile.side + 2u;
     uint local = t - tile.texel_offset;
-    uint pos = pc.mode == 0u ? local % stored : local / stored;
-    uint step = pc.mode == 0u ? 1u : stored;
+    uint pos = pc.mode == 0u ? local % tile.size.x : local / tile.size.x;
+    uint step = pc.mode == 0u ? 1u : tile.size.x;
+    uint len = pc.mode == 0u ? tile.size.x : tile.size.y;
     uint done = 0u;
-    for (uint d = 1u; d < stored; ++d) {
+    for (uint d = 1u; d < len; ++d) {
         uint src = 0xffffffffu;
         if (pos >= d && filled.v[t - d * step] != 0u) {
             src = t - d * step;
-        } else if (pos + d < stored && filled.v[t + d * step] != 0u) {
+        } else if (pos + d < len && filled.v[t + d * step] != 0u) {
             src = t + d * step;
         }
         if (src != 0xffffffffu) {

@@ -11,10 +11,9 @@ void main() {
         return;
     }
     TileRecord tile = tiletree_tile(tiletree_tile_of(t));
-    uint stored = tile.side + 2u;
     uint local = t - tile.texel_offset;
-    uint x = local % stored;
-    uint y = local / stored;
+    uint x = local % tile.size.x;
+    uint y = local / tile.size.x;
     uint m = (tile.corner.y + y) * pc.map_width + tile.corner.x + x;
     if (pc.mode == 2u) {
         U32Ptr(pc.colours).v[t] = U32Ptr(pc.map).v[m];

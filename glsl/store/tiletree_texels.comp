@@ -12,16 +12,15 @@ void main() {
         return;
     }
     TileRecord tile = tiletree_tile(tiletree_tile_of(t));
-    uint stored = tile.side + 2u;
     uint local = t - tile.texel_offset;
-    uint x = local % stored;
-    uint y = local / stored;
+    uint x = local % tile.size.x;
+    uint y = local / tile.size.x;
     uint a = tile.face / 2u;
     float s = (tile.face & 1u) == 0u ? 1.0 : -1.0;
     uint b = (a + 1u) % 3u;
     uint c = (a + 2u) % 3u;
-    int u = int(tile.origin[b]) + int(x) - 1;
-    int v = int(tile.origin[c]) + int(y) - 1;
+    int u = int(tile.origin[b] + tile.rect_origin.x) + int(x) - 1;
+    int v = int(tile.origin[c] + tile.rect_origin.y) + int(y) - 1;
     precise float cu = float(u) + 0.5;
     precise float cv = float(v) + 0.5;
     float lo = float(tile.origin[a]);

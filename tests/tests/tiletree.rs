@@ -79,13 +79,18 @@ fn footprint_class(h: &TileTreeHost<'_>, p: Vec3, n: Vec3) -> Option<(bool, u32,
     let leaf = tiletree::descend(h, voxel.to_array())?;
     let rec = &h.leaves[LEAF_WORDS * leaf as usize..];
     let origin = [rec[0] & 0xffff, rec[0] >> 16, rec[1] & 0xffff];
-    let side = h.resolution >> ((rec[1] >> 16) & 0xff);
     let face = pick_face(rec[1] >> 24, n);
+    let rect = rec[3 + 2 * face as usize];
+    let first = [rect & 0xff, (rect >> 8) & 0xff];
+    let size = [((rect >> 16) & 0xff) + 1, (rect >> 24) + 1];
     let a = face as usize / 2;
-    let border = [(a + 1) % 3, (a + 2) % 3].iter().any(|&b| {
-        let t = g[b] - origin[b] as f32 + 0.5;
-        t < 1.0 || t >= side as f32
-    });
+    let border = [(a + 1) % 3, (a + 2) % 3]
+        .iter()
+        .enumerate()
+        .any(|(k, &b)| {
+            let t = g[b] - (origin[b] + first[k]) as f32 + 0.5;
+            t < 1.0 || t >= size[k] as f32
+        });
     Some((border, face, leaf))
 }
 
@@ -366,6 +371,12 @@ fn bad_input_gets_clear_errors() {
     };
     let e = err(64, &m.positions, &m.triangles, bad);
     assert!(e.contains("min_tile = 16"), "{e}");
+    let wide = TileTreeConfig {
+        max_tile: 512,
+        ..config
+    };
+    let e = err(1024, &m.positions, &m.triangles, wide);
+    assert!(e.contains("max_tile = 512") && e.contains("256"), "{e}");
     // A map taller than the records' 16-bit coordinates: one 6-texel tile per shelf.
     let narrow = TileTreeConfig {
         max_tile: 4,
@@ -411,7 +422,7 @@ fn armadillo_1024_size() {
     with_gpu(|gpu| {
         let kernels = StoreKernels::new(gpu).unwrap();
         let m = unit_mesh("armadillo.off");
-        for (max_tile, min_tile) in [(16, 4), (32, 4), (64, 8), (8, 4)] {
+        for (max_tile, min_tile) in [(32, 4), (16, 4), (64, 4), (8, 4)] {
             let config = TileTreeConfig {
                 max_tile,
                 min_tile,
@@ -453,7 +464,7 @@ fn armadillo_1024_size() {
                 s.map_height,
                 s.occupancy()
             );
-            if max_tile == 16 {
+            if max_tile == 32 {
                 let dir = std::env::temp_dir().join("lazysolid-armadillo-tiles.png");
                 tree.write_tile_map_png(&dir).unwrap();
                 // What the texels hold: surface hits, against the surface voxels of a volume.
@@ -461,10 +472,10 @@ fn armadillo_1024_size() {
                 let mut hits = 0u64;
                 let mut interior = 0u64;
                 for tile in &plan.tiles {
-                    let side = tile.stored_side();
-                    interior += tile.side as u64 * tile.side as u64;
-                    for y in 0..side {
-                        for x in 0..side {
+                    let [width, height] = tile.stored_size();
+                    interior += tile.rect[2] as u64 * tile.rect[3] as u64;
+                    for y in 0..height {
+                        for x in 0..width {
                             hits += tiletree::texel_voxel(plan, tile, x, y).1 as u64;
                         }
                     }
@@ -481,7 +492,8 @@ fn armadillo_1024_size() {
 }
 
 /// Two stacked sheets facing +Z, 3.2 voxels apart, fold over one column: the tree splits until
-/// they lie in different leaves (T = 4), where a single sheet stays in T = 16 leaves.
+/// they lie in different leaves (T = 4), where a single sheet stays in T = 16 leaves, each tile
+/// cropped to the columns the sheet covers.
 #[test]
 fn folds_split_leaves_until_each_face_projects_injectively() {
     let quad = |z: f32, base: u32| {
@@ -490,9 +502,27 @@ fn folds_split_leaves_until_each_face_projects_injectively() {
     };
     let (a, ta) = quad(0.3, 0);
     let (b, tb) = quad(0.35, 4);
-    let config = TileTreeConfig::default();
+    let config = TileTreeConfig {
+        max_tile: 16,
+        ..TileTreeConfig::default()
+    };
     let one = Plan::new(&a, &ta, 64, config).unwrap();
     assert_eq!(one.stats.leaves_per_depth, vec![0, 0, 16]);
+    // The sheet spans columns 6..=57 (0.1 · 64 = 6.4 to 0.9 · 64 = 57.6) along x and y.
+    assert_eq!(one.tiles.len(), 16);
+    for tile in &one.tiles {
+        assert_eq!(tile.face / 2, 2, "a +Z or -Z tile");
+        for (k, axis) in [0usize, 1].into_iter().enumerate() {
+            let o = tile.origin[axis];
+            let (first, last) = (6.max(o), 57.min(o + 15));
+            assert_eq!(
+                [tile.rect[k], tile.rect[k + 2]],
+                [first - o, last - first + 1],
+                "tile at {:?}",
+                tile.origin
+            );
+        }
+    }
     let positions: Vec<Vec3> = a.iter().chain(&b).copied().collect();
     let triangles: Vec<[u32; 3]> = ta.iter().chain(&tb).copied().collect();
     let two = Plan::new(&positions, &triangles, 64, config).unwrap();

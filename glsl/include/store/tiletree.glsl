@@ -6,11 +6,13 @@
 // Layout (all uint words):
 //   nodes:  8 cells per node (octant x | y << 1 | z << 2); a cell is 0 (empty), node index + 1,
 //           or TILETREE_LEAF | leaf index. The root's entry is `root`.
-//   leaves: 8 words per leaf: origin x | y << 16; origin z | depth << 16 | face mask << 24;
-//           then per face f (2 * axis + (sign < 0)) its tile's map corner x | y << 16.
-//   map:    the tile map, RGBA8 words, row-major, `map_width` wide. A tile of a leaf of depth d
-//           has T = R >> d texels per side plus a one-texel border: (T + 2)^2 texels, texel
-//           (x, y) at the leaf's column (origin_b + x - 1, origin_c + y - 1), b, c the face's
+//   leaves: TILETREE_LEAF_WORDS (14) words per leaf: origin x | y << 16; origin z | depth << 16
+//           | face mask << 24; then per face f (2 * axis + (sign < 0)) two words: its tile's map
+//           corner x | y << 16, and its rectangle of columns x0 | y0 << 8 | (w - 1) << 16 |
+//           (h - 1) << 24 (relative to the leaf's origin).
+//   map:    the tile map, RGBA8 words, row-major, `map_width` wide. A tile holds its w x h
+//           columns plus a one-texel border: (w + 2) x (h + 2) texels, texel (x, y) at the
+//           leaf's column (origin_b + x0 + x - 1, origin_c + y0 + y - 1), b, c the face's
 //           in-plane axes (axis + 1, axis + 2 mod 3).
 //
 // Use from any kernel:
@@ -87,8 +89,9 @@ uint store_tiletree_face(uint mask, vec3 n) {
     return pick;
 }
 
-// Shared by both filters: the tile of the leaf and face at pos; false in empty space.
-bool store_tiletree_tile(TileTreeParams p, vec3 pos, vec3 n, out uvec2 corner, out uint side, out vec2 t) {
+// Shared by both filters: the tile of the leaf and face at pos (its map corner and its
+// rectangle's width and height in columns) and the in-tile coordinate; false in empty space.
+bool store_tiletree_tile(TileTreeParams p, vec3 pos, vec3 n, out uvec2 corner, out uvec2 size, out vec2 t) {
     precise vec3 g = pos * float(p.resolution);
     uvec3 voxel = uvec3(clamp(floor(g), vec3(0.0), vec3(float(p.resolution) - 1.0)));
     uint leaf = store_tiletree_leaf(p, voxel);
@@ -96,42 +99,43 @@ bool store_tiletree_tile(TileTreeParams p, vec3 pos, vec3 n, out uvec2 corner, o
         return false;
     }
     U32Ptr leaves = U32Ptr(p.leaves);
-    uint w0 = leaves.v[8u * leaf];
-    uint w1 = leaves.v[8u * leaf + 1u];
+    uint base = TILETREE_LEAF_WORDS * leaf;
+    uint w0 = leaves.v[base];
+    uint w1 = leaves.v[base + 1u];
     uvec3 origin = uvec3(w0 & 0xffffu, w0 >> 16, w1 & 0xffffu);
-    uint depth = (w1 >> 16) & 0xffu;
     uint face = store_tiletree_face(w1 >> 24, n);
-    uint c = leaves.v[8u * leaf + 2u + face];
+    uint c = leaves.v[base + 2u + 2u * face];
+    uint r = leaves.v[base + 3u + 2u * face];
     corner = uvec2(c & 0xffffu, c >> 16);
-    side = (p.resolution >> depth) + 2u;
+    size = uvec2(((r >> 16) & 0xffu) + 1u, (r >> 24) + 1u);
     uint a = face / 2u;
     uint b = (a + 1u) % 3u;
     uint cc = (a + 2u) % 3u;
-    precise float tb = (g[b] - float(origin[b])) + 0.5;
-    precise float tc = (g[cc] - float(origin[cc])) + 0.5;
+    precise float tb = (g[b] - float(origin[b] + (r & 0xffu))) + 0.5;
+    precise float tc = (g[cc] - float(origin[cc] + ((r >> 8) & 0xffu))) + 0.5;
     t = vec2(tb, tc);
     return true;
 }
 
 vec4 store_tiletree_nearest(TileTreeParams p, vec3 pos, vec3 n) {
     uvec2 corner;
-    uint side;
+    uvec2 size;
     vec2 t;
-    if (!store_tiletree_tile(p, pos, n, corner, side, t)) {
+    if (!store_tiletree_tile(p, pos, n, corner, size, t)) {
         return vec4(0.0);
     }
-    uvec2 xy = uvec2(clamp(floor(t + 0.5), vec2(1.0), vec2(float(side - 2u))));
+    uvec2 xy = uvec2(clamp(floor(t + 0.5), vec2(1.0), vec2(size)));
     return unpackUnorm4x8(U32Ptr(p.map).v[(corner.y + xy.y) * p.map_width + corner.x + xy.x]);
 }
 
 vec4 store_tiletree_bilinear(TileTreeParams p, vec3 pos, vec3 n) {
     uvec2 corner;
-    uint side;
+    uvec2 size;
     vec2 t;
-    if (!store_tiletree_tile(p, pos, n, corner, side, t)) {
+    if (!store_tiletree_tile(p, pos, n, corner, size, t)) {
         return vec4(0.0);
     }
-    vec2 i = clamp(floor(t), vec2(0.0), vec2(float(side - 2u)));
+    vec2 i = clamp(floor(t), vec2(0.0), vec2(size));
     precise vec2 f = clamp(t - i, vec2(0.0), vec2(1.0));
     uvec2 xy = uvec2(i);
     U32Ptr map = U32Ptr(p.map);

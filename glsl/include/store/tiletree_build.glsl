@@ -8,7 +8,7 @@
 #include "morton.glsl"
 
 layout(push_constant, scalar) uniform Push {
-    uint64_t tiles;       // TILE_WORDS (12) uint per tile, packing order
+    uint64_t tiles;       // TILETREE_TILE_WORDS (12) uint per tile, packing order
     uint64_t triangles;   // candidate triangle indices of all tiles
     uint64_t positions;   // vertex positions in grid units (3 floats each)
     uint64_t indices;     // triangles' vertex indices (3 uints each)
@@ -28,12 +28,14 @@ const float TILETREE_MARGIN = 3.0;
 
 struct TileRecord {
     uvec3 origin;
-    uint side;     // T
+    uint side;     // T: the leaf's side (its slab along the face axis)
     uint face;
     uint tri_start;
     uint tri_count;
     uint texel_offset;
     uvec2 corner;
+    uvec2 rect_origin;  // first column along (b, c), relative to the leaf's origin
+    uvec2 size;         // stored texels per row and column: w + 2, h + 2
 };
 
 // The tile owning texel t: the last tile whose texel offset is <= t.
@@ -43,7 +45,7 @@ uint tiletree_tile_of(uint t) {
     uint hi = pc.n_tiles;
     while (hi - lo > 1u) {
         uint mid = (lo + hi) / 2u;
-        if (tiles.v[12u * mid + 7u] <= t) {
+        if (tiles.v[TILETREE_TILE_WORDS * mid + 7u] <= t) {
             lo = mid;
         } else {
             hi = mid;
@@ -54,7 +56,7 @@ uint tiletree_tile_of(uint t) {
 
 TileRecord tiletree_tile(uint k) {
     U32Ptr tiles = U32Ptr(pc.tiles);
-    uint o = 12u * k;
+    uint o = TILETREE_TILE_WORDS * k;
     TileRecord r;
     r.origin = uvec3(tiles.v[o], tiles.v[o + 1u], tiles.v[o + 2u]);
     r.side = tiles.v[o + 3u];
@@ -63,6 +65,10 @@ TileRecord tiletree_tile(uint k) {
     r.tri_count = tiles.v[o + 6u];
     r.texel_offset = tiles.v[o + 7u];
     r.corner = uvec2(tiles.v[o + 8u], tiles.v[o + 9u]);
+    uint x0y0 = tiles.v[o + 10u];
+    uint wh = tiles.v[o + 11u];
+    r.rect_origin = uvec2(x0y0 & 0xffffu, x0y0 >> 16);
+    r.size = uvec2((wh & 0xffffu) + 2u, (wh >> 16) + 2u);
     return r;
 }
 

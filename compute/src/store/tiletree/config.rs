@@ -6,14 +6,18 @@ use crate::voxel::MAX_RESOLUTION;
 
 /// Largest tile map side in texels (the per-leaf records keep 16-bit tile coordinates).
 pub const MAX_MAP_SIDE: u32 = 1 << 15;
+/// Largest tile side T (`max_tile`): a leaf record keeps a tile's rectangle in 8-bit fields.
+pub const MAX_TILE: u32 = 256;
 /// Largest tile map in texels (RGBA8 words): 512 MiB, well inside one device allocation.
 pub const MAX_MAP_TEXELS: u64 = 1 << 27;
 
 /// How finely the octree is refined and tiled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TileTreeConfig {
-    /// Largest tile side T (texels without border): nodes with larger tiles are always split,
-    /// so tiles hug the surface instead of covering mostly empty leaf faces.
+    /// Largest tile side T (texels without border, at most [`MAX_TILE`]): nodes with larger
+    /// tiles are always split. Tiles are cropped to the surface they carry, so larger leaves
+    /// cost fewer borders and records without paying for empty face area (32 gave the smallest
+    /// armadillo at 1024, see `docs/stores.md`).
     pub max_tile: u32,
     /// Smallest tile side T: the maximum depth. A leaf at this size keeps a fold if it has one
     /// (counted in [`TileTreeStats::folded_leaves`](super::TileTreeStats)).
@@ -25,7 +29,7 @@ pub struct TileTreeConfig {
 impl Default for TileTreeConfig {
     fn default() -> Self {
         TileTreeConfig {
-            max_tile: 16,
+            max_tile: 32,
             min_tile: 4,
             max_map_width: 16384,
         }
@@ -45,6 +49,11 @@ impl TileTreeConfig {
             Some(format!(
                 "max_tile = {} and min_tile = {} must be powers of two",
                 self.max_tile, self.min_tile
+            ))
+        } else if self.max_tile > MAX_TILE {
+            Some(format!(
+                "max_tile = {} exceeds {MAX_TILE} (tile rectangles are 8-bit fields of the leaf records)",
+                self.max_tile
             ))
         } else if self.min_tile > self.max_tile {
             Some(format!(

@@ -20,8 +20,9 @@ use super::plan::{Plan, Tile};
 use crate::store::HostColours;
 
 /// The voxel a texel takes its colour from and whether it met the surface. Texel (x, y) of a
-/// tile (border included, so the leaf's columns are x, y = 1..=T) is the column
-/// u = origin_b + x − 1, v = origin_c + y − 1 along the face axis a. Among the candidate triangles' hits h
+/// tile with rectangle (x0, y0, w, h) (border included, so its columns are x = 1..=w,
+/// y = 1..=h) is the column u = origin_b + x0 + x − 1, v = origin_c + y0 + y − 1 along the face
+/// axis a. Among the candidate triangles' hits h
 /// within [`MARGIN`] voxels of the leaf's slab [origin_a, origin_a + T], a hit inside the slab
 /// wins, nearest the face (largest s·h); else the hit nearest the slab (then largest s·h). The
 /// voxel is (floor h, u, v) clamped onto the grid. Without a hit: the voxel at the middle of
@@ -30,8 +31,8 @@ pub fn texel_voxel(plan: &Plan, tile: &Tile, x: u32, y: u32) -> ([u32; 3], bool)
     let r = plan.resolution as i64;
     let (a, s) = face_axis(tile.face);
     let (b, c) = plane_axes(a);
-    let u = tile.origin[b] as i64 + x as i64 - 1;
-    let v = tile.origin[c] as i64 + y as i64 - 1;
+    let u = tile.origin[b] as i64 + tile.rect[0] as i64 + x as i64 - 1;
+    let v = tile.origin[c] as i64 + tile.rect[1] as i64 + y as i64 - 1;
     let cu = u as f32 + 0.5;
     let cv = v as f32 + 0.5;
     let lo = tile.origin[a] as f32;
@@ -80,23 +81,27 @@ pub fn texel_voxel(plan: &Plan, tile: &Tile, x: u32, y: u32) -> ([u32; 3], bool)
 }
 
 /// Fills `colours` (texel order) of empty texels from the nearest filled one along rows
-/// (`step` 1) or columns (`step` = the tile's side); returns the new filled flags.
+/// (`step` 1) or columns (`step` = the tile's stored width); returns the new filled flags.
 fn dilate(plan: &Plan, colours: &mut [u32], filled: &[bool], columns: bool) -> Vec<bool> {
     let mut out = filled.to_vec();
     for tile in &plan.tiles {
-        let side = tile.stored_side() as usize;
+        let [width, height] = tile.stored_size().map(|s| s as usize);
         let base = tile.texel_offset as usize;
-        for y in 0..side {
-            for x in 0..side {
-                let t = base + y * side + x;
+        for y in 0..height {
+            for x in 0..width {
+                let t = base + y * width + x;
                 if filled[t] {
                     continue;
                 }
-                let (pos, step) = if columns { (y, side) } else { (x, 1) };
-                for d in 1..side {
+                let (pos, step, len) = if columns {
+                    (y, width, height)
+                } else {
+                    (x, 1, width)
+                };
+                for d in 1..len {
                     let source = if pos >= d && filled[t - d * step] {
                         Some(t - d * step)
-                    } else if pos + d < side && filled[t + d * step] {
+                    } else if pos + d < len && filled[t + d * step] {
                         Some(t + d * step)
                     } else {
                         None
@@ -123,10 +128,10 @@ pub fn fill_cpu(plan: &Plan, colours: &HostColours<'_>) -> Vec<u32> {
     let mut texel_colours = vec![0u32; n];
     let mut filled = vec![false; n];
     for tile in &plan.tiles {
-        let side = tile.stored_side();
-        for y in 0..side {
-            for x in 0..side {
-                let t = (tile.texel_offset + y * side + x) as usize;
+        let [width, height] = tile.stored_size();
+        for y in 0..height {
+            for x in 0..width {
+                let t = (tile.texel_offset + y * width + x) as usize;
                 let (voxel, hit) = texel_voxel(plan, tile, x, y);
                 texel_colours[t] = if hit || !keyed {
                     colours.colour(voxel, plan.resolution).unwrap_or(0)
@@ -142,11 +147,11 @@ pub fn fill_cpu(plan: &Plan, colours: &HostColours<'_>) -> Vec<u32> {
     let width = plan.stats.map_width as usize;
     let mut map = vec![0u32; width * plan.stats.map_height as usize];
     for tile in &plan.tiles {
-        let side = tile.stored_side() as usize;
-        for y in 0..side {
-            let src = tile.texel_offset as usize + y * side;
+        let [w, h] = tile.stored_size().map(|s| s as usize);
+        for y in 0..h {
+            let src = tile.texel_offset as usize + y * w;
             let dst = (tile.corner[1] as usize + y) * width + tile.corner[0] as usize;
-            map[dst..dst + side].copy_from_slice(&texel_colours[src..src + side]);
+            map[dst..dst + w].copy_from_slice(&texel_colours[src..src + w]);
         }
     }
     map

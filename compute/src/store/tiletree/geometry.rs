@@ -20,6 +20,12 @@ pub const MARGIN: f32 = 3.0;
 /// they fall into the same or neighbouring voxels, whose colours a tile cannot tell apart.
 pub const FOLD_TOLERANCE: f32 = 1.0;
 
+/// A face's tile covers, besides the triangles a lookup with their geometric normal reads
+/// through it, those whose score s·n_a on it is within this fraction of |n| of their best
+/// kept face's: a normal tilted from the geometric one (a smooth normal, a rounding of the hit
+/// point) can pick that face, and its tile must then still hold the point.
+pub const SWITCH_MARGIN: f32 = 0.2;
+
 /// Face index 2·axis + (sign < 0): +X, −X, +Y, −Y, +Z, −Z.
 pub fn face_axis(face: u32) -> (usize, f32) {
     ((face / 2) as usize, if face & 1 == 0 { 1.0 } else { -1.0 })

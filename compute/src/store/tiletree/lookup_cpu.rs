@@ -73,27 +73,28 @@ pub fn lookup_cpu(host: &TileTreeHost<'_>, pos: Vec3, normal: Vec3, filter: Filt
     };
     let rec = &host.leaves[LEAF_WORDS * leaf as usize..][..LEAF_WORDS];
     let origin = [rec[0] & 0xffff, rec[0] >> 16, rec[1] & 0xffff];
-    let depth = (rec[1] >> 16) & 0xff;
     let mask = rec[1] >> 24;
     let face = pick_face(mask, normal);
-    let corner = rec[2 + face as usize];
+    let corner = rec[2 + 2 * face as usize];
+    let rect = rec[3 + 2 * face as usize];
     let (cx, cy) = (corner & 0xffff, corner >> 16);
-    let side = (host.resolution >> depth) + 2;
+    let (x0, y0) = (rect & 0xff, (rect >> 8) & 0xff);
+    let (columns, rows) = (((rect >> 16) & 0xff) + 1, (rect >> 24) + 1);
     let (a, _) = face_axis(face);
     let (b, c) = plane_axes(a);
-    let tb = (g[b] - origin[b] as f32) + 0.5;
-    let tc = (g[c] - origin[c] as f32) + 0.5;
+    let tb = (g[b] - (origin[b] + x0) as f32) + 0.5;
+    let tc = (g[c] - (origin[c] + y0) as f32) + 0.5;
     let w = host.map_width as usize;
     let texel = |x: u32, y: u32| host.map[(cy + y) as usize * w + (cx + x) as usize];
     match filter {
         Filter::Nearest => {
-            let x = ((tb + 0.5).floor().clamp(1.0, (side - 2) as f32)) as u32;
-            let y = ((tc + 0.5).floor().clamp(1.0, (side - 2) as f32)) as u32;
+            let x = ((tb + 0.5).floor().clamp(1.0, columns as f32)) as u32;
+            let y = ((tc + 0.5).floor().clamp(1.0, rows as f32)) as u32;
             unpack_rgba8(texel(x, y))
         }
         Filter::Trilinear => {
-            let ib = tb.floor().clamp(0.0, (side - 2) as f32);
-            let ic = tc.floor().clamp(0.0, (side - 2) as f32);
+            let ib = tb.floor().clamp(0.0, columns as f32);
+            let ic = tc.floor().clamp(0.0, rows as f32);
             let fx = (tb - ib).clamp(0.0, 1.0);
             let fy = (tc - ic).clamp(0.0, 1.0);
             let (x, y) = (ib as u32, ic as u32);

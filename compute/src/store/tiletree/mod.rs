@@ -1,8 +1,8 @@
 //! The TileTree store (Lefebvre and Dachsbacher, "TileTrees", I3D 2007): an octree around the
 //! surface, refined until each leaf holds at most one surface fold along the main axes, whose
-//! leaves carry 2D texture tiles on up to six faces, packed into one 2D tile map. A lookup
-//! descends to the leaf, picks the face from the surface normal, projects the point in
-//! parallel onto it and does one bilinear fetch: 4 texels instead of the 8 of a volume's
+//! leaves carry 2D texture tiles on up to six faces (each cropped to the surface it carries),
+//! packed into one 2D tile map. A lookup descends to the leaf, picks the face from the surface
+//! normal, projects the point in parallel onto it and does one bilinear fetch: 4 texels instead of the 8 of a volume's
 //! trilinear filter, and only a surface layer of texels instead of a thick one.
 //!
 //! Split of the build: the CPU refines the tree (a recursive fold test per node), packs the
@@ -20,9 +20,11 @@ mod pack;
 mod plan;
 mod refine;
 
-pub use config::{TileTreeConfig, MAX_MAP_SIDE, MAX_MAP_TEXELS};
+pub use config::{TileTreeConfig, MAX_MAP_SIDE, MAX_MAP_TEXELS, MAX_TILE};
 pub use fill_cpu::{fill_cpu, texel_voxel};
-pub use geometry::{column_hit, dominant_face, Surface, CONE, FOLD_TOLERANCE, MARGIN};
+pub use geometry::{
+    column_hit, dominant_face, Surface, CONE, FOLD_TOLERANCE, MARGIN, SWITCH_MARGIN,
+};
 pub use gpu::{TileTree, TileTreeParams};
 pub use lookup_cpu::{descend, lookup_cpu, pick_face, TileTreeHost};
 pub use plan::{Plan, Tile, TileTreeStats, LEAF_WORDS, TILE_WORDS};

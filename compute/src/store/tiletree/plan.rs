@@ -10,12 +10,15 @@ use crate::store::StoreError;
 use glam::Vec3;
 
 /// Words of a leaf record: origin x | y << 16; origin z | depth << 16 | face mask << 24; then
-/// for each of the six faces its tile's map corner x | y << 16 (0 when absent).
-pub const LEAF_WORDS: usize = 8;
+/// for each of the six faces two words (0 when absent): its tile's map corner x | y << 16, and
+/// its rectangle of columns x0 | y0 << 8 | (w − 1) << 16 | (h − 1) << 24 ([`Tile::rect`]; the
+/// tile sides are at most [`MAX_TILE`](super::config::MAX_TILE) = 256).
+pub const LEAF_WORDS: usize = crate::shader_constants::TILETREE_LEAF_WORDS as usize;
 /// Words of a tile record on the GPU (see [`Tile::record`]).
-pub const TILE_WORDS: usize = 12;
+pub const TILE_WORDS: usize = crate::shader_constants::TILETREE_TILE_WORDS as usize;
 
-/// One tile: the texels of one face of one leaf, T × T plus a one-texel border.
+/// One tile: the texels of a rectangle of columns of one face of one leaf, w × h plus a
+/// one-texel border.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Tile {
     /// Its leaf.
@@ -24,23 +27,27 @@ pub struct Tile {
     pub face: u32,
     /// The leaf's lowest corner, voxels.
     pub origin: [u32; 3],
-    /// T: texels per side without border.
+    /// T: the leaf's side in voxels (its slab along the face axis).
     pub side: u32,
+    /// The columns it covers, border excluded: first column along the face's in-plane axes
+    /// (b, c) relative to the leaf's origin, width w and height h.
+    pub rect: [u32; 4],
     /// Lowest corner in the tile map.
     pub corner: [u32; 2],
-    /// Index of its first texel in texel order (tiles in packing order, rows of T + 2).
+    /// Index of its first texel in texel order (tiles in packing order, rows of w + 2).
     pub texel_offset: u32,
     /// Its candidate triangles: `Plan::tile_triangles[start..start + count]`.
     pub triangles: [u32; 2],
 }
 
 impl Tile {
-    /// Texels per side with the border.
-    pub fn stored_side(&self) -> u32 {
-        self.side + 2
+    /// Texels per row and per column with the border: w + 2, h + 2.
+    pub fn stored_size(&self) -> [u32; 2] {
+        [self.rect[2] + 2, self.rect[3] + 2]
     }
 
-    /// The GPU record: origin xyz, T, face, triangle start, count, texel offset, corner xy, 0, 0.
+    /// The GPU record: origin xyz, T, face, triangle start, count, texel offset, corner xy,
+    /// x0 | y0 << 16, w | h << 16.
     pub fn record(&self) -> [u32; TILE_WORDS] {
         [
             self.origin[0],
@@ -53,8 +60,8 @@ impl Tile {
             self.texel_offset,
             self.corner[0],
             self.corner[1],
-            0,
-            0,
+            self.rect[0] | self.rect[1] << 16,
+            self.rect[2] | self.rect[3] << 16,
         ]
     }
 }
@@ -127,13 +134,13 @@ impl Plan {
         config.check(resolution)?;
         let surface = Surface::new(positions, triangles, resolution)?;
         let refined = refine(&surface, resolution, config);
-        let sides: Vec<u32> = refined
+        let sizes: Vec<[u32; 2]> = refined
             .faces
             .iter()
-            .map(|f| (resolution >> refined.leaves[f.leaf as usize].depth) + 2)
+            .map(|f| [f.rect[2] + 2, f.rect[3] + 2])
             .collect();
-        let packing = pack(&sides, &config)?;
-        let mut tiles = Vec::with_capacity(sides.len());
+        let packing = pack(&sizes, &config)?;
+        let mut tiles = Vec::with_capacity(sizes.len());
         let mut tile_triangles = Vec::new();
         let mut texels = 0u64;
         let mut leaf_records = vec![0u32; LEAF_WORDS * refined.leaves.len()];
@@ -150,14 +157,17 @@ impl Plan {
                 face: f.face,
                 origin: l.origin,
                 side: resolution >> l.depth,
+                rect: f.rect,
                 corner,
                 texel_offset: texels as u32,
                 triangles: [tile_triangles.len() as u32, f.triangles.len() as u32],
             };
             tile_triangles.extend_from_slice(&f.triangles);
-            texels += sides[i] as u64 * sides[i] as u64;
-            leaf_records[LEAF_WORDS * f.leaf as usize + 2 + f.face as usize] =
-                corner[0] | corner[1] << 16;
+            texels += sizes[i][0] as u64 * sizes[i][1] as u64;
+            let w = &mut leaf_records[LEAF_WORDS * f.leaf as usize + 2 + 2 * f.face as usize..];
+            w[0] = corner[0] | corner[1] << 16;
+            let [x0, y0, width, height] = f.rect;
+            w[1] = x0 | y0 << 8 | (width - 1) << 16 | (height - 1) << 24;
             tiles.push(tile);
         }
         let mut stats = TileTreeStats {

@@ -1,7 +1,12 @@
 //! The octree around the surface, refined on the CPU: a node is split while its tiles are
 //! larger than `max_tile`, or while one of its faces shows a fold (two surface sheets over one
-//! texel column, more than [`FOLD_TOLERANCE`] voxels apart), down to `min_tile`. A leaf gets a
-//! face for every direction that is the dominant normal direction of one of its triangles.
+//! texel column, more than [`FOLD_TOLERANCE`] voxels apart), down to `min_tile`.
+//!
+//! A leaf's candidate faces are the dominant normal directions of its triangles. A face is
+//! dropped when every triangle a lookup would read through it lies in the cone of another kept
+//! face (whose fill sees that triangle, and whose fold test passed over it), fewest triangles
+//! first; each kept face's tile is then cropped to the rectangle of columns its triangles cover
+//! (counting those within [`SWITCH_MARGIN`] of picking it). Together they halve the tile map.
 //!
 //! The fold test rasterizes, per present face, the triangles of the face's cone that overlap
 //! the leaf at the T × T texel-column centres of the face with [`column_hit`] (the function
@@ -11,7 +16,10 @@
 //! seen, and sheets closer than [`FOLD_TOLERANCE`] count as one.
 
 use super::config::TileTreeConfig;
-use super::geometry::{column_hit, face_axis, plane_axes, Surface, FOLD_TOLERANCE, MARGIN};
+use super::geometry::{
+    column_hit, face_axis, plane_axes, Surface, FOLD_TOLERANCE, MARGIN, SWITCH_MARGIN,
+};
+use super::lookup_cpu::pick_face;
 use crate::voxel::triangle_box_overlap;
 use glam::Vec3;
 
@@ -33,14 +41,17 @@ pub struct Leaf {
 }
 
 /// One face of a leaf that carries a tile, with the triangles its texels may hit: those of
-/// the face's cone overlapping the leaf grown by one texel in the plane (the border columns)
-/// and by [`MARGIN`] voxels along the axis.
+/// the face's cone overlapping its rectangle grown by one texel in the plane (the border
+/// columns) and the leaf's slab grown by [`MARGIN`] voxels along the axis.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LeafFace {
     /// Index of the leaf.
     pub leaf: u32,
     /// Face index (2·axis + (sign < 0)).
     pub face: u32,
+    /// The columns the tile covers, border excluded: first column along the face's in-plane
+    /// axes (b, c) relative to the leaf's origin, then width and height (≥ 1).
+    pub rect: [u32; 4],
     /// Candidate triangles, ascending.
     pub triangles: Vec<u32>,
 }
@@ -129,20 +140,24 @@ impl Refiner<'_> {
             return index as u32 + 1;
         }
         let leaf = self.out.leaves.len() as u32;
+        let (mask, rects) = self.tiles(origin, t, mask, &inside);
         self.out.leaves.push(Leaf {
             origin,
             depth,
             mask,
             folded,
         });
-        for face in 0..6 {
-            if mask & (1 << face) == 0 {
+        for (face, rect) in (0..6).zip(rects) {
+            let Some(rect) = rect else {
                 continue;
-            }
+            };
             let (a, _) = face_axis(face);
-            let mut grow = Vec3::ONE;
-            grow[a] = MARGIN;
-            let (glo, ghi) = (lo - grow, hi + grow);
+            let (b, c) = plane_axes(a);
+            let (mut glo, mut ghi) = (lo - MARGIN, hi + MARGIN);
+            glo[b] = lo[b] + rect[0] as f32 - 1.0;
+            ghi[b] = lo[b] + (rect[0] + rect[2]) as f32 + 1.0;
+            glo[c] = lo[c] + rect[1] as f32 - 1.0;
+            ghi[c] = lo[c] + (rect[1] + rect[3]) as f32 + 1.0;
             let triangles = near
                 .iter()
                 .copied()
@@ -154,10 +169,81 @@ impl Refiner<'_> {
             self.out.faces.push(LeafFace {
                 leaf,
                 face,
+                rect,
                 triangles,
             });
         }
         LEAF_BIT | leaf
+    }
+
+    /// The faces a leaf keeps (a mask) and each one's rectangle of columns ([`LeafFace::rect`]),
+    /// given its candidate faces `mask` and the triangles `inside` it.
+    fn tiles(
+        &self,
+        origin: [u32; 3],
+        t: u32,
+        mask: u32,
+        inside: &[u32],
+    ) -> (u32, [Option<[u32; 4]>; 6]) {
+        let surface = self.surface;
+        let normals: Vec<Vec3> = inside
+            .iter()
+            .map(|&i| {
+                let v = surface.vertices(i);
+                (v[1] - v[0]).cross(v[2] - v[0])
+            })
+            .collect();
+        let cones = |i: u32| surface.cones[i as usize] as u32;
+        let mut count = [0usize; 6];
+        for &i in inside {
+            count[surface.face[i as usize] as usize] += 1;
+        }
+        let mut order: Vec<u32> = (0..6).filter(|f| mask & (1 << f) != 0).collect();
+        order.sort_by_key(|&f| (count[f as usize], f));
+        let mut kept = mask;
+        for f in order {
+            let others = kept & !(1 << f);
+            if others == 0 {
+                break;
+            }
+            let covered = inside
+                .iter()
+                .zip(&normals)
+                .all(|(&i, &n)| pick_face(kept, n) != f || cones(i) & others != 0);
+            if covered {
+                kept = others;
+            }
+        }
+        let score = |n: Vec3, f: u32| {
+            let (a, s) = face_axis(f);
+            s * n[a]
+        };
+        let mut rects: [Option<[u32; 4]>; 6] = [None; 6];
+        for (&i, &n) in inside.iter().zip(&normals) {
+            let pick = pick_face(kept, n);
+            let floor = score(n, pick) - SWITCH_MARGIN * n.length();
+            let v = surface.vertices(i);
+            let (lo, hi) = (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]));
+            for f in 0..6 {
+                let reads = f == pick || (cones(i) & (1 << f) != 0 && score(n, f) >= floor);
+                if kept & (1 << f) == 0 || !reads {
+                    continue;
+                }
+                let (a, _) = face_axis(f);
+                let (b, c) = plane_axes(a);
+                let column = |x: f32, axis: usize| {
+                    (x - origin[axis] as f32).floor().clamp(0.0, t as f32 - 1.0) as u32
+                };
+                let (x0, y0) = (column(lo[b], b), column(lo[c], c));
+                let (x1, y1) = (column(hi[b], b), column(hi[c], c));
+                let r = rects[f as usize].get_or_insert([x0, y0, x1, y1]);
+                *r = [r[0].min(x0), r[1].min(y0), r[2].max(x1), r[3].max(y1)];
+            }
+        }
+        for r in rects.iter_mut().flatten() {
+            *r = [r[0], r[1], r[2] - r[0] + 1, r[3] - r[1] + 1];
+        }
+        (kept, rects)
     }
 
     /// Whether a present face of the node sees two sheets over one texel column.
