@@ -5,6 +5,7 @@
 //! - [`accel`]: obvhs CWBVHs per mesh and over instances, uploaded for the GLSL traversal.
 //! - [`shading`]: the GPU records of materials, lights and environment, with a CPU reference
 //!   of the GLSL shading library.
+//! - [`fracture`]: plane cuts and Voronoi fracture of closed meshes into closed, capped pieces.
 //! - [`glint`]: the infinite glint microstructure by example (point and range queries).
 //! - [`render`]: the path-tracing kernel's driver (progressive passes into a float film).
 //! - [`output`] and [`diff`]: EXR/PNG writing and FLIP image comparison.
@@ -14,6 +15,7 @@
 pub mod accel;
 pub mod assets;
 pub mod diff;
+pub mod fracture;
 pub mod glint;
 pub mod mesh;
 pub mod output;

@@ -50,6 +50,9 @@ enum Command {
     /// Compare an image with a reference using FLIP: statistics, an optional error map, and
     /// exit status 3 above an optional mean-error threshold.
     Diff(cli::diff::DiffArgs),
+    /// Cut a closed mesh by planes or break it into Voronoi pieces, written as OBJ with the cut
+    /// faces in their own group and material.
+    Fracture(cli::fracture::FractureArgs),
     /// Path-trace a scene file (TOML) into a PNG and an HDR EXR.
     Render(cli::render::RenderArgs),
     /// Synthesize a window of the unbounded texture plane from an exemplar (PNG, JPEG or GIMP
@@ -89,6 +92,7 @@ fn main() {
         Command::Diff(d) => cli::diff::run(&d),
         Command::Render(r) => cli::render::run(&r, &global),
         Command::Synth(s) => cli::synth::run(&s, &global),
+        Command::Fracture(f) => cli::fracture::run(&f),
         Command::Solid(s) => cli::solid::run(&s, &global),
     };
     // Every device is dropped by now, so leak reports are in the logs.

@@ -5,6 +5,7 @@ pub mod builder;
 pub mod device;
 pub mod diff;
 pub mod exit_status;
+pub mod fracture;
 pub mod output;
 pub mod render;
 pub mod resolution;
