@@ -800,7 +800,11 @@ fn quad_faces_up_with_unit_area() {
 #[test]
 fn documented_example_loads() {
     let doc = std::fs::read_to_string(repo().join("docs/scenes.md")).unwrap();
-    let start = doc.find("```toml\n").expect("a toml block") + "```toml\n".len();
+    let example = doc
+        .find("## A complete example")
+        .expect("the example section");
+    let start =
+        example + doc[example..].find("```toml\n").expect("a toml block") + "```toml\n".len();
     let end = start + doc[start..].find("```").unwrap();
     let bunny = repo().join("assets/meshes/bunny00.off");
     let text = doc[start..end].replace(
@@ -1072,4 +1076,147 @@ fn synthesized_textures_name_their_exemplar_and_store() {
         15,
         "material \"white\".texture.seed",
     );
+}
+
+/// BASE with its box named `b`, followed by `more` (which starts on line 20).
+fn broken(more: &str) -> String {
+    append(&format!("name = \"b\"\n{more}"))
+}
+
+/// `[[fracture]]` and `[[cut]]` replace the named instance by closed pieces of its mesh (in its
+/// coordinates, cap faces marked) whose volumes add up to the mesh's; everything else stays.
+#[test]
+fn fractures_and_cuts_replace_the_instance_by_closed_pieces() {
+    use lazysolid_renderer::fracture::{edge_report, volume};
+    for (more, pieces) in [
+        ("[[fracture]]\ninstance = \"b\"\npieces = 5\nseed = 4\n", 5),
+        (
+            "[[cut]]\ninstance = \"b\"\npoint = [0.5, 0.3, 0.5]\nnormal = [0, 1, 0]\n\
+             [[cut]]\ninstance = \"b\"\npoint = [0.4, 0.5, 0.5]\nnormal = [1, 0, 0.2]\n",
+            4,
+        ),
+        (
+            "[[cut]]\ninstance = \"b\"\npoint = [0.5, 0.5, 0.5]\nnormal = [0, 0, 1]\n\
+             [[fracture]]\ninstance = \"b\"\nsites = [[0.2, 0.5, 0.5], [0.8, 0.5, 0.5]]\n",
+            4,
+        ),
+    ] {
+        let s = parse(&broken(more)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(s.instances.len(), pieces, "{more}");
+        let mut sum = 0.0;
+        for inst in &s.instances {
+            let piece = inst.piece.expect("every instance is a piece");
+            assert_eq!(piece.broken, 0);
+            let m = &s.meshes[inst.mesh];
+            let (from, caps) = m.cut_from.as_ref().expect("cut from the box");
+            assert_eq!(*from, 0);
+            assert_eq!(caps.len(), m.mesh.triangles.len());
+            assert!(caps.iter().any(|&c| c) && caps.iter().any(|&c| !c));
+            assert!(edge_report(&m.mesh.triangles).is_closed(), "{more}");
+            sum += volume(&m.mesh.positions, &m.mesh.triangles);
+        }
+        assert!((sum - 1.0).abs() < 1e-5, "{more}: volumes sum to {sum}");
+    }
+}
+
+/// Pieces stay at rest until the explosion starts, then move rigidly: their centre of mass
+/// flies away from the centre at the given speed and falls; lookups keep rest-pose object
+/// coordinates, so only the transform changes.
+#[test]
+fn pieces_fly_apart_rigidly_after_the_start() {
+    let s = parse(&broken(
+        "[[fracture]]\ninstance = \"b\"\npieces = 3\nseed = 1\n\
+         [explosion]\ncentre = [0.5, 0.5, 0.5]\nspeed = 2\nspin = 45\ngravity = [0, -1, 0]\nstart = 0.5\n\
+         [animation]\nframes = 10\nfps = 4\n",
+    ))
+    .unwrap();
+    let a = s.animation.unwrap();
+    assert_eq!((a.frames, a.fps), (10, 4.0));
+    assert_eq!(s.frame_time(3), 0.75);
+    for (i, inst) in s.instances.iter().enumerate() {
+        let p = inst.piece.unwrap();
+        assert_eq!(s.instance_transform(i, 0.5), inst.transform);
+        let t = 1.5;
+        let m = s.instance_transform(i, t);
+        let at = inst.transform.transform_point3(p.centroid);
+        let away = (at - Vec3::splat(0.5)).normalize();
+        let want = at + away * 2.0 * 1.0 + Vec3::new(0.0, -0.5, 0.0);
+        assert!((m.transform_point3(p.centroid) - want).length() < 1e-4);
+        // Rigid: distances between the piece's vertices are kept.
+        let v = &s.meshes[inst.mesh].mesh.positions;
+        let d0 = v[0].distance(v[v.len() / 2]);
+        let d1 = m
+            .transform_point3(v[0])
+            .distance(m.transform_point3(v[v.len() / 2]));
+        assert!((d0 - d1).abs() < 1e-5);
+    }
+}
+
+#[test]
+fn fracture_errors_name_the_line_and_field() {
+    expect(
+        &broken("[[fracture]]\ninstance = \"x\"\npieces = 2\n"),
+        21,
+        "fracture #1.instance: unknown instance \"x\" (named instances: \"b\")",
+    );
+    expect(
+        &broken("[[fracture]]\ninstance = \"b\"\npieces = 0\n"),
+        22,
+        "fracture #1.pieces",
+    );
+    expect(
+        &broken("[[fracture]]\ninstance = \"b\"\npieces = 2\nsites = [[0, 0, 0]]\n"),
+        23,
+        "fracture #1.sites: pieces and sites are exclusive",
+    );
+    expect(
+        &broken("[[fracture]]\ninstance = \"b\"\n"),
+        21,
+        "fracture #1: needs pieces = N (random sites) or sites",
+    );
+    expect(
+        &broken("[[cut]]\ninstance = \"b\"\npoint = [0.5, 3, 0.5]\nnormal = [0, 1, 0]\n"),
+        22,
+        "cut #1.point: the plane through [0.5, 3, 0.5] with normal [0, 1, 0] misses the mesh",
+    );
+    expect(
+        &broken("[[cut]]\ninstance = \"b\"\npoint = [0.5, 0.5, 0.5]\nnormal = [0, 0, 0]\n"),
+        23,
+        "cut #1.normal: must not be zero",
+    );
+    expect(
+        &broken("[explosion]\nspeed = 1\n"),
+        20,
+        "explosion: nothing to blow apart",
+    );
+    expect(
+        &broken("[animation]\nframes = 4\nfps = 0\n"),
+        22,
+        "animation.fps",
+    );
+    // An open surface bounds no solid: the quad has 4 boundary edges.
+    let open = BASE.replace("shape = \"cube\"", "shape = \"quad\"");
+    let e = error(&format!(
+        "{open}name = \"b\"\n[[fracture]]\ninstance = \"b\"\npieces = 2\n"
+    ));
+    assert!(
+        e.contains("not closed") && e.contains("4 boundary edge"),
+        "{e}"
+    );
+}
+
+/// The main job's scene: the armadillo broken into 14 closed pieces sharing its synthesized
+/// texture, an explosion, and an animation rendered smaller than the still.
+#[test]
+fn explosion_scene_loads() {
+    let s = example("explosion.toml");
+    assert_eq!(s.instances.len(), 15);
+    assert_eq!(s.instances.iter().filter(|i| i.piece.is_some()).count(), 14);
+    let e = s.explosion.expect("an explosion");
+    assert_eq!((e.speed, e.start), (1.6, 0.25));
+    let a = s.animation.expect("an animation");
+    assert_eq!((a.frames, a.width, a.height, a.spp), (16, 320, 240, 8));
+    assert_eq!((s.render.width, s.render.height), (640, 480));
+    let synthesized = s.materials[0].texture.as_ref().unwrap();
+    assert_eq!(synthesized.kind, SolidTextureKind::Synthesized);
 }

@@ -56,15 +56,19 @@ fn furnace_scene(mesh: Mesh, m: Material, env: f32) -> Scene {
         meshes: vec![SceneMesh {
             name: "mesh".into(),
             mesh,
+            cut_from: None,
         }],
         materials: vec![m],
         instances: vec![Instance {
             mesh: 0,
             material: 0,
             transform: Affine3A::IDENTITY,
+            piece: None,
         }],
         lights: vec![],
         environment: Environment::Constant(Vec3::splat(env)),
+        explosion: None,
+        animation: None,
     }
 }
 
@@ -537,4 +541,180 @@ fn volume_textures_render_through_their_store() {
         left.x > left.z && right.z > right.x,
         "left {left}, right {right}"
     );
+}
+
+/// Renders frames of `scene` with one tracer (the stores are baked once, before the first).
+fn render_frames(gpu: &lazysolid_compute::gpu::Gpu, scene: &Scene, frames: &[u32]) -> Vec<Film> {
+    let mut t = PathTracer::new(gpu, scene).unwrap();
+    let before: Vec<(u64, u64)> = t.stores().iter().map(|s| (s.texels, s.bytes)).collect();
+    let films = frames
+        .iter()
+        .map(|&f| {
+            t.set_time(scene, scene.frame_time(f)).unwrap();
+            t.render(|_| {}).unwrap()
+        })
+        .collect();
+    // Later frames only move instances: no store grew, nothing was synthesized again.
+    let after: Vec<(u64, u64)> = t.stores().iter().map(|s| (s.texels, s.bytes)).collect();
+    assert_eq!(before, after);
+    films
+}
+
+/// The bunny broken into 6 pieces flying apart (`scenes/test/fracture.toml`): frames 1 and 3
+/// match their references (FLIP mean ≤ `FLIP_MEAN_LIMIT`); the pieces share one store, which
+/// the fracture's cap faces were added to by a second lazy request.
+#[test]
+fn reference_fracture_frames() {
+    let mut scene = Scene::load(&test_scene("fracture")).unwrap();
+    with_gpu(|gpu| {
+        let bless = std::env::var_os("LAZYSOLID_BLESS").is_some();
+        if bless {
+            scene.render.spp *= REFERENCE_SPP_FACTOR;
+            scene.render.seed += 1000;
+        }
+        {
+            let t = PathTracer::new(gpu, &scene).unwrap();
+            let stores = t.stores();
+            assert_eq!(stores.len(), 1, "the 6 pieces share the bunny's store");
+            let cut = stores[0].cut.expect("the cap faces were inserted");
+            let synthesis = cut.synthesis.expect("their voxels were synthesized");
+            println!("{stores:?}");
+            assert!(
+                cut.cap_triangles > 0 && cut.new_voxels > 0 && cut.texels_added == cut.new_voxels
+            );
+            assert!(synthesis.versions > 0);
+        }
+        let films = render_frames(gpu, &scene, &[1, 3]);
+        for (film, f) in films.iter().zip([1, 3]) {
+            let name = format!("fracture_f{f}");
+            let reference = reference_path(&name);
+            if bless {
+                write_png(film, &reference, &tone_map()).unwrap();
+                println!("wrote {}", reference.display());
+                continue;
+            }
+            let a = image::open(&reference)
+                .unwrap_or_else(|e| {
+                    panic!("{}: {e} (LAZYSOLID_BLESS=1 writes it)", reference.display())
+                })
+                .to_rgb8();
+            let report = flip_images(&a, &to_rgb8(film)).unwrap();
+            println!(
+                "{name}: FLIP mean {:.4}, p95 {:.4}",
+                report.mean, report.p95
+            );
+            assert!(
+                report.mean <= FLIP_MEAN_LIMIT,
+                "{name}: FLIP mean {}",
+                report.mean
+            );
+        }
+    });
+}
+
+/// Largest FLIP mean between frame 2 of the fracture scene through another store and through
+/// the coherent hash (same samples and seed): nearest reads of the same voxels differ only
+/// where the stores' voxel sets differ, the TileTree by its bilinear tiles.
+const STORE_FLIP_LIMIT: f32 = 0.05;
+
+/// Frame 2 of the fracture scene through each of the four stores agrees with the coherent
+/// hash's within `STORE_FLIP_LIMIT`.
+#[test]
+fn fracture_frame_agrees_through_every_store() {
+    let scene = Scene::load(&test_scene("fracture")).unwrap();
+    with_gpu(|gpu| {
+        let frame = |kind: StoreKind| {
+            let mut s = scene.clone();
+            let t = s.materials[0].texture.as_mut().unwrap();
+            t.store.as_mut().unwrap().kind = kind;
+            to_rgb8(&render_frames(gpu, &s, &[2])[0])
+        };
+        let hash = frame(StoreKind::CoherentHash);
+        for kind in [
+            StoreKind::Octree,
+            StoreKind::PerfectHash,
+            StoreKind::TileTree,
+        ] {
+            let report = flip_images(&hash, &frame(kind)).unwrap();
+            println!("{kind:?} vs coherent hash: FLIP mean {:.4}", report.mean);
+            assert!(report.mean <= STORE_FLIP_LIMIT, "{kind:?}: {}", report.mean);
+        }
+    });
+}
+
+/// Crack coherence: every point of every cap face reads a stored texel (the crack's matter was
+/// synthesized and inserted) — the same texel for the two pieces that meet there, since they
+/// share the store and read it at rest-pose coordinates. The TileTree reads a crack point
+/// through the face its normal picks, so the two sides (opposite normals) may read different
+/// tiles: across the crack its colours differ no more than either side differs from the volume
+/// store's nearest voxel at the same points (the tiles' own filtering), on average.
+#[test]
+fn both_sides_of_every_crack_read_the_same_matter() {
+    use lazysolid_compute::store::Filter;
+    let mut scene = Scene::load(&test_scene("fracture")).unwrap();
+    with_gpu(|gpu| {
+        let mut g = lazysolid_tests::rng(5);
+        let mut points = Vec::new();
+        let mut normals = Vec::new();
+        for m in &scene.meshes {
+            let Some((_, caps)) = &m.cut_from else {
+                continue;
+            };
+            for (t, _) in m
+                .mesh
+                .triangles
+                .iter()
+                .zip(caps)
+                .filter(|(_, &c)| c)
+                .step_by(7)
+            {
+                let v = t.map(|i| m.mesh.positions[i as usize]);
+                points.push(lazysolid_tests::point_on_triangle(&mut g, v));
+                normals.push((v[1] - v[0]).cross(v[2] - v[0]).normalize());
+            }
+        }
+        assert!(points.len() > 200, "{} cap points", points.len());
+        let mut t = PathTracer::new(gpu, &scene).unwrap();
+        let hash = match t.scene_stores_mut().store_mut(0).unwrap() {
+            SceneStore::Hash(h) => h.lookup(&points, Filter::Nearest).unwrap(),
+            _ => panic!("the test scene stores in the coherent hash"),
+        };
+        let missing = hash.iter().filter(|c| c.w <= 0.0).count();
+        assert_eq!(missing, 0, "cap points without a stored voxel");
+        drop(t);
+        let tex = scene.materials[0].texture.as_mut().unwrap();
+        tex.store.as_mut().unwrap().kind = StoreKind::TileTree;
+        let mut t = PathTracer::new(gpu, &scene).unwrap();
+        let SceneStore::TileTree(tree) = t.scene_stores_mut().store_mut(0).unwrap() else {
+            panic!("a TileTree");
+        };
+        let flipped: Vec<Vec3> = normals.iter().map(|&n| -n).collect();
+        let a = tree
+            .lookup_with_normals(&points, &normals, Filter::Trilinear)
+            .unwrap();
+        let b = tree
+            .lookup_with_normals(&points, &flipped, Filter::Trilinear)
+            .unwrap();
+        assert!(
+            a.iter().chain(&b).all(|c| c.w > 0.0),
+            "an unfilled texel on a crack"
+        );
+        let mean = |x: &[glam::Vec4], y: &[glam::Vec4]| {
+            x.iter()
+                .zip(y)
+                .map(|(p, q)| (*p - *q).truncate().abs().max_element() * 255.0)
+                .sum::<f32>()
+                / x.len() as f32
+        };
+        let (across, side_a, side_b) = (mean(&a, &b), mean(&a, &hash), mean(&b, &hash));
+        println!(
+            "TileTree at {} crack points: across the crack {across:.2} levels on average; \
+             each side against the nearest voxel {side_a:.2} and {side_b:.2}",
+            a.len()
+        );
+        assert!(
+            across <= side_a.max(side_b),
+            "across {across}, sides {side_a} {side_b}"
+        );
+    });
 }

@@ -55,17 +55,21 @@ fn scene(
         instances: Vec::new(),
         lights,
         environment: Environment::Constant(Vec3::splat(environment)),
+        explosion: None,
+        animation: None,
     };
     for (i, (mesh, m)) in objects.into_iter().enumerate() {
         s.meshes.push(SceneMesh {
             name: format!("mesh {i}"),
             mesh,
+            cut_from: None,
         });
         s.materials.push(m);
         s.instances.push(Instance {
             mesh: i,
             material: i,
             transform: Affine3A::IDENTITY,
+            piece: None,
         });
     }
     s

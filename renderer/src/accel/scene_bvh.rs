@@ -83,6 +83,32 @@ impl SceneBvh {
         SceneBvh::build(&meshes, &instances)
     }
 
+    /// Moves the instances to `transforms` (one per instance, same meshes): only the top
+    /// level is rebuilt, which is what an animation frame costs.
+    ///
+    /// # Panics
+    /// When `transforms` does not have one transform per instance.
+    pub fn set_transforms(&mut self, transforms: &[Affine3A]) {
+        assert_eq!(
+            transforms.len(),
+            self.instances.len(),
+            "one transform per instance"
+        );
+        let start = Instant::now();
+        for (i, &t) in self.instances.iter_mut().zip(transforms) {
+            i.transform = t;
+        }
+        let bounds: Vec<Aabb> = self
+            .instances
+            .iter()
+            .map(|i| world_bounds(&self.meshes[i.mesh].bvh.total_aabb, &i.transform))
+            .collect();
+        let mut core = Duration::ZERO;
+        self.tlas = build_cwbvh(&bounds, super::build_params(), &mut core);
+        self.world_to_object = transforms.iter().map(|t| t.inverse()).collect();
+        self.tlas_time = start.elapsed();
+    }
+
     /// All nodes in one array: the top level first, then each mesh's BVH (at
     /// [`SceneBvh::node_offsets`]).
     pub fn packed_nodes(&self) -> Vec<CwBvhNode> {

@@ -58,8 +58,8 @@ pub enum OutputError {
         /// The exr crate's error.
         cause: exr::error::Error,
     },
-    /// The PNG encoder failed.
-    #[error("{file}: PNG encoding: {cause}")]
+    /// The PNG (or GIF) encoder failed.
+    #[error("{file}: image encoding: {cause}")]
     Png {
         /// The file.
         file: PathBuf,

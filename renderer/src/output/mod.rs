@@ -5,6 +5,7 @@
 //! Every writer goes through a temporary file in the destination folder and a rename, so an
 //! interrupted or failed write never leaves a truncated image behind under the real name.
 
+mod animation;
 mod atomic;
 mod error;
 mod exr_io;
@@ -12,6 +13,7 @@ mod film;
 mod png_io;
 mod tonemap;
 
+pub use animation::{preview_frame, write_gif};
 pub(crate) use atomic::write_atomically;
 pub use error::OutputError;
 pub use exr_io::{read_exr_rgb, write_exr};

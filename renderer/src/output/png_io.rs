@@ -54,7 +54,7 @@ pub(crate) fn write_rgb8(
 }
 
 /// Encodes `layer` pixel by pixel, refusing the first pixel `encode` cannot show.
-fn encode_pixels(
+pub(super) fn encode_pixels(
     path: &Path,
     layer_name: &'static str,
     width: u32,

@@ -53,6 +53,7 @@ pub struct RenderStats {
 pub struct PathTracer {
     gpu: Gpu,
     kernel: Arc<Kernel>,
+    scene_bvh: SceneBvh,
     bvh: DeviceBvh,
     frame: GpuFrame,
     frame_buf: GpuBuffer<GpuFrame>,
@@ -117,6 +118,7 @@ impl PathTracer {
             aovs: GpuBuffer::zeroed(gpu, "render aovs", 2 * pixels)?,
             ray_count: GpuBuffer::zeroed(gpu, "render ray count", 1)?,
             bvh,
+            scene_bvh,
             stores,
             frame,
             settings,
@@ -178,6 +180,54 @@ impl PathTracer {
             rays,
             time: start.elapsed(),
         })
+    }
+
+    /// Moves the instances to where they are at `time` (seconds; see
+    /// [`Scene::instance_transform`]) and starts the picture over. Only the top level of the
+    /// BVH is rebuilt; meshes, stores and their texels stay, so an animation synthesizes
+    /// nothing after its first frame.
+    ///
+    /// # Errors
+    /// Device failures.
+    pub fn set_time(&mut self, scene: &Scene, time: f32) -> Result<(), RenderError> {
+        let transforms: Vec<_> = (0..scene.instances.len())
+            .map(|i| scene.instance_transform(i, time))
+            .collect();
+        self.scene_bvh.set_transforms(&transforms);
+        self.bvh = DeviceBvh::upload(&self.gpu, &self.scene_bvh)?;
+        self.stats.tlas_time = self.scene_bvh.tlas_time;
+        self.restart()
+    }
+
+    /// Renders at `settings` (size, samples, seed, depths) from now on: the film and the frame
+    /// record are made anew, the BVH, the stores and their texels stay — how one run renders a
+    /// large still and a small animation without baking twice.
+    ///
+    /// # Errors
+    /// Device failures.
+    pub fn set_settings(
+        &mut self,
+        scene: &Scene,
+        settings: RenderSettings,
+    ) -> Result<(), RenderError> {
+        check_settings(&scene.source, &settings)?;
+        let env_sampled = match &scene.environment {
+            Environment::Constant(c) => c.max_element() > 0.0,
+            Environment::LatLong { .. } => true,
+        };
+        self.frame = GpuFrame::new(
+            &scene.camera,
+            &settings,
+            scene.lights.len() as u32,
+            env_sampled,
+        );
+        self.frame_buf = GpuBuffer::from_slice(&self.gpu, "render frame", &[self.frame])?;
+        let pixels = settings.width as usize * settings.height as usize;
+        self.film = GpuBuffer::zeroed(&self.gpu, "render film", pixels)?;
+        self.aovs = GpuBuffer::zeroed(&self.gpu, "render aovs", 2 * pixels)?;
+        self.settings = settings;
+        self.samples = 0;
+        Ok(())
     }
 
     /// Starts the picture over (film and sample count cleared), e.g. after texels were
@@ -265,10 +315,10 @@ impl PathTracer {
 
 /// What [`SceneBvh`] and the kernel rely on, for scenes built in code rather than loaded (the
 /// loader checks all of it with line numbers).
-fn check_scene(scene: &Scene) -> Result<(), RenderError> {
-    let file = scene.source.display();
+/// Checks render settings against what the kernel and film can take.
+fn check_settings(source: &std::path::Path, s: &RenderSettings) -> Result<(), RenderError> {
+    let file = source.display();
     let bad = |problem: String| Err(RenderError::Settings(format!("{file}: {problem}")));
-    let s = &scene.render;
     if s.width == 0 || s.height == 0 || s.spp == 0 {
         return bad(format!(
             "render settings {}x{}, {} spp (each must be at least 1)",
@@ -284,6 +334,13 @@ fn check_scene(scene: &Scene) -> Result<(), RenderError> {
     if s.width as u64 * s.height as u64 > 1 << 26 {
         return bad(format!("{}x{} pixels is more than 2^26", s.width, s.height));
     }
+    Ok(())
+}
+
+fn check_scene(scene: &Scene) -> Result<(), RenderError> {
+    check_settings(&scene.source, &scene.render)?;
+    let file = scene.source.display();
+    let bad = |problem: String| Err(RenderError::Settings(format!("{file}: {problem}")));
     if scene.instances.is_empty() {
         return bad("the scene has no instance".into());
     }

@@ -120,6 +120,8 @@ pub struct BakedStoreInfo {
     pub build_time: Duration,
     /// For a synthesized texture: what its lazy synthesis did.
     pub synthesis: Option<SynthesisInfo>,
+    /// For the texture of cut or fractured pieces: what adding their cap faces did.
+    pub cut: Option<CutInfo>,
 }
 
 /// Every store of a scene, the records the kernel reads (which hold the buffers they point
@@ -141,15 +143,57 @@ fn pack_srgb8(albedo: Vec3) -> u32 {
     r | g << 8 | b << 16 | 255 << 24
 }
 
-/// What lazy synthesis did for one baked store.
+/// What one lazy synthesis request did.
 #[derive(Clone, Copy, Debug)]
 pub struct SynthesisInfo {
     /// Voxel versions computed over all levels (upsampled or corrected).
     pub versions: u64,
     /// Voxels the request needed at the finest level.
     pub finest: u64,
-    /// Bytes of the kept synthesis state of the texture (shared by its stores).
+    /// Bytes of the kept synthesis state of the texture (shared by its stores), after it.
     pub state_bytes: u64,
+    /// Wall time of the request.
+    pub time: Duration,
+}
+
+/// What adding the cap faces of cut or fractured pieces to a store did.
+#[derive(Clone, Copy, Debug)]
+pub struct CutInfo {
+    /// Cap triangles over all pieces.
+    pub cap_triangles: u64,
+    /// Voxels the caps need (surface or interpolation voxels).
+    pub requested_voxels: u64,
+    /// Of those, voxels the store did not hold (for a TileTree: the voxels its colour buffer
+    /// covers, outer and cap).
+    pub new_voxels: u64,
+    /// The lazy synthesis of those voxels, for a synthesized texture.
+    pub synthesis: Option<SynthesisInfo>,
+    /// Texels the store gained.
+    pub texels_added: u64,
+    /// Store bytes before the insert.
+    pub bytes_before: u64,
+    /// Store bytes after it.
+    pub bytes_after: u64,
+    /// Wall time: voxelization, synthesis and insert.
+    pub time: Duration,
+}
+
+/// The colour of a procedural (or volume) texture at voxel `v` of a grid of resolution `r`,
+/// as sRGB-encoded RGBA8.
+fn procedural_colour(material: &crate::scene::Material, r: u32) -> impl Fn([u32; 3]) -> u32 + Sync {
+    let gm = GpuMaterial::from(material);
+    let volume = material.texture.as_ref().and_then(|t| t.volume.clone());
+    move |v: [u32; 3]| match &volume {
+        // Already sRGB bytes.
+        Some(volume) => {
+            let [r_, g, b] = volume.at_voxel(v, r).map(|c| c as u32);
+            r_ | g << 8 | b << 16 | 255 << 24
+        }
+        None => {
+            let centre = (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5) / r as f32;
+            pack_srgb8(solid_texture_albedo(&gm, centre))
+        }
+    }
 }
 
 /// What the stores of one scene share while they are built: kernels, the voxelizer, and one
@@ -172,13 +216,78 @@ fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid,
 }
 
 impl Baker<'_> {
-    /// Bakes the texture of `material` on `mesh` into the store `spec` asks for.
+    fn kernels(&mut self) -> Result<Arc<StoreKernels>, RenderError> {
+        Ok(match &self.kernels {
+            Some(k) => k.clone(),
+            None => self.kernels.insert(StoreKernels::new(self.gpu)?).clone(),
+        })
+    }
+
+    /// The voxels a store of `spec` holds for the triangles (surface voxels for nearest reads
+    /// and for a TileTree, interpolation voxels for trilinear reads), or `None` for a TileTree
+    /// of a procedural texture, which needs no voxels.
+    fn voxels(
+        &mut self,
+        spec: StoreSpec,
+        synthesized: bool,
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+    ) -> Result<Option<VoxelKeys>, String> {
+        if spec.kind == StoreKind::TileTree && !synthesized {
+            return Ok(None);
+        }
+        let gpu = self.gpu;
+        let voxelizer = match &mut self.voxelizer {
+            Some(v) => v,
+            None => self
+                .voxelizer
+                .insert(Voxelizer::new(gpu).map_err(|e| e.to_string())?),
+        };
+        let r = spec.resolution;
+        let keys = match (spec.kind, spec.filter) {
+            (StoreKind::TileTree, _) | (_, StoreFilter::Nearest) => {
+                voxelizer.surface(positions, triangles, r)
+            }
+            (_, StoreFilter::Trilinear) => voxelizer.interpolation(positions, triangles, r),
+        };
+        keys.map(Some).map_err(|e| e.to_string())
+    }
+
+    /// The synthesized colours of `keys` (lazily: only voxels no earlier request computed),
+    /// with what the synthesis did.
+    fn synthesize(
+        &mut self,
+        synth: &SynthesizedSpec,
+        r: u32,
+        keys: &VoxelKeys,
+    ) -> Result<(GpuBuffer<u32>, SynthesisInfo), String> {
+        let key = (synth.exemplar.clone(), synth.seed, r);
+        if !self.lazy.contains_key(&key) {
+            let state = lazy_state(self.gpu, synth, r).map_err(|e| e.to_string())?;
+            self.lazy.insert(key.clone(), state);
+        }
+        let lazy = self.lazy.get_mut(&key).expect("inserted above");
+        let start = Instant::now();
+        let (colours, report) = lazy.colours(keys).map_err(|e| e.to_string())?;
+        let stats = SynthesisInfo {
+            versions: report.computed.iter().sum(),
+            finest: report.needed.last().copied().unwrap_or(0),
+            state_bytes: lazy.bytes(),
+            time: start.elapsed(),
+        };
+        Ok((colours, stats))
+    }
+
+    /// Bakes the texture of `material` on `mesh` into the store `spec` asks for, and inserts
+    /// the cap faces of the pieces cut from it (`caps`: positions and triangles in the mesh's
+    /// coordinates), which a second request synthesizes.
     fn bake(
         &mut self,
         scene: &Scene,
         mesh: usize,
         material: usize,
-    ) -> Result<(SceneStore, Option<SynthesisInfo>), RenderError> {
+        caps: Option<(&[Vec3], &[[u32; 3]])>,
+    ) -> Result<(SceneStore, Option<SynthesisInfo>, Option<CutInfo>), RenderError> {
         let material = &scene.materials[material];
         let mesh = &scene.meshes[mesh];
         let spec = material
@@ -186,29 +295,13 @@ impl Baker<'_> {
             .as_ref()
             .and_then(|t| t.store)
             .expect("only textures with a store are baked");
-        let gpu = self.gpu;
-        let kernels = match &self.kernels {
-            Some(k) => k.clone(),
-            None => self.kernels.insert(StoreKernels::new(gpu)?).clone(),
-        };
+        let kernels = self.kernels()?;
         let r = spec.resolution;
-        let gm = GpuMaterial::from(material);
-        let volume = material.texture.as_ref().and_then(|t| t.volume.clone());
-        let colour = move |v: [u32; 3]| match &volume {
-            // Already sRGB bytes.
-            Some(volume) => {
-                let [r_, g, b] = volume.at_voxel(v, r).map(|c| c as u32);
-                r_ | g << 8 | b << 16 | 255 << 24
-            }
-            None => {
-                let centre = (Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32) + 0.5) / r as f32;
-                pack_srgb8(solid_texture_albedo(&gm, centre))
-            }
-        };
+        let colour = procedural_colour(material, r);
         let (positions, triangles) = (&mesh.mesh.positions, &mesh.mesh.triangles);
-        let context = |e: &dyn std::fmt::Display| {
+        let context = |what: &str, e: &dyn std::fmt::Display| {
             RenderError::Settings(format!(
-                "{}: baking material {:?} on mesh {:?}: {e}",
+                "{}: baking material {:?} on mesh {:?}{what}: {e}",
                 scene.source.display(),
                 material.name,
                 mesh.name
@@ -218,41 +311,15 @@ impl Baker<'_> {
             .texture
             .as_ref()
             .and_then(|t| t.synthesized.clone());
-        // The voxels the store holds: the surface voxels for nearest reads, the interpolation
-        // voxels for trilinear reads; a TileTree builds its tiles from the mesh and needs
-        // voxels only for a synthesized texture, whose texels come from the surface voxels.
-        let keys = if spec.kind == StoreKind::TileTree && synth.is_none() {
-            None
-        } else {
-            let voxelizer = match &mut self.voxelizer {
-                Some(v) => v,
-                None => self
-                    .voxelizer
-                    .insert(Voxelizer::new(gpu).map_err(store_error)?),
-            };
-            let keys = match (spec.kind, spec.filter) {
-                (StoreKind::TileTree, _) | (_, StoreFilter::Nearest) => {
-                    voxelizer.surface(positions, triangles, r)
-                }
-                (_, StoreFilter::Trilinear) => voxelizer.interpolation(positions, triangles, r),
-            };
-            Some(keys.map_err(|e| context(&e))?)
-        };
+        let keys = self
+            .voxels(spec, synth.is_some(), positions, triangles)
+            .map_err(|e| context("", &e))?;
         let (colours, stats) = match (&synth, &keys) {
             (Some(synth), Some(keys)) => {
-                let key = (synth.exemplar.clone(), synth.seed, r);
-                if !self.lazy.contains_key(&key) {
-                    let state = lazy_state(gpu, synth, r).map_err(|e| context(&e))?;
-                    self.lazy.insert(key.clone(), state);
-                }
-                let lazy = self.lazy.get_mut(&key).expect("inserted above");
-                let (colours, report) = lazy.colours(keys).map_err(|e| context(&e))?;
-                let stats = SynthesisInfo {
-                    versions: report.computed.iter().sum(),
-                    finest: report.needed.last().copied().unwrap_or(0),
-                    state_bytes: lazy.bytes(),
-                };
-                (Some(colours), Some(stats))
+                let (c, s) = self
+                    .synthesize(synth, r, keys)
+                    .map_err(|e| context("", &e))?;
+                (Some(c), Some(s))
             }
             _ => (None, None),
         };
@@ -260,8 +327,113 @@ impl Baker<'_> {
             (Some(keys), Some(colours)) => ColourSource::Buffer { keys, colours },
             _ => ColourSource::Fn(&colour),
         };
-        let store = self.fill(&kernels, spec, positions, triangles, keys.as_ref(), &source)?;
-        Ok((store, stats))
+        let mut store = self.fill(&kernels, spec, positions, triangles, keys.as_ref(), &source)?;
+        let cut = match caps {
+            Some((cap_positions, cap_triangles)) if !cap_triangles.is_empty() => Some(
+                self.insert_caps(
+                    &mut store,
+                    spec,
+                    synth.as_ref(),
+                    &colour,
+                    keys.as_ref(),
+                    (cap_positions, cap_triangles),
+                )
+                .map_err(|e| context(" (cut faces)", &e))?,
+            ),
+            _ => None,
+        };
+        Ok((store, stats, cut))
+    }
+
+    /// Inserts the cap faces into a store built over the outer surface: a volume store gets the
+    /// caps' voxels it does not hold yet, a TileTree the cap triangles; for a synthesized
+    /// texture only those voxels are requested from the lazy state, which computes what no
+    /// earlier request did.
+    #[allow(clippy::too_many_arguments)]
+    fn insert_caps(
+        &mut self,
+        store: &mut SceneStore,
+        spec: StoreSpec,
+        synth: Option<&SynthesizedSpec>,
+        colour: &(dyn Fn([u32; 3]) -> u32 + Sync),
+        outer_keys: Option<&VoxelKeys>,
+        caps: (&[Vec3], &[[u32; 3]]),
+    ) -> Result<CutInfo, String> {
+        let start = Instant::now();
+        let gpu = self.gpu;
+        let r = spec.resolution;
+        let cap_keys = self.voxels(spec, synth.is_some(), caps.0, caps.1)?;
+        // What the store gets: a volume store only voxels it lacks; a TileTree's buffer source
+        // must hold every voxel its refilled texels meet, which the outer and cap voxels do.
+        let new_keys = match (&cap_keys, outer_keys) {
+            (Some(cap), Some(outer)) => {
+                let (cap, outer) = (
+                    cap.read().map_err(|e| e.to_string())?,
+                    outer.read().map_err(|e| e.to_string())?,
+                );
+                let wanted: Vec<u64> = if spec.kind == StoreKind::TileTree {
+                    let mut all: Vec<u64> = cap.iter().chain(&outer).copied().collect();
+                    all.sort_unstable();
+                    all.dedup();
+                    all
+                } else {
+                    cap.into_iter()
+                        .filter(|k| outer.binary_search(k).is_err())
+                        .collect()
+                };
+                Some(
+                    VoxelKeys::from_sorted(gpu, "cut voxels", &wanted)
+                        .map_err(|e| e.to_string())?,
+                )
+            }
+            (Some(cap), None) => Some(
+                VoxelKeys::from_sorted(gpu, "cut voxels", &cap.read().map_err(|e| e.to_string())?)
+                    .map_err(|e| e.to_string())?,
+            ),
+            _ => None,
+        };
+        let requested = cap_keys.as_ref().map_or(0, |k| k.len() as u64);
+        let (colours, synthesis) = match (synth, &new_keys) {
+            (Some(synth), Some(keys)) if !keys.is_empty() => {
+                let (c, s) = self.synthesize(synth, r, keys)?;
+                (Some(c), Some(s))
+            }
+            _ => (None, None),
+        };
+        let source = match (&new_keys, &colours) {
+            (Some(keys), Some(colours)) => ColourSource::Buffer { keys, colours },
+            _ => ColourSource::Fn(colour),
+        };
+        let (texels_before, bytes_before) = store.size();
+        match &mut *store {
+            SceneStore::TileTree(t) => {
+                t.insert_surface(caps.0, caps.1, &source)
+                    .map_err(|e| e.to_string())?;
+            }
+            other => {
+                let keys = new_keys.as_ref().expect("volume stores have voxels");
+                if !keys.is_empty() {
+                    match other {
+                        SceneStore::Hash(s) => s.insert(keys, &source),
+                        SceneStore::Octree(s) => s.insert(keys, &source),
+                        SceneStore::Perfect(s) => s.insert(keys, &source),
+                        SceneStore::TileTree(_) => unreachable!("handled above"),
+                    }
+                    .map_err(|e| e.to_string())?;
+                }
+            }
+        }
+        let (texels_after, bytes_after) = store.size();
+        Ok(CutInfo {
+            cap_triangles: caps.1.len() as u64,
+            requested_voxels: requested,
+            new_voxels: new_keys.as_ref().map_or(0, |k| k.len() as u64),
+            synthesis,
+            texels_added: texels_after.saturating_sub(texels_before),
+            bytes_before,
+            bytes_after,
+            time: start.elapsed(),
+        })
     }
 
     /// Builds the store `spec` asks for over `keys` (the TileTree: over the mesh, without
@@ -329,15 +501,27 @@ impl SceneStores {
             let Some(spec) = material.texture.as_ref().and_then(|t| t.store) else {
                 continue;
             };
-            if let Some(&slot) = slot_of.get(&(inst.mesh, inst.material)) {
+            // Pieces share the store of the mesh they were cut from: same coordinates, same
+            // matter, one store holding the outer surface and every cap.
+            let root = scene.meshes[inst.mesh]
+                .cut_from
+                .as_ref()
+                .map_or(inst.mesh, |(m, _)| *m);
+            if let Some(&slot) = slot_of.get(&(root, inst.material)) {
                 slots[i] = slot;
                 continue;
             }
+            let caps = caps_of(scene, root, inst.material);
             let start = Instant::now();
-            let (store, synthesis) = baker.bake(scene, inst.mesh, inst.material)?;
+            let (store, synthesis, cut) = baker.bake(
+                scene,
+                root,
+                inst.material,
+                caps.as_ref().map(|(p, t)| (&p[..], &t[..])),
+            )?;
             let (texels, bytes) = store.size();
             info.push(BakedStoreInfo {
-                mesh: scene.meshes[inst.mesh].name.clone(),
+                mesh: scene.meshes[root].name.clone(),
                 material: material.name.clone(),
                 kind: spec.kind.name(),
                 resolution: spec.resolution,
@@ -345,10 +529,11 @@ impl SceneStores {
                 bytes,
                 build_time: start.elapsed(),
                 synthesis,
+                cut,
             });
             let slot = stores.len() as u32;
             stores.push((store, spec.filter));
-            slot_of.insert((inst.mesh, inst.material), slot);
+            slot_of.insert((root, inst.material), slot);
             slots[i] = slot;
         }
         let records = Self::upload(gpu, &stores)?;
@@ -418,6 +603,37 @@ impl SceneStores {
     pub fn info(&self) -> &[BakedStoreInfo] {
         &self.info
     }
+}
+
+/// The cap faces of every piece cut from mesh `root` that an instance shows with `material`, as
+/// one triangle list (each piece's vertices appended), or `None` when nothing was cut from it.
+fn caps_of(scene: &Scene, root: usize, material: usize) -> Option<(Vec<Vec3>, Vec<[u32; 3]>)> {
+    let mut pieces: Vec<usize> = scene
+        .instances
+        .iter()
+        .filter(|i| i.material == material)
+        .map(|i| i.mesh)
+        .filter(|&m| matches!(&scene.meshes[m].cut_from, Some((r, _)) if *r == root))
+        .collect();
+    pieces.sort_unstable();
+    pieces.dedup();
+    if pieces.is_empty() {
+        return None;
+    }
+    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    for m in pieces {
+        let (mesh, flags) = (&scene.meshes[m].mesh, &scene.meshes[m].cut_from.as_ref()?.1);
+        let base = positions.len() as u32;
+        positions.extend_from_slice(&mesh.positions);
+        triangles.extend(
+            mesh.triangles
+                .iter()
+                .zip(flags)
+                .filter(|(_, &cap)| cap)
+                .map(|(t, _)| t.map(|v| v + base)),
+        );
+    }
+    Some((positions, triangles))
 }
 
 fn store_error(e: impl std::fmt::Display) -> RenderError {

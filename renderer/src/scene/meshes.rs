@@ -97,5 +97,6 @@ pub(super) fn mesh(
     Ok(SceneMesh {
         name: raw.name.get_ref().clone(),
         mesh,
+        cut_from: None,
     })
 }

@@ -38,6 +38,21 @@
 //!   `translate` (default `[0, 0, 0]`); the object-to-world transform is
 //!   translate · rotate · scale. The scale is a single number because solid textures are
 //!   evaluated in the mesh's rest-pose object space: a non-uniform scale would stretch them.
+//!   An instance may have a `name` (unique) for the tables below to refer to.
+//! - `[[cut]]`: `instance` (a name), `point` and `normal` (non-zero) of a plane in the mesh's
+//!   coordinates (its unit cube); cuts apply in file order, each to every piece so far, and a
+//!   plane that misses the mesh is an error.
+//! - `[[fracture]]` (one per instance): `instance`, and `pieces` (1..=1024) with `seed`
+//!   (default 1) for sites drawn inside the mesh, or `sites = [[x, y, z], ...]` in the mesh's
+//!   coordinates; applied after the cuts, to every piece. The mesh must be closed. The
+//!   instance is replaced by one instance per piece, each piece a closed mesh in the broken
+//!   mesh's coordinates with its cap faces marked (`SceneMesh::cut_from`); its texture is read
+//!   at rest-pose coordinates, so the matter stays continuous across the cracks.
+//! - `[explosion]` (needs a cut or fracture): `speed` (world units/s, in [0, 10000]), `spin`
+//!   (degrees/s, default 0; each piece turns at 50–100 % of it about its own axis), `gravity`
+//!   (default `[0, -9.81, 0]`), `start` (seconds, default 0), `centre` (world; default the
+//!   centre of each broken instance's bounds).
+//! - `[animation]`: `frames` (1..=100000) and `fps` ((0, 1000]); frame k shows time k / fps.
 //! - `[[light]]`: `kind = "sphere"` with `center`, `radius` (> 0), `radiance`; or
 //!   `kind = "quad"` with `corner`, `edge_u`, `edge_v` (not parallel), `radiance` and
 //!   `two_sided` (default false: emits towards `edge_u × edge_v`).
@@ -48,6 +63,7 @@
 //! Every error names the scene file, the line and the field path, e.g.
 //! `scenes/a.toml:14: material "glass".ior: 0.8 is out of range (must be in (1, 4])`.
 
+mod broken;
 mod camera;
 mod check;
 mod error;
@@ -55,6 +71,7 @@ mod lights;
 mod location;
 mod material;
 mod meshes;
+mod motion;
 mod raw;
 mod resolve;
 mod types;

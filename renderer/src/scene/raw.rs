@@ -23,6 +23,12 @@ pub(super) struct RawScene {
     #[serde(default)]
     pub light: Vec<Spanned<RawLight>>,
     pub environment: Option<Spanned<RawEnvironment>>,
+    #[serde(default)]
+    pub cut: Vec<Spanned<RawCut>>,
+    #[serde(default)]
+    pub fracture: Vec<Spanned<RawFracture>>,
+    pub explosion: Option<Spanned<RawExplosion>>,
+    pub animation: Option<Spanned<RawAnimation>>,
 }
 
 /// `[camera]`.
@@ -156,6 +162,7 @@ pub(super) enum RawStoreFilter {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawInstance {
+    pub name: Option<Spanned<String>>,
     pub mesh: Spanned<String>,
     pub material: Spanned<String>,
     pub translate: Option<SVec3>,
@@ -193,4 +200,45 @@ pub(super) struct RawEnvironment {
     pub path: Option<Spanned<String>>,
     pub intensity: Option<Spanned<f32>>,
     pub rotation: Option<Spanned<f32>>,
+}
+
+/// `[[cut]]`: a plane through a named instance, in its mesh's coordinates.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawCut {
+    pub instance: Spanned<String>,
+    pub point: SVec3,
+    pub normal: SVec3,
+}
+
+/// `[[fracture]]`: Voronoi pieces of a named instance.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawFracture {
+    pub instance: Spanned<String>,
+    pub pieces: Option<Spanned<u32>>,
+    pub seed: Option<Spanned<u32>>,
+    pub sites: Option<Spanned<Vec<[f32; 3]>>>,
+}
+
+/// `[explosion]`: how the pieces fly apart.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawExplosion {
+    pub centre: Option<SVec3>,
+    pub speed: Spanned<f32>,
+    pub spin: Option<Spanned<f32>>,
+    pub gravity: Option<SVec3>,
+    pub start: Option<Spanned<f32>>,
+}
+
+/// `[animation]`: frames and their rate.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawAnimation {
+    pub frames: Spanned<u32>,
+    pub fps: Spanned<f32>,
+    pub width: Option<Spanned<u32>>,
+    pub height: Option<Spanned<u32>>,
+    pub spp: Option<Spanned<u32>>,
 }

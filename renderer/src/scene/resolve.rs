@@ -3,7 +3,7 @@
 
 use super::location::{element_label, join, Doc};
 use super::raw::{RawInstance, RawScene};
-use super::{camera, lights, material, meshes};
+use super::{broken, camera, lights, material, meshes};
 use super::{Instance, Scene, SceneError};
 use glam::{Affine3A, Quat, Vec3};
 use std::collections::HashMap;
@@ -59,6 +59,13 @@ impl Scene {
                 "the scene has no [[instance]]: there would be nothing to render",
             ));
         }
+        let instance_names = names(
+            &doc,
+            "instance",
+            raw.instance
+                .iter()
+                .filter_map(|i| i.get_ref().name.as_ref()),
+        )?;
         let instances = raw
             .instance
             .iter()
@@ -68,6 +75,9 @@ impl Scene {
                 instance(&doc, inst.get_ref(), &label, &mesh_names, &material_names)
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let broken = !raw.cut.is_empty() || !raw.fracture.is_empty();
+        let explosion = broken::explosion(&doc, raw.explosion.as_ref(), broken)?;
+        let animation = broken::animation(&doc, raw.animation.as_ref(), &render)?;
         let lights = raw
             .light
             .iter()
@@ -75,7 +85,7 @@ impl Scene {
             .map(|(i, l)| lights::light(&doc, l, &element_label("light", i, None)))
             .collect::<Result<Vec<_>, _>>()?;
         let environment = lights::environment(&doc, raw.environment.as_ref(), base)?;
-        let meshes = raw
+        let mut meshes = raw
             .mesh
             .iter()
             .map(|m| {
@@ -83,6 +93,15 @@ impl Scene {
                 meshes::mesh(&doc, m, &label, base)
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let instances = broken::break_instances(
+            &doc,
+            &raw.cut,
+            &raw.fracture,
+            &instance_names,
+            &mut meshes,
+            instances,
+            render.seed,
+        )?;
 
         Ok(Scene {
             source: source.to_path_buf(),
@@ -93,6 +112,8 @@ impl Scene {
             instances,
             lights,
             environment,
+            explosion,
+            animation,
         })
     }
 }
@@ -190,5 +211,6 @@ fn instance(
             rotation,
             translate,
         ),
+        piece: None,
     })
 }

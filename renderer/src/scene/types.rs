@@ -25,6 +25,43 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// What a ray that leaves the scene sees.
     pub environment: Environment,
+    /// How the pieces of cut and fractured instances fly apart (none: they stay at rest).
+    pub explosion: Option<Explosion>,
+    /// The frames an animated render makes.
+    pub animation: Option<Animation>,
+}
+
+/// Pieces pushed away from a centre, spinning, under gravity, from a start time on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Explosion {
+    /// Where the pieces fly away from (world); `None`: the centre of each broken instance's
+    /// bounds.
+    pub centre: Option<Vec3>,
+    /// Initial speed of every piece, world units per second.
+    pub speed: f32,
+    /// Largest spin in degrees per second (each piece spins at 50–100 % of it about its own
+    /// random axis).
+    pub spin_deg: f32,
+    /// Acceleration (world units per second²).
+    pub gravity: Vec3,
+    /// Time (seconds) at which the pieces start moving.
+    pub start: f32,
+}
+
+/// The frames of an animation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Animation {
+    /// Number of frames (frame k shows time k / fps).
+    pub frames: u32,
+    /// Frames per second.
+    pub fps: f32,
+    /// Pixels across of each frame (default: `[render]`'s): an animation is often rendered
+    /// smaller than a still.
+    pub width: u32,
+    /// Pixels down of each frame (default: `[render]`'s).
+    pub height: u32,
+    /// Samples per pixel of each frame (default: `[render]`'s).
+    pub spp: u32,
 }
 
 /// A named mesh in the rest pose that solid textures are evaluated in.
@@ -34,6 +71,10 @@ pub struct SceneMesh {
     pub name: String,
     /// The triangles, already normalized into the unit cube when the scene asked for it.
     pub mesh: Mesh,
+    /// For a piece of a cut or fractured mesh: the mesh it was cut from (an index into
+    /// [`Scene::meshes`]; same coordinates, so a solid texture reads the same matter) and, per
+    /// triangle, whether it is a cap (new surface inside the solid).
+    pub cut_from: Option<(usize, Vec<bool>)>,
 }
 
 /// The camera model.
@@ -221,8 +262,26 @@ pub struct Instance {
     pub mesh: usize,
     /// Index into [`Scene::materials`].
     pub material: usize,
-    /// Object-to-world rigid (or uniformly scaled) transform.
+    /// Object-to-world rigid (or uniformly scaled) transform, at rest.
     pub transform: Affine3A,
+    /// For a piece of a cut or fractured instance: how it moves in an explosion.
+    pub piece: Option<Piece>,
+}
+
+/// What moves one piece of a broken instance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Piece {
+    /// Index of the broken instance in the scene file's `[[instance]]` list (its pieces share
+    /// the explosion's default centre).
+    pub broken: usize,
+    /// The piece's centre of mass in object space.
+    pub centroid: Vec3,
+    /// The centre of the broken instance's bounds in object space.
+    pub centre: Vec3,
+    /// Unit axis it spins about.
+    pub spin_axis: Vec3,
+    /// Fraction (0.5–1) of the explosion's spin it turns at.
+    pub spin_share: f32,
 }
 
 /// Analytic area lights.

@@ -3,10 +3,12 @@
 use super::output::check_writable;
 use super::resolution::Resolution;
 use super::GlobalArgs;
-use anyhow::{ensure, Context};
+use anyhow::{bail, ensure, Context};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use lazysolid_renderer::output::{write_exr, write_png, Operator, ToneMap};
+use lazysolid_renderer::output::{
+    preview_frame, write_exr, write_gif, write_png, Operator, ToneMap,
+};
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::Scene;
 use std::path::PathBuf;
@@ -53,18 +55,53 @@ pub struct RenderArgs {
     /// Tone-mapping curve of the PNG.
     #[arg(long, value_enum, default_value_t = ToneCurve::Aces)]
     pub tonemap: ToneCurve,
+    /// Render the still at frame K of the scene's [animation] (time K / fps) instead of time
+    /// 0; with --frames, the still is rendered too (at the [render] size and samples) before
+    /// the sequence, from the same baked stores.
+    #[arg(long, value_name = "K")]
+    pub frame: Option<u32>,
+    /// Render frames A to B (both included) of the scene's [animation], at its size and
+    /// samples: numbered PNGs (`-o out.png` gives out_0000.png, ...), numbered EXRs only when
+    /// --exr is given, and an animated preview out.gif.
+    #[arg(long, value_name = "A..B", value_parser = parse_frames)]
+    pub frames: Option<(u32, u32)>,
+}
+
+fn parse_frames(value: &str) -> Result<(u32, u32), String> {
+    let (a, b) = value
+        .split_once("..")
+        .ok_or_else(|| format!("{value:?}: expected A..B, e.g. 0..23"))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .map_err(|e| format!("{value:?}: {s:?} is not a frame number ({e})"))
+    };
+    let (a, b) = (parse(a)?, parse(b)?);
+    if a > b {
+        return Err(format!("{value:?}: the first frame is after the last"));
+    }
+    Ok((a, b))
+}
+
+/// `dir/stem.ext` with the frame number: `dir/stem_0007.ext`.
+fn numbered(path: &std::path::Path, frame: u32) -> PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    path.with_file_name(format!("{stem}_{frame:04}{ext}"))
 }
 
 /// Runs the command.
 pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
-    let exr = if args.no_exr {
-        None
-    } else {
-        Some(
-            args.exr
-                .clone()
-                .unwrap_or_else(|| args.output.with_extension("exr")),
-        )
+    // The still's EXR: as asked, or next to its PNG unless --no-exr (a sequence alone writes
+    // EXRs only when --exr is given).
+    let still = args.frames.is_none() || args.frame.is_some();
+    let exr = match (&args.exr, args.no_exr || !still) {
+        (Some(e), _) => Some(e.clone()),
+        (None, true) => None,
+        (None, false) => Some(args.output.with_extension("exr")),
     };
     check_writable("-o", &args.output)?;
     if let Some(exr) = &exr {
@@ -86,10 +123,26 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     if let Some(seed) = args.seed {
         scene.render.seed = seed;
     }
+    let frames: Vec<u32> = args.frames.map_or(vec![], |(a, b)| (a..=b).collect());
+    if let Some(last) = frames.iter().chain(&args.frame).max().copied() {
+        let Some(animation) = scene.animation else {
+            bail!(
+                "--frame/--frames: {} has no [animation] table (frames, fps)",
+                args.scene.display()
+            );
+        };
+        ensure!(
+            last < animation.frames,
+            "--frame/--frames: frame {last} is past the scene's last frame {} ([animation] frames = {})",
+            animation.frames - 1,
+            animation.frames
+        );
+    }
     let gpu = global.gpu()?;
     let start = Instant::now();
     let mut tracer = PathTracer::new(&gpu, &scene)
         .with_context(|| format!("preparing {}", args.scene.display()))?;
+    let prepare = start.elapsed();
     let stats = tracer.stats();
     let s = scene.render;
     eprintln!(
@@ -103,6 +156,118 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         stats.bvh_bytes as f64 / 1e6,
         (stats.blas_time + stats.tlas_time).as_secs_f64() * 1e3
     );
+    report_stores(&tracer);
+    eprintln!("prepared in {:.2} s", prepare.as_secs_f64());
+    let tone_map = ToneMap {
+        exposure_ev: args.exposure,
+        operator: match args.tonemap {
+            ToneCurve::Clamp => Operator::Clamp,
+            ToneCurve::Reinhard => Operator::Reinhard,
+            ToneCurve::Aces => Operator::AcesFitted,
+        },
+    };
+    let sequence_settings = scene.animation.map(|a| {
+        let mut r = scene.render;
+        (r.width, r.height, r.spp) = (a.width, a.height, a.spp);
+        if let Some(res) = args.res {
+            (r.width, r.height) = (res.width, res.height);
+        }
+        if let Some(spp) = args.spp {
+            r.spp = spp;
+        }
+        r
+    });
+    let still = frames.is_empty() || args.frame.is_some();
+    let total = still as u64 * s.spp as u64
+        + frames.len() as u64 * sequence_settings.map_or(0, |r| r.spp as u64);
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} samples  {msg}  eta {eta}",
+        )
+        .expect("valid template"),
+    );
+    let mut done = 0u64;
+    let mut shoot = |tracer: &mut PathTracer, frame: Option<u32>| -> anyhow::Result<_> {
+        let frame_start = Instant::now();
+        tracer.set_time(&scene, frame.map_or(0.0, |f| scene.frame_time(f)))?;
+        let (mut rays, mut trace_time) = (0u64, 0.0f64);
+        let film = tracer.render(|pass| {
+            rays += pass.rays;
+            trace_time += pass.time.as_secs_f64();
+            bar.set_position(done + pass.samples as u64);
+            let rate = pass.rays as f64 / pass.time.as_secs_f64() / 1e6;
+            bar.set_message(match frame {
+                Some(f) => format!("frame {f}, {rate:.2} Mrays/s"),
+                None => format!("{rate:.2} Mrays/s"),
+            });
+        })?;
+        done += tracer.samples() as u64;
+        bar.suspend(|| {
+            eprintln!(
+                "{}: {}x{}, {} spp in {:.2} s ({:.2} Mrays/s, {} rays), with BVH and output {:.2} s",
+                match frame {
+                    Some(f) => format!("frame {f} (t = {:.3} s)", scene.frame_time(f)),
+                    None => "still".to_string(),
+                },
+                film.width(),
+                film.height(),
+                tracer.samples(),
+                trace_time,
+                rays as f64 / trace_time / 1e6,
+                rays,
+                frame_start.elapsed().as_secs_f64()
+            )
+        });
+        Ok(film)
+    };
+    if still {
+        let film = shoot(&mut tracer, args.frame)?;
+        write_png(&film, &args.output, &tone_map)?;
+        if let Some(exr) = &exr {
+            write_exr(&film, exr)?;
+        }
+    }
+    let mut written = Vec::new();
+    if let (Some(settings), false) = (sequence_settings, frames.is_empty()) {
+        tracer.set_settings(&scene, settings)?;
+        let mut previews = Vec::with_capacity(frames.len());
+        let gif = args.output.with_extension("gif");
+        for &f in &frames {
+            let film = shoot(&mut tracer, Some(f))?;
+            let png = numbered(&args.output, f);
+            write_png(&film, &png, &tone_map)?;
+            if let Some(exr) = &args.exr {
+                write_exr(&film, numbered(exr, f))?;
+            }
+            previews.push(preview_frame(&film, &gif, &tone_map)?);
+            written.push(png);
+        }
+        write_gif(&gif, &previews, scene.animation.map_or(24.0, |a| a.fps))?;
+    }
+    bar.finish_and_clear();
+    eprintln!("total {:.2} s", start.elapsed().as_secs_f64());
+    if still {
+        println!("image: {}", args.output.display());
+        if let Some(exr) = &exr {
+            println!("hdr:   {}", exr.display());
+        }
+    }
+    if let (Some(first), Some(last)) = (written.first(), written.last()) {
+        println!(
+            "frames: {} .. {} ({} PNG{})",
+            first.display(),
+            last.display(),
+            written.len(),
+            if args.exr.is_some() { " and EXR" } else { "" }
+        );
+        println!("animation: {}", args.output.with_extension("gif").display());
+    }
+    Ok(())
+}
+
+/// What the scene's stores hold and what synthesizing and cutting them cost.
+fn report_stores(tracer: &PathTracer) {
     for b in tracer.stores() {
         eprintln!(
             "baked {:?} on {:?} into {} at R = {}: {} texels, {:.1} MB, {:.2} s",
@@ -117,55 +282,32 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         if let Some(s) = b.synthesis {
             eprintln!(
                 "  synthesized lazily: {} voxel versions over all levels, {} voxels at the \
-                 finest, {:.1} MB of kept synthesis state",
+                 finest, {:.1} MB of kept synthesis state, {:.2} s",
                 s.versions,
                 s.finest,
-                s.state_bytes as f64 / 1e6
+                s.state_bytes as f64 / 1e6,
+                s.time.as_secs_f64()
             );
         }
+        if let Some(c) = b.cut {
+            eprintln!(
+                "  cut faces: {} triangles needing {} voxels, {} new; store +{} texels, {:.2} -> {:.2} MB; {:.2} s",
+                c.cap_triangles,
+                c.requested_voxels,
+                c.new_voxels,
+                c.texels_added,
+                c.bytes_before as f64 / 1e6,
+                c.bytes_after as f64 / 1e6,
+                c.time.as_secs_f64()
+            );
+            if let Some(s) = c.synthesis {
+                eprintln!(
+                    "    synthesized {} new voxel versions in {:.2} s (kept state now {:.1} MB)",
+                    s.versions,
+                    s.time.as_secs_f64(),
+                    s.state_bytes as f64 / 1e6
+                );
+            }
+        }
     }
-    let bar = ProgressBar::new(s.spp as u64);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} spp  {msg}  eta {eta}",
-        )
-        .expect("valid template"),
-    );
-    let mut rays = 0u64;
-    let mut trace_time = 0.0f64;
-    let film = tracer.render(|pass| {
-        rays += pass.rays;
-        trace_time += pass.time.as_secs_f64();
-        bar.set_position(pass.samples as u64);
-        bar.set_message(format!(
-            "{:.2} Mrays/s",
-            pass.rays as f64 / pass.time.as_secs_f64() / 1e6
-        ));
-    })?;
-    bar.finish_and_clear();
-    let tone_map = ToneMap {
-        exposure_ev: args.exposure,
-        operator: match args.tonemap {
-            ToneCurve::Clamp => Operator::Clamp,
-            ToneCurve::Reinhard => Operator::Reinhard,
-            ToneCurve::Aces => Operator::AcesFitted,
-        },
-    };
-    write_png(&film, &args.output, &tone_map)?;
-    if let Some(exr) = &exr {
-        write_exr(&film, exr)?;
-    }
-    eprintln!(
-        "rendered {} spp in {:.2} s ({:.2} Mrays/s, {} rays), total {:.2} s",
-        tracer.samples(),
-        trace_time,
-        rays as f64 / trace_time / 1e6,
-        rays,
-        start.elapsed().as_secs_f64()
-    );
-    println!("image: {}", args.output.display());
-    if let Some(exr) = &exr {
-        println!("hdr:   {}", exr.display());
-    }
-    Ok(())
 }
