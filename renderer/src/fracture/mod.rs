@@ -18,7 +18,7 @@ mod voronoi;
 
 pub use error::FractureError;
 pub use obj_write::{write_fragment_obj, write_material_library};
-pub use plane_split::{split_mesh, split_surface, Plane, Side, SplitResult};
+pub use plane_split::{cut_pieces, split_mesh, split_surface, Plane, Side, SplitResult};
 pub use topology::{check_closed, check_closed_parts, edge_report, volume, EdgeReport};
 pub use voronoi::{fracture, fracture_cells, fracture_cells_flagged, random_sites, MAX_PIECES};
 
@@ -43,6 +43,16 @@ pub struct Fragment {
 }
 
 impl Fragment {
+    /// The whole mesh as one piece (no cap faces yet): where successive cuts start.
+    #[must_use]
+    pub fn whole(mesh: &Mesh) -> Fragment {
+        Fragment {
+            positions: mesh.positions.clone(),
+            triangles: mesh.triangles.clone(),
+            interior: vec![false; mesh.triangles.len()],
+        }
+    }
+
     /// Signed volume in f64 (positive for an outward-oriented closed piece); see [`volume`].
     #[must_use]
     pub fn volume(&self) -> f64 {

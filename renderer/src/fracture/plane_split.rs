@@ -149,6 +149,32 @@ impl Fragment {
     }
 }
 
+/// Cuts every piece by `plane` (the pieces a plane misses stay whole): how successive cuts of
+/// one object are made. Returns the pieces and whether the plane missed all of them (a cut
+/// that cuts nothing is for the caller to report).
+///
+/// # Errors
+/// As [`split_mesh`], naming `source`.
+pub fn cut_pieces(
+    pieces: Vec<Fragment>,
+    plane: Plane,
+    source: &Path,
+) -> Result<(Vec<Fragment>, bool), FractureError> {
+    let mut next = Vec::with_capacity(pieces.len() * 2);
+    let mut missed = 0;
+    for piece in pieces {
+        match piece.split(plane, source)? {
+            SplitResult::Missed { .. } => {
+                missed += 1;
+                next.push(piece);
+            }
+            SplitResult::Split { below, above } => next.extend([below, above]),
+        }
+    }
+    let all_missed = missed == next.len();
+    Ok((next, all_missed))
+}
+
 pub(crate) fn check_flags(
     triangles: &[[u32; 3]],
     interior: Option<&[bool]>,

@@ -10,7 +10,7 @@ use super::{
     MAX_SPP,
 };
 use crate::fracture::{
-    fracture_cells_flagged, random_sites, split_surface, Fragment, Plane, SplitResult, MAX_PIECES,
+    cut_pieces, fracture_cells_flagged, random_sites, Fragment, Plane, MAX_PIECES,
 };
 use crate::mesh::Mesh;
 use glam::Vec3;
@@ -140,11 +140,7 @@ fn pieces(doc: &Doc, mesh: &Mesh, b: &Breaks) -> Result<Vec<Fragment>, SceneErro
     let fail = |span: std::ops::Range<usize>, field: String, e: &dyn std::fmt::Display| {
         doc.invalid(span, field, e.to_string())
     };
-    let mut pieces = vec![Fragment {
-        positions: mesh.positions.clone(),
-        triangles: mesh.triangles.clone(),
-        interior: vec![false; mesh.triangles.len()],
-    }];
+    let mut pieces = vec![Fragment::whole(mesh)];
     for (cut, label) in &b.cuts {
         let point = doc.vec3(&cut.point, &join(label, "point"))?;
         let normal = doc.vec3(&cut.normal, &join(label, "normal"))?;
@@ -152,26 +148,9 @@ fn pieces(doc: &Doc, mesh: &Mesh, b: &Breaks) -> Result<Vec<Fragment>, SceneErro
             return Err(doc.invalid(cut.normal.span(), join(label, "normal"), "must not be zero"));
         }
         let plane = Plane::through(point.as_dvec3(), normal.as_dvec3());
-        let mut next = Vec::with_capacity(pieces.len() * 2);
-        let mut missed = 0;
-        for piece in pieces {
-            match split_surface(
-                &piece.positions,
-                &piece.triangles,
-                Some(&piece.interior),
-                &mesh.source,
-                plane,
-            )
-            .map_err(|e| fail(cut.point.span(), label.clone(), &e))?
-            {
-                SplitResult::Missed { .. } => {
-                    missed += 1;
-                    next.push(piece);
-                }
-                SplitResult::Split { below, above } => next.extend([below, above]),
-            }
-        }
-        if missed == next.len() {
+        let (next, missed) = cut_pieces(pieces, plane, &mesh.source)
+            .map_err(|e| fail(cut.point.span(), label.clone(), &e))?;
+        if missed {
             return Err(doc.invalid(
                 cut.point.span(),
                 join(label, "point"),

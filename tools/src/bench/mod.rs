@@ -1,6 +1,7 @@
 //! `lazysolid bench …`: benchmark suites sharing one harness (warm-up, repeated runs, min and
 //! median, ratios against a baseline measured in the same run, table + CSV + JSON).
 
+mod cuts;
 pub mod harness;
 mod hash;
 mod lazy;
@@ -37,6 +38,9 @@ pub enum BenchCommand {
     /// Lazy solid synthesis around mesh surfaces: voxels synthesized per level, time, kept
     /// state, against the full volume and the thesis.
     Lazy(lazy::LazyArgs),
+    /// New surface on demand: per plane cut and per Voronoi fracture of a mesh, the voxels
+    /// its caps need, their synthesis and insert time, state and store growth.
+    Cuts(cuts::CutsArgs),
     /// Thesis Table 4.1: memory and lookup speed of every sparse texture structure over a mesh
     /// at one equivalent resolution, seen from a fixed 800×800 viewpoint, with pictures.
     Textures(textures::TexturesArgs),
@@ -67,6 +71,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Synth(a) => &a.common,
         BenchCommand::Solid(a) => &a.common,
         BenchCommand::Lazy(a) => &a.common,
+        BenchCommand::Cuts(a) => &a.common,
         BenchCommand::Textures(a) => &a.common,
     };
     check_writable_dir("--out-dir", &common.out_dir)?;
@@ -78,6 +83,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Synth(args) => synth::run(&args, global),
         BenchCommand::Solid(args) => solid::run(&args, global),
         BenchCommand::Lazy(args) => lazy::run(&args, global),
+        BenchCommand::Cuts(args) => cuts::run(&args, global),
         BenchCommand::Textures(args) => textures::run(&args, global),
     }
 }

@@ -8,8 +8,8 @@ use anyhow::{bail, Context};
 use clap::Args;
 use glam::DVec3;
 use lazysolid_renderer::fracture::{
-    check_closed, fracture, random_sites, split_surface, volume, write_fragment_obj,
-    write_material_library, Fragment, Plane, SplitResult, MAX_PIECES,
+    check_closed, cut_pieces, fracture, random_sites, volume, write_fragment_obj,
+    write_material_library, Fragment, Plane, MAX_PIECES,
 };
 use lazysolid_renderer::mesh::Mesh;
 use std::path::PathBuf;
@@ -113,37 +113,17 @@ pub fn run(args: &FractureArgs) -> anyhow::Result<()> {
 
 /// Cuts the mesh by every plane in turn, each plane cutting every piece made so far.
 fn cut(mesh: &Mesh, planes: &[[f64; 4]]) -> anyhow::Result<Vec<Fragment>> {
-    let mut pieces = vec![Fragment {
-        positions: mesh.positions.clone(),
-        triangles: mesh.triangles.clone(),
-        interior: vec![false; mesh.triangles.len()],
-    }];
+    let mut pieces = vec![Fragment::whole(mesh)];
     for (k, &[x, y, z, d]) in planes.iter().enumerate() {
         let plane = Plane::new(DVec3::new(x, y, z), d);
-        let mut next = Vec::with_capacity(pieces.len() * 2);
-        let mut missed = 0;
-        for piece in pieces {
-            match split_surface(
-                &piece.positions,
-                &piece.triangles,
-                Some(&piece.interior),
-                &mesh.source,
-                plane,
-            )? {
-                SplitResult::Missed { .. } => {
-                    missed += 1;
-                    next.push(piece);
-                }
-                SplitResult::Split { below, above } => next.extend([below, above]),
-            }
-        }
-        if missed == next.len() {
+        let missed;
+        (pieces, missed) = cut_pieces(pieces, plane, &mesh.source)?;
+        if missed {
             println!(
                 "--plane {x},{y},{z},{d} (plane {}) misses the mesh: nothing cut",
                 k + 1
             );
         }
-        pieces = next;
     }
     Ok(pieces)
 }

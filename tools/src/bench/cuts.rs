@@ -1,0 +1,339 @@
+//! `lazysolid bench cuts`: new surface synthesized on demand (thesis 003 lines 1085 and
+//! 1093–1096: each new 256² cut of the gargoyle in 8 ms on a 2008 GPU with 14.4 MB of
+//! temporary memory). A lazy state and a coherent-hash store (nearest reads) first take the
+//! mesh's outer surface; then each plane cut through the mesh (independent cuts of the whole
+//! mesh) requests the surface voxels of its cap that the store lacks, synthesizes them and
+//! inserts them — timed as one wall time, with its voxels, the state's growth and the store's.
+//! A Voronoi fracture (each piece count from a fresh state holding the outer surface) is timed
+//! the same way over the caps of all its pieces.
+//!
+//! New surface can be synthesized only once per state, so every cut is measured once (the
+//! rows' min and median are that one time); one unmeasured cut near the top of the mesh first
+//! compiles the kernels (lavapipe compiles at first dispatch).
+
+use super::harness::{time_cpu, Bench, Throughput};
+use super::CommonArgs;
+use crate::cli::{assets, GlobalArgs};
+use anyhow::{ensure, Context};
+use clap::Args;
+use glam::{DVec3, Vec3};
+use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::hash::RobinHoodConfig;
+use lazysolid_compute::store::{ColourSource, HashStore, SparseStore, StoreKernels};
+use lazysolid_compute::synth::cache::DiskCache;
+use lazysolid_compute::synth::solid::lazy::GpuLazySolid;
+use lazysolid_compute::synth::solid::SolidExemplars;
+use lazysolid_compute::synth::Exemplar;
+use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
+use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};
+use lazysolid_renderer::mesh::Mesh;
+use std::path::PathBuf;
+
+/// What to measure.
+#[derive(Args)]
+pub struct CutsArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// The mesh: a name in the assets' meshes or a path; normalized into the unit cube.
+    #[arg(long, default_value = "armadillo")]
+    pub mesh: String,
+    /// Equivalent resolutions R.
+    #[arg(long, value_delimiter = ',', default_value = "256")]
+    pub voxel_res: Vec<u32>,
+    /// Voronoi fractures to time, by piece count.
+    #[arg(long, value_delimiter = ',', default_value = "8,32")]
+    pub pieces: Vec<usize>,
+    /// The exemplar playing every role: a name in the assets' exemplars or a path.
+    #[arg(long, default_value = "terra")]
+    pub exemplar: String,
+    /// Where named exemplars live; default: the assets' exemplars.
+    #[arg(long, value_name = "DIR")]
+    pub exemplar_dir: Option<PathBuf>,
+    /// Seed of the jitter and of the fracture sites.
+    #[arg(long, default_value_t = 3)]
+    pub seed: u32,
+}
+
+/// The measured plane cuts through the centre of the unit cube: normals.
+const CUTS: [[f64; 3]; 4] = [
+    [0.0, 1.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [1.0, 1.0, 0.4],
+];
+
+/// Thesis figures (003 lines 1085, 1093–1096).
+const THESIS: &str = "thesis (2008 GPU): 8 ms and 14.4 MB of temporary memory per new 256² cut; \
+                      storage 1.3 MB for the equivalent of 256³";
+
+/// A lazy state holding the outer surface, and a store over it.
+struct Holder {
+    lazy: GpuLazySolid,
+    store: HashStore,
+    /// Stored voxel keys, sorted (to request only what the store lacks).
+    stored: Vec<u64>,
+}
+
+/// What one cut or fracture asked and cost.
+struct CutCost {
+    cap_triangles: usize,
+    cap_voxels: usize,
+    new_voxels: usize,
+    versions: u64,
+    wall_ms: f64,
+    device_ms: f64,
+    state_growth: u64,
+    request_bytes: u64,
+    store_before: u64,
+    store_after: u64,
+}
+
+/// What every state of the suite is made from.
+struct Setup<'a> {
+    gpu: &'a Gpu,
+    kernels: std::sync::Arc<StoreKernels>,
+    exemplars: &'a SolidExemplars,
+    mesh: &'a Mesh,
+    seed: u32,
+    cache: Option<DiskCache>,
+}
+
+impl Holder {
+    /// A fresh state and store holding the outer surface at resolution `r`.
+    fn new(setup: &Setup<'_>, voxelizer: &mut Voxelizer, r: u32) -> anyhow::Result<Holder> {
+        let mut lazy = GpuLazySolid::with_defaults(
+            setup.gpu,
+            setup.exemplars,
+            setup.seed,
+            r,
+            setup.cache.as_ref(),
+        )
+        .context("the lazy synthesis state")?;
+        let mesh = setup.mesh;
+        let keys = voxelizer.surface(&mesh.positions, &mesh.triangles, r)?;
+        let (colours, _) = lazy.colours(&keys)?;
+        let source = ColourSource::Buffer {
+            keys: &keys,
+            colours: &colours,
+        };
+        let store = HashStore::build(
+            &setup.kernels,
+            r,
+            &keys,
+            &source,
+            RobinHoodConfig::default(),
+        )?;
+        Ok(Holder {
+            lazy,
+            store,
+            stored: keys.read()?,
+        })
+    }
+
+    /// Requests, synthesizes and inserts the surface voxels of `caps` the store lacks.
+    fn cut(
+        &mut self,
+        gpu: &Gpu,
+        voxelizer: &mut Voxelizer,
+        caps: &(Vec<Vec3>, Vec<[u32; 3]>),
+        r: u32,
+    ) -> anyhow::Result<CutCost> {
+        let state_before = self.lazy.bytes();
+        let store_before = self.store.bytes();
+        let mut cost = None;
+        let (result, wall_ms) = time_cpu(|| -> anyhow::Result<()> {
+            let cap = voxelizer.surface(&caps.0, &caps.1, r)?.read()?;
+            let new: Vec<u64> = cap
+                .iter()
+                .copied()
+                .filter(|k| self.stored.binary_search(k).is_err())
+                .collect();
+            let keys = VoxelKeys::from_sorted(gpu, "cut voxels", &new)?;
+            let mut versions = 0;
+            let mut device_ms = 0.0;
+            if !new.is_empty() {
+                let (colours, report) = self.lazy.colours(&keys)?;
+                let source = ColourSource::Buffer {
+                    keys: &keys,
+                    colours: &colours,
+                };
+                self.store.insert(&keys, &source)?;
+                versions = report.computed.iter().sum();
+                device_ms = report.gpu_ms;
+            }
+            cost = Some((cap.len(), new, versions, device_ms));
+            Ok(())
+        });
+        result?;
+        let (cap_voxels, new, versions, device_ms) = cost.context("the cut ran")?;
+        let new_voxels = new.len();
+        self.stored.extend(new);
+        self.stored.sort_unstable();
+        Ok(CutCost {
+            cap_triangles: caps.1.len(),
+            cap_voxels,
+            new_voxels,
+            versions,
+            wall_ms,
+            device_ms,
+            state_growth: self.lazy.bytes() - state_before,
+            // The request's own buffers: keys (8 B) and colours (4 B) per new voxel.
+            request_bytes: 12 * new_voxels as u64,
+            store_before,
+            store_after: self.store.bytes(),
+        })
+    }
+}
+
+/// The cap faces of `pieces` as one triangle list. The two parts of a single cut share their
+/// cap (reversed), so a cut passes only the part below.
+fn caps(pieces: &[Fragment]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    for p in pieces {
+        let base = positions.len() as u32;
+        positions.extend_from_slice(&p.positions);
+        triangles.extend(p.triangles_of(true).map(|t| t.map(|v| v + base)));
+    }
+    (positions, triangles)
+}
+
+/// Runs the suite.
+pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    for &r in &args.voxel_res {
+        ensure!(
+            (16..=2048).contains(&r),
+            "--voxel-res {r}: must lie in 16..=2048"
+        );
+    }
+    let gpu = global.gpu()?;
+    let path = assets::exemplar("--exemplar", &args.exemplar, args.exemplar_dir.as_deref())?;
+    let exemplar =
+        Exemplar::load(&path).with_context(|| format!("loading --exemplar {}", path.display()))?;
+    let exemplars = SolidExemplars::new(exemplar, [None, None, None])?;
+    let mesh_path = assets::mesh("--mesh", &args.mesh)?;
+    let mesh = Mesh::load_unit_cube(&mesh_path)
+        .with_context(|| format!("loading --mesh {}", mesh_path.display()))?;
+    let setup = Setup {
+        gpu: &gpu,
+        kernels: StoreKernels::new(&gpu)?,
+        exemplars: &exemplars,
+        mesh: &mesh,
+        seed: args.seed,
+        cache: DiskCache::user().ok(),
+    };
+    let mut voxelizer = Voxelizer::new(&gpu)?;
+    // Each cut is new surface, measured once: the harness runs each case once, unwarmed (a
+    // warm-up cut precedes the measured ones).
+    let once = CommonArgs {
+        warmup: 0,
+        runs: 1,
+        out_dir: args.common.out_dir.clone(),
+    };
+    let cases = args.voxel_res.len() * (CUTS.len() + args.pieces.len());
+    let mut bench = Bench::new("bench-cuts", &gpu, &once, cases as u64)?;
+    let mut notes: Vec<(String, f64)> = vec![("seed".into(), args.seed as f64)];
+    let whole = Fragment::whole(&mesh);
+    let bounds = mesh.bounds();
+    let centre = ((bounds.min + bounds.max) * 0.5).as_dvec3();
+    for &r in &args.voxel_res {
+        bench.status(format!("{r}³: the outer surface"));
+        let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
+        notes.push((
+            format!("{r}³: outer surface voxels"),
+            holder.stored.len() as f64,
+        ));
+        notes.push((
+            format!("{r}³: state MB after the outer surface"),
+            holder.lazy.bytes() as f64 / 1e6,
+        ));
+        // Warm-up: a small cut near the top compiles every kernel a cut uses.
+        let top = DVec3::new(centre.x, bounds.max.y as f64 - 0.03, centre.z);
+        let (pieces, _) = cut_pieces(
+            vec![whole.clone()],
+            Plane::through(top, DVec3::Y),
+            &mesh.source,
+        )?;
+        holder.cut(&gpu, &mut voxelizer, &caps(&pieces[..1]), r)?;
+        for (k, n) in CUTS.iter().enumerate() {
+            let plane = Plane::through(centre, DVec3::from_array(*n));
+            let (pieces, _) = cut_pieces(vec![whole.clone()], plane, &mesh.source)?;
+            let cap = caps(&pieces[..1]);
+            let case = format!("{r}³ plane cut {} normal {n:?}", k + 1);
+            bench.status(case.clone());
+            let mut cost = None;
+            bench.case(
+                &case,
+                0,
+                "lazy request + insert (wall)",
+                Throughput::Elements,
+                None,
+                || {
+                    let c = holder.cut(&gpu, &mut voxelizer, &cap, r)?;
+                    let ms = c.wall_ms;
+                    cost = Some(c);
+                    Ok(ms)
+                },
+            )?;
+            note_cost(&mut notes, &case, &cost.context("measured")?);
+        }
+        for &n in &args.pieces {
+            let case = format!("{r}³ fracture {n} pieces");
+            bench.status(format!("{case}: the outer surface"));
+            let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
+            holder.cut(
+                &gpu,
+                &mut voxelizer,
+                &caps(
+                    &cut_pieces(
+                        vec![whole.clone()],
+                        Plane::through(top, DVec3::Y),
+                        &mesh.source,
+                    )?
+                    .0[..1],
+                ),
+                r,
+            )?;
+            let sites = random_sites(&mesh, n, args.seed as u64)?;
+            let (pieces, fracture_ms) = time_cpu(|| fracture(&mesh, &sites));
+            let pieces = pieces?;
+            notes.push((format!("{case}: fracture geometry ms (CPU)"), fracture_ms));
+            let cap = caps(&pieces);
+            bench.status(case.clone());
+            let mut cost = None;
+            bench.case(
+                &case,
+                0,
+                "lazy request + insert (wall)",
+                Throughput::Elements,
+                None,
+                || {
+                    let c = holder.cut(&gpu, &mut voxelizer, &cap, r)?;
+                    let ms = c.wall_ms;
+                    cost = Some(c);
+                    Ok(ms)
+                },
+            )?;
+            note_cost(&mut notes, &case, &cost.context("measured")?);
+        }
+    }
+    println!("{THESIS}");
+    bench.finish(&notes)?;
+    Ok(())
+}
+
+fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {
+    let mut add = |what: &str, v: f64| notes.push((format!("{case}: {what}"), v));
+    add("cap triangles", c.cap_triangles as f64);
+    add("cap surface voxels", c.cap_voxels as f64);
+    add("new voxels", c.new_voxels as f64);
+    add("voxel versions synthesized", c.versions as f64);
+    add("wall ms", c.wall_ms);
+    add("synthesis device ms", c.device_ms);
+    add("kept state growth MB", c.state_growth as f64 / 1e6);
+    add(
+        "request buffers MB (keys + colours)",
+        c.request_bytes as f64 / 1e6,
+    );
+    add("store MB before", c.store_before as f64 / 1e6);
+    add("store MB after", c.store_after as f64 / 1e6);
+}
