@@ -7,9 +7,10 @@
 //! A Voronoi fracture (each piece count from a fresh state holding the outer surface) is timed
 //! the same way over the caps of all its pieces.
 //!
-//! New surface can be synthesized only once per state, so every cut is measured once (the
-//! rows' min and median are that one time); one unmeasured cut near the top of the mesh first
-//! compiles the kernels (lavapipe compiles at first dispatch).
+//! A row's elements are the cut's cap triangles. New surface can be synthesized only once per
+//! state, so every cut is measured once (the rows' min and median are that one time); one
+//! unmeasured cut near the top of the mesh first compiles the kernels (lavapipe compiles at
+//! first dispatch).
 
 use super::harness::{time_cpu, Bench, Throughput};
 use super::CommonArgs;
@@ -263,7 +264,7 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             let mut cost = None;
             bench.case(
                 &case,
-                0,
+                cap.1.len() as u64,
                 "lazy request + insert (wall)",
                 Throughput::Elements,
                 None,
@@ -302,7 +303,7 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             let mut cost = None;
             bench.case(
                 &case,
-                0,
+                cap.1.len() as u64,
                 "lazy request + insert (wall)",
                 Throughput::Elements,
                 None,
