@@ -1220,3 +1220,31 @@ fn explosion_scene_loads() {
     let synthesized = s.materials[0].texture.as_ref().unwrap();
     assert_eq!(synthesized.kind, SolidTextureKind::Synthesized);
 }
+
+/// Names refer to the named instance wherever it stands among unnamed ones; a name used twice
+/// is refused at its second use.
+#[test]
+fn instance_names_find_the_right_instance() {
+    let text = format!(
+        "{BASE}[[instance]]\nname = \"b\"\nmesh = \"box\"\nmaterial = \"white\"\ntranslate = [3, 0, 0]\n\
+         [[fracture]]\ninstance = \"b\"\npieces = 2\n"
+    );
+    let s = parse(&text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.instances.len(), 3);
+    assert!(
+        s.instances[0].piece.is_none(),
+        "the unnamed box stays whole"
+    );
+    for inst in &s.instances[1..] {
+        assert_eq!(inst.piece.unwrap().broken, 1);
+        assert_eq!(inst.transform.translation.x, 3.0);
+    }
+    let twice = format!(
+        "{BASE}name = \"b\"\n[[instance]]\nname = \"b\"\nmesh = \"box\"\nmaterial = \"white\"\n"
+    );
+    expect(
+        &twice,
+        21,
+        "instance #2.name: duplicate name: instance \"b\" is already defined on line 19",
+    );
+}

@@ -38,11 +38,15 @@ impl Scene {
 
         let camera = camera::camera(&doc, &raw.camera)?;
         let render = camera::render(&doc, raw.render.get_ref())?;
-        let mesh_names = names(&doc, "mesh", raw.mesh.iter().map(|m| &m.get_ref().name))?;
+        let mesh_names = names(
+            &doc,
+            "mesh",
+            raw.mesh.iter().map(|m| &m.get_ref().name).enumerate(),
+        )?;
         let material_names = names(
             &doc,
             "material",
-            raw.material.iter().map(|m| &m.get_ref().name),
+            raw.material.iter().map(|m| &m.get_ref().name).enumerate(),
         )?;
         let materials = raw
             .material
@@ -64,7 +68,8 @@ impl Scene {
             "instance",
             raw.instance
                 .iter()
-                .filter_map(|i| i.get_ref().name.as_ref()),
+                .enumerate()
+                .filter_map(|(k, i)| Some((k, i.get_ref().name.as_ref()?))),
         )?;
         let instances = raw
             .instance
@@ -118,14 +123,15 @@ impl Scene {
     }
 }
 
-/// Index of every name of a section; names must be non-empty and unique.
+/// Index of every name of a section, given with the index of its table (tables without a name
+/// are left out); names must be non-empty and unique.
 fn names<'a>(
     doc: &Doc,
     section: &str,
-    names: impl Iterator<Item = &'a Spanned<String>>,
+    names: impl Iterator<Item = (usize, &'a Spanned<String>)>,
 ) -> Result<HashMap<&'a str, usize>, SceneError> {
     let mut index: HashMap<&str, (usize, usize)> = HashMap::new();
-    for (i, name) in names.enumerate() {
+    for (i, name) in names {
         let label = join(&element_label(section, i, None), "name");
         let line = doc.line(name.span().start);
         if name.get_ref().is_empty() {
