@@ -365,7 +365,8 @@ impl Baker<'_> {
         let cap_keys = self.voxels(spec, synth.is_some(), caps.0, caps.1)?;
         // What the store gets: a volume store only voxels it lacks; a TileTree's buffer source
         // must hold every voxel its refilled texels meet, which the outer and cap voxels do.
-        let new_keys = match (&cap_keys, outer_keys) {
+        let requested = cap_keys.as_ref().map_or(0, |k| k.len() as u64);
+        let new_keys = match (cap_keys, outer_keys) {
             (Some(cap), Some(outer)) => {
                 let (cap, outer) = (
                     cap.read().map_err(|e| e.to_string())?,
@@ -386,13 +387,10 @@ impl Baker<'_> {
                         .map_err(|e| e.to_string())?,
                 )
             }
-            (Some(cap), None) => Some(
-                VoxelKeys::from_sorted(gpu, "cut voxels", &cap.read().map_err(|e| e.to_string())?)
-                    .map_err(|e| e.to_string())?,
-            ),
-            _ => None,
+            // Nothing was stored by voxel: the caps' voxels are all new.
+            (cap, None) => cap,
+            (None, Some(_)) => None,
         };
-        let requested = cap_keys.as_ref().map_or(0, |k| k.len() as u64);
         let (colours, synthesis) = match (synth, &new_keys) {
             (Some(synth), Some(keys)) if !keys.is_empty() => {
                 let (c, s) = self.synthesize(synth, r, keys)?;

@@ -24,11 +24,9 @@ use lazysolid_compute::store::{ColourSource, HashStore, SparseStore, StoreKernel
 use lazysolid_compute::synth::cache::DiskCache;
 use lazysolid_compute::synth::solid::lazy::GpuLazySolid;
 use lazysolid_compute::synth::solid::SolidExemplars;
-use lazysolid_compute::synth::Exemplar;
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};
 use lazysolid_renderer::mesh::Mesh;
-use std::path::PathBuf;
 
 /// What to measure.
 #[derive(Args)]
@@ -44,12 +42,8 @@ pub struct CutsArgs {
     /// Voronoi fractures to time, by piece count.
     #[arg(long, value_delimiter = ',', default_value = "8,32")]
     pub pieces: Vec<usize>,
-    /// The exemplar playing every role: a name in the assets' exemplars or a path.
-    #[arg(long, default_value = "terra")]
-    pub exemplar: String,
-    /// Where named exemplars live; default: the assets' exemplars.
-    #[arg(long, value_name = "DIR")]
-    pub exemplar_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub exemplar: super::lazy::SolidExemplarArg,
     /// Seed of the jitter and of the fracture sites.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
@@ -207,10 +201,7 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         );
     }
     let gpu = global.gpu()?;
-    let path = assets::exemplar("--exemplar", &args.exemplar, args.exemplar_dir.as_deref())?;
-    let exemplar =
-        Exemplar::load(&path).with_context(|| format!("loading --exemplar {}", path.display()))?;
-    let exemplars = SolidExemplars::new(exemplar, [None, None, None])?;
+    let exemplars = args.exemplar.load()?;
     let mesh_path = assets::mesh("--mesh", &args.mesh)?;
     let mesh = Mesh::load_unit_cube(&mesh_path)
         .with_context(|| format!("loading --mesh {}", mesh_path.display()))?;
@@ -236,6 +227,14 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let whole = Fragment::whole(&mesh);
     let bounds = mesh.bounds();
     let centre = ((bounds.min + bounds.max) * 0.5).as_dvec3();
+    // Warm-up: a small cut near the top compiles every kernel a cut uses.
+    let top = DVec3::new(centre.x, bounds.max.y as f64 - 0.03, centre.z);
+    let (pieces, _) = cut_pieces(
+        vec![whole.clone()],
+        Plane::through(top, DVec3::Y),
+        &mesh.source,
+    )?;
+    let warm_up = caps(&pieces[..1]);
     for &r in &args.voxel_res {
         bench.status(format!("{r}³: the outer surface"));
         let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
@@ -247,79 +246,75 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             format!("{r}³: state MB after the outer surface"),
             holder.lazy.bytes() as f64 / 1e6,
         ));
-        // Warm-up: a small cut near the top compiles every kernel a cut uses.
-        let top = DVec3::new(centre.x, bounds.max.y as f64 - 0.03, centre.z);
-        let (pieces, _) = cut_pieces(
-            vec![whole.clone()],
-            Plane::through(top, DVec3::Y),
-            &mesh.source,
-        )?;
-        holder.cut(&gpu, &mut voxelizer, &caps(&pieces[..1]), r)?;
+        holder.cut(&gpu, &mut voxelizer, &warm_up, r)?;
         for (k, n) in CUTS.iter().enumerate() {
             let plane = Plane::through(centre, DVec3::from_array(*n));
             let (pieces, _) = cut_pieces(vec![whole.clone()], plane, &mesh.source)?;
-            let cap = caps(&pieces[..1]);
             let case = format!("{r}³ plane cut {} normal {n:?}", k + 1);
-            bench.status(case.clone());
-            let mut cost = None;
-            bench.case(
-                &case,
-                cap.1.len() as u64,
-                "lazy request + insert (wall)",
-                Throughput::Elements,
-                None,
-                || {
-                    let c = holder.cut(&gpu, &mut voxelizer, &cap, r)?;
-                    let ms = c.wall_ms;
-                    cost = Some(c);
-                    Ok(ms)
-                },
-            )?;
-            note_cost(&mut notes, &case, &cost.context("measured")?);
+            let cut = Measured {
+                case: &case,
+                cap: &caps(&pieces[..1]),
+                r,
+            };
+            cut.run(&gpu, &mut bench, &mut holder, &mut voxelizer, &mut notes)?;
         }
         for &n in &args.pieces {
             let case = format!("{r}³ fracture {n} pieces");
             bench.status(format!("{case}: the outer surface"));
             let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
-            holder.cut(
-                &gpu,
-                &mut voxelizer,
-                &caps(
-                    &cut_pieces(
-                        vec![whole.clone()],
-                        Plane::through(top, DVec3::Y),
-                        &mesh.source,
-                    )?
-                    .0[..1],
-                ),
-                r,
-            )?;
+            holder.cut(&gpu, &mut voxelizer, &warm_up, r)?;
             let sites = random_sites(&mesh, n, args.seed as u64)?;
             let (pieces, fracture_ms) = time_cpu(|| fracture(&mesh, &sites));
             let pieces = pieces?;
             notes.push((format!("{case}: fracture geometry ms (CPU)"), fracture_ms));
-            let cap = caps(&pieces);
-            bench.status(case.clone());
-            let mut cost = None;
-            bench.case(
-                &case,
-                cap.1.len() as u64,
-                "lazy request + insert (wall)",
-                Throughput::Elements,
-                None,
-                || {
-                    let c = holder.cut(&gpu, &mut voxelizer, &cap, r)?;
-                    let ms = c.wall_ms;
-                    cost = Some(c);
-                    Ok(ms)
-                },
-            )?;
-            note_cost(&mut notes, &case, &cost.context("measured")?);
+            let cut = Measured {
+                case: &case,
+                cap: &caps(&pieces),
+                r,
+            };
+            cut.run(&gpu, &mut bench, &mut holder, &mut voxelizer, &mut notes)?;
         }
     }
     println!("{THESIS}");
     bench.finish(&notes)?;
     Ok(())
+}
+
+/// One measured cut: its row and its notes.
+struct Measured<'a> {
+    case: &'a str,
+    cap: &'a (Vec<Vec3>, Vec<[u32; 3]>),
+    r: u32,
+}
+
+impl Measured<'_> {
+    /// Times the cut once on `holder` as the case's row and notes what it cost.
+    fn run(
+        &self,
+        gpu: &Gpu,
+        bench: &mut Bench,
+        holder: &mut Holder,
+        voxelizer: &mut Voxelizer,
+        notes: &mut Vec<(String, f64)>,
+    ) -> anyhow::Result<()> {
+        bench.status(self.case.to_string());
+        let mut cost = None;
+        bench.case(
+            self.case,
+            self.cap.1.len() as u64,
+            "lazy request + insert (wall)",
+            Throughput::Elements,
+            None,
+            || {
+                let c = holder.cut(gpu, voxelizer, self.cap, self.r)?;
+                let ms = c.wall_ms;
+                cost = Some(c);
+                Ok(ms)
+            },
+        )?;
+        note_cost(notes, self.case, &cost.context("measured")?);
+        Ok(())
+    }
 }
 
 fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {

@@ -44,18 +44,35 @@ pub struct LazyArgs {
     /// Equivalent resolutions R (the texture is R³ voxels over the unit cube).
     #[arg(long, value_delimiter = ',', default_value = "256,512,1024")]
     pub voxel_res: Vec<u32>,
-    /// The exemplar playing every role: a name in the assets' exemplars or a path.
-    #[arg(long, default_value = "terra")]
-    pub exemplar: String,
-    /// Where named exemplars live; default: the assets' exemplars.
-    #[arg(long, value_name = "DIR")]
-    pub exemplar_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub exemplar: SolidExemplarArg,
     /// Seed of the jitter.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
     /// Only the first mesh at the first resolution.
     #[arg(long)]
     pub quick: bool,
+}
+
+/// The exemplar of the lazy suites (`lazy`, `cuts`): one image playing all three roles.
+#[derive(Args)]
+pub struct SolidExemplarArg {
+    /// The exemplar playing every role: a name in the assets' exemplars or a path.
+    #[arg(long, default_value = "terra")]
+    pub exemplar: String,
+    /// Where named exemplars live; default: the assets' exemplars.
+    #[arg(long, value_name = "DIR")]
+    pub exemplar_dir: Option<PathBuf>,
+}
+
+impl SolidExemplarArg {
+    /// Loads the exemplar as the three roles of a solid texture.
+    pub fn load(&self) -> anyhow::Result<SolidExemplars> {
+        let path = assets::exemplar("--exemplar", &self.exemplar, self.exemplar_dir.as_deref())?;
+        let exemplar = Exemplar::load(&path)
+            .with_context(|| format!("loading --exemplar {}", path.display()))?;
+        Ok(SolidExemplars::new(exemplar, [None, None, None])?)
+    }
 }
 
 /// Thesis figures for the same meshes at 1024³ (003 lines 1090–1096).
@@ -80,10 +97,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         );
     }
     let gpu = global.gpu()?;
-    let path = assets::exemplar("--exemplar", &args.exemplar, args.exemplar_dir.as_deref())?;
-    let exemplar =
-        Exemplar::load(&path).with_context(|| format!("loading --exemplar {}", path.display()))?;
-    let exemplars = SolidExemplars::new(exemplar, [None, None, None])?;
+    let exemplars = args.exemplar.load()?;
     let cache = DiskCache::user().ok();
     let state = |r: u32| {
         GpuLazySolid::with_defaults(&gpu, &exemplars, args.seed, r, cache.as_ref())

@@ -190,7 +190,10 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let mut done = 0u64;
     let mut shoot = |tracer: &mut PathTracer, frame: Option<u32>| -> anyhow::Result<_> {
         let frame_start = Instant::now();
-        tracer.set_time(&scene, frame.map_or(0.0, |f| scene.frame_time(f)))?;
+        // The tracer starts at rest (time 0): only a frame moves the instances.
+        if let Some(f) = frame {
+            tracer.set_time(&scene, scene.frame_time(f))?;
+        }
         let (mut rays, mut trace_time) = (0u64, 0.0f64);
         let film = tracer.render(|pass| {
             rays += pass.rays;
