@@ -9,8 +9,9 @@
 //!   axis), each rectangle of sizes 2^i × 2^j cut into 2^|i − j| squares of the smaller size.
 //!   That is exact, and it is the fewest aligned squares that cover the query. It is **not**
 //!   O(log n): a square whose first column is odd has that whole column as single texels, so
-//!   the count grows with the edge (about 4 · 2^k blocks for the worst starts). The paper's
-//!   "O(log n)" holds for one axis; aligned squares cannot cover an unaligned one with fewer.
+//!   the count grows with the edge (about 3.9 · 2^k blocks on average over random starts). The
+//!   paper's "O(log n)" holds for one axis; aligned squares cannot cover an unaligned one with
+//!   fewer (aligned squares nest or are disjoint, so a cover needs one per maximal block).
 //! - [`brute_force`]: every texel of the square, (2^k + 1)² reads.
 //!
 //! [`random_squares`] makes the query batches the bench and the tests share; the device
