@@ -4,6 +4,7 @@
 // when the level's square [x, x + span]^2 leaves the example. Entries pack four 16-bit values:
 // (min n_x | min n_y << 16, max n_x | max n_y << 16).
 #include "common.glsl"
+#include "glint/range_union.glsl"
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) buffer Entries { uvec2 v[]; };
 
@@ -15,12 +16,6 @@ layout(push_constant, scalar) uniform Push {
     uint span;
 } pc;
 
-uvec2 range_union(uvec2 a, uvec2 b) {
-    uint lo = min(a.x & 0xFFFFu, b.x & 0xFFFFu) | (min(a.x >> 16u, b.x >> 16u) << 16u);
-    uint hi = max(a.y & 0xFFFFu, b.y & 0xFFFFu) | (max(a.y >> 16u, b.y >> 16u) << 16u);
-    return uvec2(lo, hi);
-}
-
 void main() {
     uint64_t i = global_index();
     uint n = pc.size;
@@ -31,7 +26,7 @@ void main() {
     uint y = uint(i / uint64_t(n));
     Entries dst = Entries(pc.dst);
     if (x + pc.span > n - 1u || y + pc.span > n - 1u) {
-        dst.v[uint(i)] = uvec2(0xFFFFFFFFu, 0u);
+        dst.v[uint(i)] = GLINT_RANGE_EMPTY;
         return;
     }
     Entries src = Entries(pc.src);

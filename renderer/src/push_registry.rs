@@ -2,8 +2,10 @@
 //! every kernel's block against the reflected GLSL.
 
 use crate::accel::ray_queries::TraceRaysPush;
-use crate::glint::GlintRangeLevelPush;
-use crate::kernels::render::{GLINT_RANGE_LEVEL, PATH_TRACE, TRACE_RAYS};
+use crate::glint::{GlintMinMaxMipPush, GlintRangeLevelPush, GlintRangeQueryPush};
+use crate::kernels::render::{
+    GLINT_MINMAX_MIP, GLINT_RANGE_LEVEL, GLINT_RANGE_QUERY, PATH_TRACE, TRACE_RAYS,
+};
 use crate::render::path_tracer::PathTracePush;
 use lazysolid_compute::gpu::PushRegistration;
 
@@ -14,5 +16,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         PushRegistration::of::<PathTracePush>(&PATH_TRACE),
         PushRegistration::of::<TraceRaysPush>(&TRACE_RAYS),
         PushRegistration::of::<GlintRangeLevelPush>(&GLINT_RANGE_LEVEL),
+        PushRegistration::of::<GlintMinMaxMipPush>(&GLINT_MINMAX_MIP),
+        PushRegistration::of::<GlintRangeQueryPush>(&GLINT_RANGE_QUERY),
     ]
 }

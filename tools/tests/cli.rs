@@ -959,7 +959,7 @@ fn bench_results_record_the_revision_once_per_row() {
 
 /// The help of the tool and of every subcommand.
 fn every_help() -> Vec<(String, String)> {
-    let commands: [&[&str]; 11] = [
+    let commands: [&[&str]; 12] = [
         &[],
         &["device"],
         &["diff"],
@@ -971,6 +971,7 @@ fn every_help() -> Vec<(String, String)> {
         &["bench", "trace"],
         &["bench", "synth"],
         &["bench", "textures"],
+        &["bench", "glints"],
     ];
     commands
         .iter()
@@ -1652,4 +1653,61 @@ fn bench_cuts_times_every_cut_and_fracture() {
     assert!(bench.json()["rows"]
         .as_array()
         .is_some_and(|r| r.len() == 5));
+}
+
+/// `lazysolid bench glints`: per example size, build rows of the sparse table and the min–max
+/// mip (CPU and device) and query rows of all three methods (the suite fails unless their
+/// answers are identical), the memory table beside the paper's 0.44 %, and bad sizes refused.
+#[test]
+fn bench_glints_measures_range_queries_and_memory() {
+    let out = tempfile::tempdir().unwrap();
+    let bench = BenchRun::new(
+        lazysolid().args([
+            "bench",
+            "glints",
+            "--res",
+            "32,128",
+            "--exemplar",
+            "leather",
+            "--queries",
+            "500",
+            "--coverage",
+            "5120",
+            "--warmup",
+            "0",
+            "--runs",
+            "1",
+        ]),
+        out.path(),
+        &[
+            "32² leather query",
+            "128² generated query",
+            "sparse table (gpu)",
+            "min–max mip (cpu, 1 thread)",
+            "brute force (gpu)",
+            "Mquery/s",
+            "5120²",
+            "0.44 % Chair",
+        ],
+    );
+    let json = bench.json();
+    assert_eq!(json["rows"].as_array().map(Vec::len), Some(20));
+    // 32²: levels 0..=3 (l = 8) of 32² entries, 8 bytes each.
+    assert_eq!(
+        json["derived"]["32² leather: sparse table bytes"].as_f64(),
+        Some((4 * 32 * 32 * 8) as f64)
+    );
+    assert!(
+        json["derived"]["128² generated against coverage 5120²: constant / explicit %"]
+            .as_f64()
+            .is_some_and(|r| r > 0.0 && r < 1.0)
+    );
+    for (res, needle) in [
+        ("48", "power of two"),
+        ("32x64", "square"),
+        ("8", "16..=2048"),
+    ] {
+        let (ok, _, err) = run(lazysolid().args(["bench", "glints", "--res", res]));
+        assert!(!ok && err.contains(needle), "--res {res}: {err}");
+    }
 }

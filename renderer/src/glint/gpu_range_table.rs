@@ -5,7 +5,9 @@
 use super::example::NormalExample;
 use super::range_table::quantize_texels;
 use crate::kernels::render::GLINT_RANGE_LEVEL;
-use lazysolid_compute::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult};
+use lazysolid_compute::gpu::{
+    DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder,
+};
 
 lazysolid_compute::push_block! {
     /// Push block of `glsl/render/glint_range_level.comp`.
@@ -36,30 +38,54 @@ pub fn build_range_table(
 ) -> GpuResult<GpuBuffer<[u32; 2]>> {
     let size = example.size();
     let levels = patch.trailing_zeros() as usize + 1;
-    let area = size * size;
     let texels = GpuBuffer::from_slice(gpu, "glint quantized texels", &quantize_texels(example))?;
-    let table = GpuBuffer::<[u32; 2]>::new(gpu, "glint range table", levels * area)?;
+    let table = GpuBuffer::<[u32; 2]>::new(gpu, "glint range table", levels * size * size)?;
     let kernel = gpu.kernel(&GLINT_RANGE_LEVEL)?;
-    gpu.submit(|rec| {
-        for k in 0..levels {
-            let src = if k == 0 {
-                texels.address()
-            } else {
-                table.address_at((k - 1) * area)?
-            };
-            let push = GlintRangeLevelPush {
-                src,
-                dst: table.address_at(k * area)?,
-                size: size as u32,
-                offset: if k == 0 { 1 } else { 1 << (k - 1) },
-                span: 1 << k,
-            };
-            if k > 0 {
-                rec.barrier();
-            }
-            rec.dispatch(&kernel, kernel.groups_for(area as u64), &[], &push)?;
-        }
-        Ok(())
-    })?;
+    gpu.submit(|rec| record_range_table(rec, &kernel, &texels, &table, size, levels))?;
     Ok(table)
+}
+
+/// Records the level dispatches of a range table of `levels` levels over the quantized texels
+/// `texels` of an example of edge `size` into `table` (`levels` × size² entries); `kernel` is
+/// [`GLINT_RANGE_LEVEL`]. The texels must be on the device when the commands run.
+///
+/// # Errors
+/// Dispatch errors, and buffers too small for `size` and `levels`.
+pub fn record_range_table(
+    rec: &mut Recorder<'_>,
+    kernel: &Kernel,
+    texels: &GpuBuffer<[u32; 2]>,
+    table: &GpuBuffer<[u32; 2]>,
+    size: usize,
+    levels: usize,
+) -> GpuResult<()> {
+    let area = size * size;
+    if texels.len() < area || table.len() < levels * area {
+        return Err(GpuError::InvalidArgument(format!(
+            "range table of {levels} levels over {size}²: {} texels and {} entries given, \
+             {area} and {} needed",
+            texels.len(),
+            table.len(),
+            levels * area
+        )));
+    }
+    for k in 0..levels {
+        let src = if k == 0 {
+            texels.address()
+        } else {
+            table.address_at((k - 1) * area)?
+        };
+        let push = GlintRangeLevelPush {
+            src,
+            dst: table.address_at(k * area)?,
+            size: size as u32,
+            offset: if k == 0 { 1 } else { 1 << (k - 1) },
+            span: 1 << k,
+        };
+        if k > 0 {
+            rec.barrier();
+        }
+        rec.dispatch(kernel, kernel.groups_for(area as u64), &[], &push)?;
+    }
+    Ok(())
 }

@@ -8,6 +8,9 @@
 //! - [`by_example`]: the point query (CPU twin of `glsl/include/glint/by_example.glsl`).
 //! - [`range_table`]: the square-only sparse table over the example, 16-bit quantized.
 //! - [`gpu_range_table`]: its device build, one dispatch per level.
+//! - [`minmax_mip`]: the range table's baselines (a min–max mip hierarchy, brute force) and
+//!   random query batches, for `lazysolid bench glints`.
+//! - [`gpu_range_query`]: their device twins: the mip's build and query batches by any method.
 //! - [`range_blend`]: conservative intervals of the blended map over a target square.
 //! - [`gpu_map`]: the device record of a map (example, tables, parameters).
 
@@ -16,7 +19,9 @@ pub mod error;
 pub mod example;
 pub mod gaussianize;
 pub mod gpu_map;
+pub mod gpu_range_query;
 pub mod gpu_range_table;
+pub mod minmax_mip;
 pub mod range_blend;
 pub mod range_table;
 
@@ -25,5 +30,9 @@ pub use error::GlintError;
 pub use example::NormalExample;
 pub use gaussianize::GaussianTables;
 pub use gpu_map::{GlintMapParams, GpuGlintMap};
-pub use gpu_range_table::{build_range_table, GlintRangeLevelPush};
+pub use gpu_range_query::{
+    record_range_queries, GlintMinMaxMipPush, GlintRangeQueryPush, GpuMinMaxMip, RangeMethod,
+};
+pub use gpu_range_table::{build_range_table, record_range_table, GlintRangeLevelPush};
+pub use minmax_mip::{random_squares, MinMaxMip, RangeSquare};
 pub use range_table::{NormalInterval, RangeTable};

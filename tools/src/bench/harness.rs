@@ -101,6 +101,8 @@ pub enum Throughput {
     Elements,
     /// Gigabytes per second for this many bytes moved per run.
     Bytes(u64),
+    /// Millions of the named items per second (e.g. `query` gives Mquery/s).
+    Items(&'static str),
 }
 
 impl Bench {
@@ -164,8 +166,15 @@ impl Bench {
         }
         let stats = Stats::from_samples(samples);
         let (throughput, unit) = match throughput {
-            Throughput::Elements => (elements as f64 / (stats.min_ms * 1e-3) / 1e6, "Melem/s"),
-            Throughput::Bytes(b) => (b as f64 / (stats.min_ms * 1e-3) / 1e9, "GB/s"),
+            Throughput::Elements => (
+                elements as f64 / (stats.min_ms * 1e-3) / 1e6,
+                "Melem/s".to_string(),
+            ),
+            Throughput::Bytes(b) => (b as f64 / (stats.min_ms * 1e-3) / 1e9, "GB/s".into()),
+            Throughput::Items(item) => (
+                elements as f64 / (stats.min_ms * 1e-3) / 1e6,
+                format!("M{item}/s"),
+            ),
         };
         let min = stats.min_ms;
         self.rows.push(Row {
@@ -175,7 +184,7 @@ impl Bench {
             builder: None,
             stats,
             throughput,
-            throughput_unit: unit.into(),
+            throughput_unit: unit,
             baseline: baseline.map(str::to_string),
             ratio: None,
         });
@@ -250,7 +259,7 @@ impl Bench {
                 None => r.implementation.clone(),
             };
             println!(
-                "{:<28} {:>11} {:<36} {:>10.3} {:>10.3} {:>7.1} {:<5} {:>8}",
+                "{:<28} {:>11} {:<36} {:>10.3} {:>10.3} {:>7.1} {:<8} {:>8}",
                 r.case,
                 r.elements,
                 implementation,

@@ -2,6 +2,7 @@
 //! median, ratios against a baseline measured in the same run, table + CSV + JSON).
 
 mod cuts;
+mod glints;
 pub mod harness;
 mod hash;
 mod lazy;
@@ -41,6 +42,10 @@ pub enum BenchCommand {
     /// New surface on demand: per plane cut and per Voronoi fracture of a mesh, the voxels
     /// its caps need, their synthesis and insert time, state and store growth.
     Cuts(cuts::CutsArgs),
+    /// Glints by example: range min/max queries of the sparse table against a min–max mip
+    /// and brute force (bytes, build, query rate), and the constant storage against the
+    /// explicit method's materialized map (`--part`).
+    Glints(glints::GlintsArgs),
     /// Thesis Table 4.1: memory and lookup speed of every sparse texture structure over a mesh
     /// at one equivalent resolution, seen from a fixed 800×800 viewpoint, with pictures.
     Textures(textures::TexturesArgs),
@@ -72,6 +77,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Solid(a) => &a.common,
         BenchCommand::Lazy(a) => &a.common,
         BenchCommand::Cuts(a) => &a.common,
+        BenchCommand::Glints(a) => &a.common,
         BenchCommand::Textures(a) => &a.common,
     };
     check_writable_dir("--out-dir", &common.out_dir)?;
@@ -84,6 +90,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Solid(args) => solid::run(&args, global),
         BenchCommand::Lazy(args) => lazy::run(&args, global),
         BenchCommand::Cuts(args) => cuts::run(&args, global),
+        BenchCommand::Glints(args) => glints::run(&args, global),
         BenchCommand::Textures(args) => textures::run(&args, global),
     }
 }
