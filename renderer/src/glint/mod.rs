@@ -10,6 +10,8 @@
 //! - [`gpu_range_table`]: its device build, one dispatch per level.
 //! - [`range_blend`]: conservative intervals of the blended map over a target square.
 //! - [`gpu_map`]: the device record of a map (example, tables, parameters).
+//! - [`pndf`]: the P-NDF of a footprint (pruned traversal, the explicit reference) and its
+//!   importance sampling.
 
 pub mod by_example;
 pub mod error;
@@ -17,6 +19,7 @@ pub mod example;
 pub mod gaussianize;
 pub mod gpu_map;
 pub mod gpu_range_table;
+pub mod pndf;
 pub mod range_blend;
 pub mod range_table;
 
@@ -26,4 +29,5 @@ pub use example::NormalExample;
 pub use gaussianize::GaussianTables;
 pub use gpu_map::{GlintMapParams, GpuGlintMap};
 pub use gpu_range_table::{build_range_table, GlintRangeLevelPush};
+pub use pndf::{Footprint, MaterializedMap, PndfStats, SampleTexels};
 pub use range_table::{NormalInterval, RangeTable};
