@@ -401,3 +401,197 @@ fn gpu_pndf_and_sampling_match_the_cpu_twin() {
         );
     }
 }
+
+/// `scenes/glints.toml`.
+fn glint_scene_path() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/glints.toml")
+}
+
+fn to_rgb8(film: &lazysolid_renderer::output::Film) -> image::RgbImage {
+    use lazysolid_renderer::output::{Operator, ToneMap};
+    let t = ToneMap {
+        exposure_ev: 0.0,
+        operator: Operator::AcesFitted,
+    };
+    let mut img = image::RgbImage::new(film.width(), film.height());
+    for (p, c) in img.pixels_mut().zip(film.color()) {
+        *p = image::Rgb(t.to_srgb8(*c).unwrap());
+    }
+    img
+}
+
+/// Largest FLIP mean between the glint scene rendered with the pruned P-NDF and with the
+/// explicit reference (every texel of each footprint, no pruning) on the device path tracer,
+/// same samples: the P-NDFs differ by at most 1e-3 × max(D_P, 1), so only the paths that
+/// Russian roulette ends differently can differ.
+const GLINT_FLIP_LIMIT: f32 = 0.01;
+
+/// The glint scene (64 × 48, 4 spp) with the pruned traversal against the explicit reference
+/// on the device path tracer, and both against the plain conductor (which must differ: the
+/// glints are seen).
+#[test]
+fn glint_scene_matches_its_explicit_reference() {
+    use lazysolid_renderer::diff::flip_images;
+    use lazysolid_renderer::render::PathTracer;
+    use lazysolid_renderer::scene::{MaterialKind, Scene};
+    let mut scene = Scene::load(&glint_scene_path()).unwrap();
+    scene.render.width = 64;
+    scene.render.height = 48;
+    scene.render.spp = 4;
+    let render = |scene: &Scene| {
+        with_gpu(|gpu| {
+            let mut t = PathTracer::new(gpu, scene).unwrap();
+            let start = std::time::Instant::now();
+            let film = t.render(|_| {}).unwrap();
+            (film, start.elapsed())
+        })
+    };
+    let (pruned, t_pruned) = render(&scene);
+    let mut explicit = scene.clone();
+    for m in &mut explicit.materials {
+        if let Some(g) = &mut m.glint {
+            g.explicit = true;
+        }
+    }
+    let (reference, t_explicit) = render(&explicit);
+    let mut plain = scene.clone();
+    for m in &mut plain.materials {
+        if m.kind == MaterialKind::Glint {
+            m.kind = MaterialKind::Conductor;
+            m.roughness = 0.3;
+            m.glint = None;
+        }
+    }
+    let (conductor, t_conductor) = render(&plain);
+    let report = flip_images(&to_rgb8(&reference), &to_rgb8(&pruned)).unwrap();
+    let versus_plain = flip_images(&to_rgb8(&conductor), &to_rgb8(&pruned)).unwrap();
+    println!(
+        "pruned vs explicit: FLIP mean {:.5}, p95 {:.5}, max {:.5}; vs the plain conductor {:.4}; time pruned {t_pruned:?}, explicit {t_explicit:?}, conductor {t_conductor:?}",
+        report.mean, report.p95, report.max, versus_plain.mean
+    );
+    assert!(report.mean <= GLINT_FLIP_LIMIT, "FLIP mean {}", report.mean);
+    assert!(
+        versus_plain.mean > 5.0 * report.mean.max(1e-3),
+        "glints not seen: {}",
+        versus_plain.mean
+    );
+}
+
+/// Writes a PNG of `w` × `h` RGB pixels `rgb(x, y)` under a temporary folder.
+fn png(dir: &std::path::Path, name: &str, w: u32, h: u32, rgb: impl Fn(u32, u32) -> [u8; 3]) {
+    image::RgbImage::from_fn(w, h, |x, y| image::Rgb(rgb(x, y)))
+        .save(dir.join(name))
+        .unwrap();
+}
+
+/// A glint scene in `dir` whose material table is `material` (the rest is fixed).
+fn parse_glint(dir: &std::path::Path, material: &str) -> Result<(), String> {
+    let text = format!(
+        r#"
+[camera]
+position = [0, 1, 3]
+look_at = [0, 0, 0]
+fov_y = 40
+
+[render]
+width = 8
+height = 8
+spp = 1
+
+[[mesh]]
+name = "q"
+shape = "quad"
+
+[[material]]
+name = "m"
+{material}
+
+[[instance]]
+mesh = "q"
+material = "m"
+"#
+    );
+    lazysolid_renderer::scene::Scene::parse(&text, &dir.join("scene.toml"))
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
+/// Bad example maps and bad fields: each message names the scene file and line, the field,
+/// and the file, texel or limit.
+#[test]
+fn bad_glint_materials_get_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    png(d, "flat.png", 32, 32, |_, _| [128, 128, 255]);
+    png(d, "wide.png", 48, 32, |_, _| [128, 128, 255]);
+    png(d, "tiny.png", 4, 4, |_, _| [128, 128, 255]);
+    png(d, "steep.png", 16, 16, |x, y| {
+        if (x, y) == (3, 5) {
+            [255, 255, 255]
+        } else {
+            [128, 128, 255]
+        }
+    });
+    let good = r#"kind = "glint"
+preset = "silver"
+normal_map = "flat.png"
+intrinsic_roughness = 0.01
+scale = 0.1
+uv = "planar""#;
+    assert_eq!(parse_glint(d, good), Ok(()));
+    let cases: [(String, &[&str]); 12] = [
+        (
+            good.replace("normal_map = \"flat.png\"\n", ""),
+            &["material \"m\".normal_map", "missing", "PNG"],
+        ),
+        (
+            good.replace("flat.png", "nowhere.png"),
+            &["normal_map", "nowhere.png", "does not exist"],
+        ),
+        (
+            good.replace("flat.png", "wide.png"),
+            &["wide.png", "48x32", "square", "power-of-two", "8 to 2048"],
+        ),
+        (
+            good.replace("flat.png", "tiny.png"),
+            &["tiny.png", "4x4", "8 to 2048"],
+        ),
+        (
+            good.replace("flat.png", "steep.png"),
+            &["steep.png", "column 3, row 5", "n_x² + n_y² <= 1"],
+        ),
+        (
+            good.replace("0.01", "0.9"),
+            &["intrinsic_roughness", "0.9", "[0.001, 0.5]"],
+        ),
+        (
+            good.replace("intrinsic_roughness = 0.01\n", ""),
+            &["intrinsic_roughness", "missing"],
+        ),
+        (good.replace("scale = 0.1", "scale = -1"), &["scale", "> 0"]),
+        (
+            good.replace("uv = \"planar\"", ""),
+            &["uv", "missing", "planar", "spherical"],
+        ),
+        (
+            format!("{good}\npatch = 6"),
+            &["patch", "power of two", "2 to 8"],
+        ),
+        (
+            format!("{good}\nroughness = 0.2"),
+            &["roughness", "does not apply to a glint", "conductor"],
+        ),
+        (
+            format!("{good}\nheight_map = \"flat.png\""),
+            &["height_map", "exclusive"],
+        ),
+    ];
+    for (material, needles) in cases {
+        let e = parse_glint(d, &material).expect_err(&material);
+        println!("{e}");
+        assert!(e.contains("scene.toml:"), "{e}");
+        for n in needles {
+            assert!(e.contains(n), "`{n}` not in: {e}");
+        }
+    }
+}

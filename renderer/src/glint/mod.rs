@@ -10,6 +10,7 @@
 //! - [`gpu_range_table`]: its device build, one dispatch per level.
 //! - [`range_blend`]: conservative intervals of the blended map over a target square.
 //! - [`gpu_map`]: the device record of a map (example, tables, parameters).
+//! - [`gpu_material`]: the device records of a scene's glint materials.
 //! - [`pndf`]: the P-NDF of a footprint (pruned traversal, the explicit reference) and its
 //!   importance sampling.
 
@@ -18,6 +19,7 @@ pub mod error;
 pub mod example;
 pub mod gaussianize;
 pub mod gpu_map;
+pub mod gpu_material;
 pub mod gpu_range_table;
 pub mod pndf;
 pub mod range_blend;
@@ -28,6 +30,7 @@ pub use error::GlintError;
 pub use example::NormalExample;
 pub use gaussianize::GaussianTables;
 pub use gpu_map::{GlintMapParams, GpuGlintMap};
+pub use gpu_material::{GlintRecordParams, SceneGlints};
 pub use gpu_range_table::{build_range_table, GlintRangeLevelPush};
 pub use pndf::{Footprint, MaterializedMap, PndfStats, SampleTexels};
 pub use range_table::{NormalInterval, RangeTable};
