@@ -432,42 +432,21 @@ const GLINT_FLIP_LIMIT: f32 = 0.01;
 #[test]
 fn glint_scene_matches_its_explicit_reference() {
     use lazysolid_renderer::diff::flip_images;
-    use lazysolid_renderer::render::PathTracer;
-    use lazysolid_renderer::scene::{MaterialKind, Scene};
+    use lazysolid_renderer::glint::{render_glint_cases, GlintCase};
+    use lazysolid_renderer::scene::Scene;
     let mut scene = Scene::load(&glint_scene_path()).unwrap();
     scene.render.width = 64;
     scene.render.height = 48;
     scene.render.spp = 4;
-    let render = |scene: &Scene| {
-        with_gpu(|gpu| {
-            let mut t = PathTracer::new(gpu, scene).unwrap();
-            let start = std::time::Instant::now();
-            let film = t.render(|_| {}).unwrap();
-            (film, start.elapsed())
-        })
+    let out = with_gpu(|gpu| render_glint_cases(gpu, &scene, &GlintCase::ALL).unwrap());
+    let [pruned, explicit, conductor] = &out[..] else {
+        panic!("three cases")
     };
-    let (pruned, t_pruned) = render(&scene);
-    let mut explicit = scene.clone();
-    for m in &mut explicit.materials {
-        if let Some(g) = &mut m.glint {
-            g.explicit = true;
-        }
-    }
-    let (reference, t_explicit) = render(&explicit);
-    let mut plain = scene.clone();
-    for m in &mut plain.materials {
-        if m.kind == MaterialKind::Glint {
-            m.kind = MaterialKind::Conductor;
-            m.roughness = 0.3;
-            m.glint = None;
-        }
-    }
-    let (conductor, t_conductor) = render(&plain);
-    let report = flip_images(&to_rgb8(&reference), &to_rgb8(&pruned)).unwrap();
-    let versus_plain = flip_images(&to_rgb8(&conductor), &to_rgb8(&pruned)).unwrap();
+    let report = flip_images(&to_rgb8(&explicit.film), &to_rgb8(&pruned.film)).unwrap();
+    let versus_plain = flip_images(&to_rgb8(&conductor.film), &to_rgb8(&pruned.film)).unwrap();
     println!(
-        "pruned vs explicit: FLIP mean {:.5}, p95 {:.5}, max {:.5}; vs the plain conductor {:.4}; time pruned {t_pruned:?}, explicit {t_explicit:?}, conductor {t_conductor:?}",
-        report.mean, report.p95, report.max, versus_plain.mean
+        "pruned vs explicit: FLIP mean {:.5}, p95 {:.5}, max {:.5}; vs the plain conductor {:.4}; time pruned {:?}, explicit {:?}, conductor {:?}",
+        report.mean, report.p95, report.max, versus_plain.mean, pruned.time, explicit.time, conductor.time
     );
     assert!(report.mean <= GLINT_FLIP_LIMIT, "FLIP mean {}", report.mean);
     assert!(

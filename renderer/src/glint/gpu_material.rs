@@ -9,8 +9,8 @@ use crate::shader_constants::{GLINT_NONE, GLINT_UV_PLANAR, GLINT_UV_SPHERICAL};
 use lazysolid_compute::gpu::{DeviceAddress, DeviceRecords, Gpu, GpuResult};
 
 /// Largest footprint width σ_P in texels: wider pixel cones are left to pixel sampling (the
-/// footprint box then holds at most (6 σ_P + 1)² = 1369 texels).
-pub const MAX_FOOTPRINT_TEXELS: f32 = 6.0;
+/// footprint box then holds at most (6 σ_P + 1)² = 169 texels).
+pub const MAX_FOOTPRINT_TEXELS: f32 = 2.0;
 
 lazysolid_compute::push_block! {
     /// The GLSL `GlintRecord`.

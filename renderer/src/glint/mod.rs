@@ -10,6 +10,7 @@
 //! - [`gpu_range_table`]: its device build, one dispatch per level.
 //! - [`range_blend`]: conservative intervals of the blended map over a target square.
 //! - [`gpu_map`]: the device record of a map (example, tables, parameters).
+//! - [`timing`]: the glint scene rendered pruned, explicit and as the plain conductor, timed.
 //! - [`gpu_material`]: the device records of a scene's glint materials.
 //! - [`pndf`]: the P-NDF of a footprint (pruned traversal, the explicit reference) and its
 //!   importance sampling.
@@ -24,6 +25,7 @@ pub mod gpu_range_table;
 pub mod pndf;
 pub mod range_blend;
 pub mod range_table;
+pub mod timing;
 
 pub use by_example::{BlendMode, ByExampleMap, PointQuery};
 pub use error::GlintError;
@@ -34,3 +36,4 @@ pub use gpu_material::{GlintRecordParams, SceneGlints};
 pub use gpu_range_table::{build_range_table, GlintRangeLevelPush};
 pub use pndf::{Footprint, MaterializedMap, PndfStats, SampleTexels};
 pub use range_table::{NormalInterval, RangeTable};
+pub use timing::{render_glint_cases, GlintCase, GlintTiming};
