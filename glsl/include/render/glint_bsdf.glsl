@@ -34,7 +34,8 @@ struct GlintShade {
 
 // The footprint and glint frame at a hit. `p` is the object-space hit point, `scale` the
 // instance's scale, `footprint` the ray cone's width at the hit (scene units), `ns` the world
-// shading normal, `to_world` maps object directions to world.
+// shading normal, `wo_world` the direction back along the ray, `dpdu_world_x` and
+// `dpdu_world_z` the object x and z axes in world (unit length).
 GlintShade glint_shade(GlintRecord g, vec3 p, float scale, float footprint, vec3 ns, vec3 wo_world,
                        vec3 dpdu_world_x, vec3 dpdu_world_z, out vec3 t_axis, out vec3 b_axis) {
     vec2 uv;
