@@ -11,6 +11,7 @@
 #include "render/sampling.glsl"
 #include "render/material.glsl"
 #include "render/bsdf.glsl"
+#include "render/glint_bsdf.glsl"
 #include "render/solid_texture.glsl"
 #include "render/lights.glsl"
 #include "render/environment.glsl"
@@ -56,6 +57,8 @@ struct StoreRecord {
 };
 layout(binding = 12, scalar) readonly buffer StoreRecords { StoreRecord store_records[]; };
 layout(binding = 13, scalar) readonly buffer InstanceStores { uint instance_stores[]; };
+// Glint microstructures, one record per glint material (renderer/src/glint/gpu_material.rs).
+layout(binding = 14, scalar) readonly buffer GlintRecords { GlintRecord glint_records[]; };
 
 layout(push_constant, scalar) uniform Push {
     uint sample_index;
@@ -233,6 +236,10 @@ void main() {
             bool specular = true;   // the camera "bounce" is not a NEE strategy
             float bsdf_pdf_prev = 0.0;
             vec3 prev_p = origin;
+            // The pixel cone: its width grows by pixel_angle per unit of path length (glints
+            // take their footprint G_P from it).
+            float pixel_angle = 2.0 * length(frame.up) / float(frame.height);
+            float path_length = 0.0;
             vec3 aov_albedo = vec3(0.0);
             vec3 aov_normal = vec3(0.0);
             float aov_depth = 1.0 / 0.0;
@@ -246,6 +253,9 @@ void main() {
                 rays++;
                 bool hit_mesh = cwbvh_trace(origin, dir, 0.0, 1.0 / 0.0, false, h);
                 float t_near = hit_mesh ? h.t : 1.0 / 0.0;
+                if (hit_mesh) {
+                    path_length += h.t;
+                }
                 vec3 le;
                 int light = hit_lights(origin, dir, t_near, le);
                 if (light >= 0) {
@@ -293,13 +303,26 @@ void main() {
                 }
 
                 vec3 t_axis, b_axis;
-                make_frame(s.ns, t_axis, b_axis);
+                bool glint = m.kind == MATERIAL_GLINT;
+                GlintRecord gr;
+                GlintShade gs;
+                if (glint) {
+                    gr = glint_records[m.glint];
+                    vec4 o2w[3] = bvh_instances[s.instance].object_to_world;
+                    vec3 ex = cwbvh_transform_vector(o2w, vec3(1.0, 0.0, 0.0));
+                    vec3 ez = cwbvh_transform_vector(o2w, vec3(0.0, 0.0, 1.0));
+                    float scale = length(ex);
+                    gs = glint_shade(gr, s.p_surface_object, scale, path_length * pixel_angle, s.ns, -dir,
+                                     ex / scale, ez / scale, t_axis, b_axis);
+                } else {
+                    make_frame(s.ns, t_axis, b_axis);
+                }
                 vec3 wo = vec3(dot(-dir, t_axis), dot(-dir, b_axis), dot(-dir, s.ns));
                 bool transmissive = m.kind == MATERIAL_DIELECTRIC;
                 float wo_side = dot(-dir, s.ng);
 
                 // Next-event estimation: one light or the environment, chosen uniformly.
-                if (strategies > 0u && bsdf_has_smooth_lobe(m)) {
+                if (strategies > 0u && (glint || bsdf_has_smooth_lobe(m))) {
                     vec2 u_light = rng_next2(rng);
                     float u_pick = rng_next(rng);
                     uint pick = min(uint(u_pick * float(strategies)), strategies - 1u);
@@ -322,7 +345,7 @@ void main() {
                     bool same_side = dot(wi, s.ng) * wo_side > 0.0;
                     if (ok && lpdf > 0.0 && max3(li) > 0.0 && (same_side || transmissive)) {
                         vec3 wi_l = vec3(dot(wi, t_axis), dot(wi, b_axis), dot(wi, s.ns));
-                        vec3 f = bsdf_eval(m, albedo, wo, wi_l);
+                        vec3 f = glint ? glint_eval(gr, m, gs, wo, wi_l) : bsdf_eval(m, albedo, wo, wi_l);
                         if (max3(f) > 0.0) {
                             vec3 o2 = offset_origin(s.p, s.ng, wi);
                             float tmax = dist < 1.0 / 0.0 ? dist * (1.0 - 1e-4) - 1e-4 : dist;
@@ -332,7 +355,8 @@ void main() {
                             if (!lights_occlude(o2, wi, tmax, skip) &&
                                 !cwbvh_trace(o2, wi, 0.0, tmax, true, sh)) {
                                 float lp = select_pdf * lpdf;
-                                float w = power_heuristic(lp, bsdf_pdf(m, albedo, wo, wi_l));
+                                float bp = glint ? glint_pdf(gr, gs, wo, wi_l) : bsdf_pdf(m, albedo, wo, wi_l);
+                                float w = power_heuristic(lp, bp);
                                 radiance += beta * f * li * (w / lp);
                             }
                         }
@@ -341,7 +365,9 @@ void main() {
 
                 // Continue the path by sampling the BSDF.
                 BsdfSample bs;
-                if (!bsdf_sample(m, albedo, wo, vec3(rng_next2(rng), rng_next(rng)), bs)) {
+                vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
+                bool sampled = glint ? glint_sample(gr, m, gs, wo, u_bsdf, bs) : bsdf_sample(m, albedo, wo, u_bsdf, bs);
+                if (!sampled) {
                     break;
                 }
                 vec3 wi = t_axis * bs.wi.x + b_axis * bs.wi.y + s.ns * bs.wi.z;

@@ -19,6 +19,8 @@ pub const MATERIAL_PLASTIC: u32 = 2;
 pub const MATERIAL_DIELECTRIC: u32 = 3;
 /// See [`MATERIAL_LAMBERTIAN`].
 pub const MATERIAL_EMISSIVE: u32 = 4;
+/// See [`MATERIAL_LAMBERTIAN`].
+pub const MATERIAL_GLINT: u32 = 5;
 
 /// Knots of a plastic coat's directional-albedo table in the GPU material: knot i holds the
 /// coat's reflectance at cos θ = (i / (knots − 1))², denser towards grazing where it changes
@@ -85,3 +87,9 @@ pub const GLINT_BLEND_VARIANCE: u32 = 2;
 pub const GLINT_BLEND_HISTOGRAM: u32 = 3;
 /// Knots of each Gaussianization table (G and G⁻¹ per normal component).
 pub const GLINT_TABLE_KNOTS: u32 = 256;
+/// Surface coordinates of a glint material: object-space (x, z).
+pub const GLINT_UV_PLANAR: u32 = 0;
+/// Surface coordinates of a glint material: arc lengths about the built-in sphere's centre.
+pub const GLINT_UV_SPHERICAL: u32 = 1;
+/// `GpuMaterial::glint` of a material without a microstructure.
+pub const GLINT_NONE: u32 = 4294967295;

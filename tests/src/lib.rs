@@ -160,6 +160,26 @@ lazysolid_compute::push_block! {
     }
 }
 
+lazysolid_compute::push_block! {
+    /// Push block of `glsl/render/glint_pndf_test.comp`, the kernel that runs the glint P-NDF
+    /// and its sampling on test cases.
+    #[derive(Clone, Copy)]
+    pub struct GlintPndfTestPush<'a> {
+        /// The infinite normal map.
+        pub map: lazysolid_renderer::glint::GlintMapParams<'a>,
+        /// Its range table.
+        pub ranges: DeviceAddress<'a>,
+        /// 10 floats per case.
+        pub cases: DeviceAddress<'a>,
+        /// 6 floats per case.
+        pub results: DeviceAddress<'a>,
+        /// Intrinsic roughness σ_r.
+        pub sigma_r: f32,
+        /// Number of cases.
+        pub n: u32,
+    }
+}
+
 /// Every kernel of the workspace with the push block its dispatches use: the compute crate's,
 /// the renderer's and the shading and glint test kernels.
 pub fn push_registry() -> Vec<PushRegistration> {
@@ -170,6 +190,9 @@ pub fn push_registry() -> Vec<PushRegistration> {
     ));
     all.push(PushRegistration::of::<GlintTestPush>(
         &lazysolid_renderer::kernels::render::GLINT_TEST,
+    ));
+    all.push(PushRegistration::of::<GlintPndfTestPush>(
+        &lazysolid_renderer::kernels::render::GLINT_PNDF_TEST,
     ));
     all
 }

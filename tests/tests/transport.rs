@@ -28,6 +28,7 @@ fn material(kind: MaterialKind, color: Vec3) -> Material {
         roughness: 0.0,
         ior: 1.5,
         texture: None,
+        glint: None,
     }
 }
 

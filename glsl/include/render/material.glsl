@@ -17,7 +17,8 @@ struct Material {
     float tex_scale;   // features per unit of object space
     vec4 coat_albedo[PLASTIC_COAT_KNOTS / 4];  // plastic: the coat's reflectance per knot
     float coat_internal;  // plastic: the coat's reflectance to diffuse light from below
-    float pad0, pad1, pad2;
+    uint glint;        // glint: index of its GlintRecord (GLINT_NONE otherwise)
+    float pad1, pad2;
 };
 
 #endif

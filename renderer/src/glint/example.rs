@@ -139,3 +139,41 @@ fn check_size(source_name: &str, size: usize, texels: usize) -> Result<(), Glint
     }
     Ok(())
 }
+
+/// Reads a tangent-space normal map (PNG or any format the `image` crate reads, 8 or 16 bits
+/// per channel): n_x = 2 r − 1, n_y = 2 g − 1 (blue is implied by them). The message of an
+/// error names the file and, for a bad texel, its column, row and the limit.
+///
+/// # Errors
+/// An unreadable file, a non-square or non-power-of-two image (edge from
+/// [`MIN_EXAMPLE_EDGE`] to [`MAX_EXAMPLE_EDGE`]), or a texel whose (n_x, n_y) leaves the unit
+/// disc.
+pub fn load_normal_map(file: &std::path::Path) -> Result<NormalExample, String> {
+    let name = file.display().to_string();
+    let image = image::open(file)
+        .map_err(|e| format!("{name}: cannot read the normal map: {e}"))?
+        .to_rgb32f();
+    let (w, h) = image.dimensions();
+    check_size(&name, w as usize, (w as usize) * (h as usize)).map_err(|e| e.to_string())?;
+    let texels = image
+        .pixels()
+        .map(|p| Vec2::new(2.0 * p[0] - 1.0, 2.0 * p[1] - 1.0))
+        .collect();
+    NormalExample::from_normals(&name, w as usize, texels).map_err(|e| e.to_string())
+}
+
+/// Reads a height map (its luminance in [0, 1] times `height_scale`, in texel units) and
+/// converts it to normals as [`NormalExample::from_heights`] does.
+///
+/// # Errors
+/// As [`load_normal_map`], for an unreadable file or a bad size.
+pub fn load_height_map(file: &std::path::Path, height_scale: f32) -> Result<NormalExample, String> {
+    let name = file.display().to_string();
+    let image = image::open(file)
+        .map_err(|e| format!("{name}: cannot read the height map: {e}"))?
+        .to_luma32f();
+    let (w, h) = image.dimensions();
+    check_size(&name, w as usize, (w as usize) * (h as usize)).map_err(|e| e.to_string())?;
+    let heights: Vec<f32> = image.pixels().map(|p| p[0] * height_scale).collect();
+    NormalExample::from_heights(&name, w as usize, &heights).map_err(|e| e.to_string())
+}

@@ -62,6 +62,7 @@ pub struct PathTracer {
     /// The `Environment` record; it holds the environment's tables.
     environment: DeviceRecords,
     stores: SceneStores,
+    glints: crate::glint::SceneGlints,
     film: GpuBuffer<[f32; 4]>,
     aovs: GpuBuffer<[f32; 4]>,
     ray_count: GpuBuffer<u32>,
@@ -82,7 +83,16 @@ impl PathTracer {
         let scene_bvh = SceneBvh::from_scene(scene);
         let bvh = DeviceBvh::upload(gpu, &scene_bvh)?;
         let stores = SceneStores::build(gpu, scene)?;
-        let materials: Vec<GpuMaterial> = scene.materials.iter().map(GpuMaterial::from).collect();
+        let glints = crate::glint::SceneGlints::build(gpu, scene)?;
+        let materials: Vec<GpuMaterial> = scene
+            .materials
+            .iter()
+            .zip(&glints.slots)
+            .map(|(m, &glint)| GpuMaterial {
+                glint,
+                ..GpuMaterial::from(m)
+            })
+            .collect();
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
         // A binding cannot be empty: a scene without lights still gets one (unused) record.
         let light_records = if lights.is_empty() {
@@ -120,6 +130,7 @@ impl PathTracer {
             bvh,
             scene_bvh,
             stores,
+            glints,
             frame,
             settings,
             samples: 0,
@@ -164,6 +175,7 @@ impl PathTracer {
             ("Film", self.film.arg()),
             ("Aovs", self.aovs.arg()),
             ("RayCount", self.ray_count.arg()),
+            ("GlintRecords", self.glints.records.arg()),
         ];
         self.gpu.submit(|rec| {
             rec.dispatch(

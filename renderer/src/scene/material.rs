@@ -4,13 +4,13 @@
 use super::check::ColorKind;
 use super::location::{join, Doc};
 use super::raw::{
-    RawMaterial, RawMaterialKind, RawPreset, RawStoreFilter, RawStoreKind, RawTexture,
-    RawTextureKind,
+    RawGlintBlend, RawGlintEvaluation, RawGlintUv, RawMaterial, RawMaterialKind, RawPreset,
+    RawStoreFilter, RawStoreKind, RawTexture, RawTextureKind,
 };
 use super::volume::{mean_linear, VolumeTexture};
 use super::{
-    Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind, StoreFilter, StoreKind,
-    StoreSpec, SynthesizedSpec,
+    GlintProjection, GlintSpec, Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind,
+    StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
 };
 use glam::Vec3;
 use std::ops::Range;
@@ -62,27 +62,41 @@ fn kind_name(kind: RawMaterialKind) -> &'static str {
         RawMaterialKind::Plastic => "plastic",
         RawMaterialKind::Dielectric => "dielectric",
         RawMaterialKind::Emissive => "emissive",
+        RawMaterialKind::Glint => "glint",
     }
 }
 
 /// The kinds that accept each optional key, for "does not apply" messages.
-const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 7] = {
+const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 17] = {
     use RawMaterialKind::*;
     [
-        ("color", &[Lambertian, Conductor, Plastic, Dielectric]),
-        ("k", &[Conductor]),
+        (
+            "color",
+            &[Lambertian, Conductor, Plastic, Dielectric, Glint],
+        ),
+        ("k", &[Conductor, Glint]),
         ("emission", &[Emissive]),
         ("roughness", &[Conductor, Plastic, Dielectric]),
         ("ior", &[Plastic, Dielectric]),
-        ("preset", &[Conductor]),
+        ("preset", &[Conductor, Glint]),
         ("texture", &[Lambertian, Plastic]),
+        ("normal_map", &[Glint]),
+        ("height_map", &[Glint]),
+        ("height_scale", &[Glint]),
+        ("intrinsic_roughness", &[Glint]),
+        ("scale", &[Glint]),
+        ("blend", &[Glint]),
+        ("patch", &[Glint]),
+        ("seed", &[Glint]),
+        ("uv", &[Glint]),
+        ("evaluation", &[Glint]),
     ]
 };
 
 /// Fails on the first key present in `raw` that its kind does not accept.
 fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), SceneError> {
     let kind = *raw.kind.get_ref();
-    let spans: [(&str, Option<Range<usize>>); 7] = [
+    let spans: [(&str, Option<Range<usize>>); 17] = [
         ("color", raw.color.as_ref().map(Spanned::span)),
         ("k", raw.k.as_ref().map(Spanned::span)),
         ("emission", raw.emission.as_ref().map(Spanned::span)),
@@ -90,6 +104,19 @@ fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), 
         ("ior", raw.ior.as_ref().map(Spanned::span)),
         ("preset", raw.preset.as_ref().map(Spanned::span)),
         ("texture", raw.texture.as_ref().map(Spanned::span)),
+        ("normal_map", raw.normal_map.as_ref().map(Spanned::span)),
+        ("height_map", raw.height_map.as_ref().map(Spanned::span)),
+        ("height_scale", raw.height_scale.as_ref().map(Spanned::span)),
+        (
+            "intrinsic_roughness",
+            raw.intrinsic_roughness.as_ref().map(Spanned::span),
+        ),
+        ("scale", raw.scale.as_ref().map(Spanned::span)),
+        ("blend", raw.blend.as_ref().map(Spanned::span)),
+        ("patch", raw.patch.as_ref().map(Spanned::span)),
+        ("seed", raw.seed.as_ref().map(Spanned::span)),
+        ("uv", raw.uv.as_ref().map(Spanned::span)),
+        ("evaluation", raw.evaluation.as_ref().map(Spanned::span)),
     ];
     for ((key, span), (_, kinds)) in spans.into_iter().zip(ACCEPTED_BY) {
         if let Some(span) = span {
@@ -155,6 +182,7 @@ pub(super) fn resolve(
         roughness: 0.0,
         ior: 1.0,
         texture: None,
+        glint: None,
     };
     match kind {
         RawMaterialKind::Lambertian | RawMaterialKind::Plastic => {
@@ -169,6 +197,11 @@ pub(super) fn resolve(
             material.kind = MaterialKind::Conductor;
             (material.color, material.k) = eta_k(doc, raw, &table, label)?;
             material.roughness = roughness(true)?;
+        }
+        RawMaterialKind::Glint => {
+            material.kind = MaterialKind::Glint;
+            (material.color, material.k) = eta_k(doc, raw, &table, label)?;
+            material.glint = Some(glint(doc, raw, &table, label, base)?);
         }
         RawMaterialKind::Dielectric => {
             material.kind = MaterialKind::Dielectric;
@@ -248,6 +281,161 @@ fn eta_k(
         doc.color(eta, &join(label, "color"), ColorKind::Unbounded)?,
         doc.color(k, &join(label, "k"), ColorKind::Unbounded)?,
     ))
+}
+
+/// Narrowest intrinsic roughness σ_r of a glint material: below it a texel's element is far
+/// narrower than a 16-bit range step and f32 sums lose it.
+pub const MIN_GLINT_ROUGHNESS: f32 = 1e-3;
+/// Widest intrinsic roughness: beyond it the P-NDF is no longer a glint.
+pub const MAX_GLINT_ROUGHNESS: f32 = 0.5;
+
+/// The microstructure of a glint material: the example (a normal map or a height map, PNG),
+/// its blending and patches, σ_r, scale and surface coordinates.
+fn glint(
+    doc: &Doc,
+    raw: &RawMaterial,
+    table: &Range<usize>,
+    label: &str,
+    base: &Path,
+) -> Result<GlintSpec, SceneError> {
+    use crate::glint::{BlendMode, ByExampleMap};
+    let field = |key: &str| join(label, key);
+    let example = match (&raw.normal_map, &raw.height_map) {
+        (Some(_), Some(h)) => {
+            return Err(doc.invalid(
+                h.span(),
+                field("height_map"),
+                "normal_map and height_map are exclusive: give one example",
+            ))
+        }
+        (None, None) => {
+            return Err(doc.invalid(
+                table.clone(),
+                field("normal_map"),
+                "missing (a glint material needs its example: normal_map or height_map, a PNG)",
+            ))
+        }
+        (Some(n), None) => {
+            doc.reject(
+                &raw.height_scale,
+                label,
+                "height_scale",
+                "applies only to a height_map",
+            )?;
+            let file = base.join(n.get_ref());
+            must_exist(doc, n.span().start, field("normal_map"), &file)?;
+            crate::glint::example::load_normal_map(&file)
+                .map_err(|e| doc.invalid(n.span(), field("normal_map"), e))?
+        }
+        (None, Some(h)) => {
+            let scale = match &raw.height_scale {
+                Some(v) => doc.number(v, &field("height_scale"), |v| v > 0.0, "> 0")?,
+                None => 1.0,
+            };
+            let file = base.join(h.get_ref());
+            must_exist(doc, h.span().start, field("height_map"), &file)?;
+            crate::glint::example::load_height_map(&file, scale)
+                .map_err(|e| doc.invalid(h.span(), field("height_map"), e))?
+        }
+    };
+    let example_field = if raw.normal_map.is_some() {
+        "normal_map"
+    } else {
+        "height_map"
+    };
+    let source = base.join(
+        raw.normal_map
+            .as_ref()
+            .or(raw.height_map.as_ref())
+            .map(|s| s.get_ref().clone())
+            .unwrap_or_default(),
+    );
+    let size = example.size() as u32;
+    let patch = match &raw.patch {
+        Some(p) => {
+            let v = doc.integer(p, &field("patch"), 2..=size / 4)?;
+            if !v.is_power_of_two() {
+                return Err(doc.invalid(
+                    p.span(),
+                    field("patch"),
+                    format!("{v} is not a power of two (target patch edge in texels, 2 to {} for this {size}² example)", size / 4),
+                ));
+            }
+            v
+        }
+        None => size / 4,
+    };
+    let mode = match raw.blend.as_ref().map(|b| *b.get_ref()) {
+        Some(RawGlintBlend::None) => BlendMode::None,
+        Some(RawGlintBlend::Linear) => BlendMode::Linear,
+        Some(RawGlintBlend::Variance) => BlendMode::Variance,
+        Some(RawGlintBlend::Histogram) | None => BlendMode::Histogram,
+    };
+    let seed = raw.seed.as_ref().map_or(1, |s| *s.get_ref());
+    let shadow_alpha = rms_slope(example.texels()).clamp(0.01, 1.0);
+    let map = ByExampleMap::new(example, patch, seed, mode)
+        .map_err(|e| doc.invalid(table.clone(), field(example_field), e.to_string()))?;
+    let why = format!(
+        "a glint material needs it: the width of its Gaussian elements in normal units, in [{MIN_GLINT_ROUGHNESS}, {MAX_GLINT_ROUGHNESS}]"
+    );
+    let sigma_r = doc.number(
+        doc.require(
+            &raw.intrinsic_roughness,
+            table,
+            label,
+            "intrinsic_roughness",
+            &why,
+        )?,
+        &field("intrinsic_roughness"),
+        |v| (MIN_GLINT_ROUGHNESS..=MAX_GLINT_ROUGHNESS).contains(&v),
+        &format!("in [{MIN_GLINT_ROUGHNESS}, {MAX_GLINT_ROUGHNESS}]"),
+    )?;
+    let scale = doc.number(
+        doc.require(
+            &raw.scale,
+            table,
+            label,
+            "scale",
+            "a glint material needs it: the example's width in scene units, > 0",
+        )?,
+        &field("scale"),
+        |v| v > 0.0,
+        "> 0",
+    )?;
+    let uv = doc.require(
+        &raw.uv,
+        table,
+        label,
+        "uv",
+        "meshes carry no UVs: a glint material says where its surface coordinates come from, \"planar\" (object x, z: quads and bent quads) or \"spherical\" (about the built-in sphere's centre)",
+    )?;
+    Ok(GlintSpec {
+        map: Arc::new(map),
+        source,
+        intrinsic_roughness: sigma_r,
+        scale,
+        projection: match uv.get_ref() {
+            RawGlintUv::Planar => GlintProjection::Planar,
+            RawGlintUv::Spherical => GlintProjection::Spherical,
+        },
+        explicit: matches!(
+            raw.evaluation.as_ref().map(|e| *e.get_ref()),
+            Some(RawGlintEvaluation::Explicit)
+        ),
+        shadow_alpha,
+    })
+}
+
+/// RMS slope |n_xy| / n_z of an example's normals.
+fn rms_slope(texels: &[glam::Vec2]) -> f32 {
+    let sum: f64 = texels
+        .iter()
+        .map(|n| {
+            let z2 = (1.0 - n.length_squared()).max(1e-4);
+            (n.length_squared() / z2) as f64
+        })
+        .sum();
+    (sum / texels.len().max(1) as f64).sqrt() as f32
 }
 
 /// A solid texture table: a procedural pattern (`color_a`, `color_b`, `scale`) or a volume

@@ -84,6 +84,33 @@ pub(super) enum RawMaterialKind {
     Plastic,
     Dielectric,
     Emissive,
+    Glint,
+}
+
+/// Blending modes of a glint microstructure as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawGlintBlend {
+    None,
+    Linear,
+    Variance,
+    Histogram,
+}
+
+/// How a glint material finds its surface coordinates, as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawGlintUv {
+    Planar,
+    Spherical,
+}
+
+/// How a glint material evaluates its P-NDF, as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawGlintEvaluation {
+    Pruned,
+    Explicit,
 }
 
 /// Measured metals a conductor may name instead of giving η and κ.
@@ -110,6 +137,16 @@ pub(super) struct RawMaterial {
     pub ior: Option<Spanned<f32>>,
     pub preset: Option<Spanned<RawPreset>>,
     pub texture: Option<Spanned<RawTexture>>,
+    pub normal_map: Option<Spanned<String>>,
+    pub height_map: Option<Spanned<String>>,
+    pub height_scale: Option<Spanned<f32>>,
+    pub intrinsic_roughness: Option<Spanned<f32>>,
+    pub scale: Option<Spanned<f32>>,
+    pub blend: Option<Spanned<RawGlintBlend>>,
+    pub patch: Option<Spanned<u32>>,
+    pub seed: Option<Spanned<u32>>,
+    pub uv: Option<Spanned<RawGlintUv>>,
+    pub evaluation: Option<Spanned<RawGlintEvaluation>>,
 }
 
 /// Solid texture kinds as spelled in the file.

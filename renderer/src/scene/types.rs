@@ -137,6 +137,53 @@ pub enum MaterialKind {
     Dielectric,
     /// Emits `emission`, reflects nothing.
     Emissive,
+    /// A conductor (`color` = η, `k` = κ) whose NDF is the P-NDF of a glint microstructure
+    /// by example ([`GlintSpec`]).
+    Glint,
+}
+
+/// Surface coordinates of a glint material, computed from the object-space hit point (meshes
+/// carry no UVs in lazysolid).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GlintProjection {
+    /// (x, z) of object space: the plane of the built-in quad, and of any surface that is a
+    /// height field over it (a bent quad).
+    Planar,
+    /// Longitude and colatitude about the object-space point (0.5, 0.5, 0.5) (the built-in
+    /// sphere's centre), times the distance to it: arc lengths on a sphere, stretched towards
+    /// its poles (y axis).
+    Spherical,
+}
+
+/// The microstructure of a glint material.
+#[derive(Clone, Debug)]
+pub struct GlintSpec {
+    /// The infinite normal map by example (example, tables, patch edge, seed, blending).
+    pub map: std::sync::Arc<crate::glint::ByExampleMap>,
+    /// The example's file.
+    pub source: std::path::PathBuf,
+    /// σ_r of the P-NDF's Gaussian elements (normal units).
+    pub intrinsic_roughness: f32,
+    /// Width of the example in scene units (world units: the instance scale does not change it).
+    pub scale: f32,
+    /// Where the surface coordinates come from.
+    pub projection: GlintProjection,
+    /// Evaluate every texel of the footprint without pruning (the explicit reference).
+    pub explicit: bool,
+    /// GGX α of the Smith shadowing term: the example's RMS slope.
+    pub shadow_alpha: f32,
+}
+
+impl PartialEq for GlintSpec {
+    fn eq(&self, o: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.map, &o.map)
+            && self.source == o.source
+            && self.intrinsic_roughness == o.intrinsic_roughness
+            && self.scale == o.scale
+            && self.projection == o.projection
+            && self.explicit == o.explicit
+            && self.shadow_alpha == o.shadow_alpha
+    }
 }
 
 /// A material.
@@ -158,6 +205,8 @@ pub struct Material {
     pub ior: f32,
     /// Solid texture replacing `color` as albedo, evaluated in rest-pose object coordinates.
     pub texture: Option<SolidTexture>,
+    /// The microstructure of a [`MaterialKind::Glint`] material.
+    pub glint: Option<GlintSpec>,
 }
 
 /// A solid (3D) texture evaluated at the rest-pose object-space hit point.

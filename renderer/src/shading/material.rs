@@ -3,8 +3,9 @@
 use super::coat::{coat_terms, COAT_KNOTS};
 use crate::scene::{Material, MaterialKind, SolidTextureKind};
 use crate::shader_constants::{
-    MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_EMISSIVE, MATERIAL_LAMBERTIAN,
-    MATERIAL_PLASTIC, TEXTURE_CHECKER, TEXTURE_MARBLE, TEXTURE_NONE, TEXTURE_WOOD,
+    MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_EMISSIVE, MATERIAL_GLINT,
+    MATERIAL_LAMBERTIAN, MATERIAL_PLASTIC, TEXTURE_CHECKER, TEXTURE_MARBLE, TEXTURE_NONE,
+    TEXTURE_WOOD,
 };
 use bytemuck::{Pod, Zeroable};
 
@@ -37,8 +38,10 @@ pub struct GpuMaterial {
     pub coat_albedo: [f32; COAT_KNOTS],
     /// Plastic: the share of the base's diffuse light that the coat reflects back down.
     pub coat_internal: f32,
+    /// Glint: the index of its `GlintRecord` (`GLINT_NONE` for other kinds).
+    pub glint: u32,
     /// Keeps the record a multiple of 16 bytes.
-    pub pad: [f32; 3],
+    pub pad: [f32; 2],
 }
 
 const _: () = assert!(size_of::<GpuMaterial>() == 160);
@@ -68,6 +71,7 @@ pub(crate) fn material_kind_code(kind: MaterialKind) -> u32 {
         MaterialKind::Plastic => MATERIAL_PLASTIC,
         MaterialKind::Dielectric => MATERIAL_DIELECTRIC,
         MaterialKind::Emissive => MATERIAL_EMISSIVE,
+        MaterialKind::Glint => MATERIAL_GLINT,
     }
 }
 
@@ -99,6 +103,7 @@ impl From<&Material> for GpuMaterial {
             texture_kind: texture_kind_code(texture.map(|t| t.kind)),
             tex_color_b: texture.map_or([0.0; 3], |t| t.color_b.to_array()),
             tex_scale: texture.map_or(0.0, |t| t.scale),
+            glint: crate::shader_constants::GLINT_NONE,
             ..Default::default()
         }
         .with_coat()
@@ -121,6 +126,7 @@ mod tests {
             emission: Vec3::ZERO,
             roughness: 0.25,
             ior: 1.5,
+            glint: None,
             texture: Some(SolidTexture {
                 kind: SolidTextureKind::Wood,
                 color_a: Vec3::X,
