@@ -1,6 +1,6 @@
-//! `lazysolid bench glints`: the glint microstructure by example (seed 004, issue 18 point 6).
-//! The suite has parts, chosen with `--part`, so that later parts (the glint material's render
-//! time against the plain conductor and the explicit reference) join the same table:
+//! `lazysolid bench glints`: the glint microstructure by example: its range-query structure,
+//! its memory and its material's render time. The suite has parts, chosen with `--part`, that
+//! join one table:
 //!
 //! - **structures**: range min/max queries over the example, per example size n (target patch
 //!   l = n / 4): the square-only sparse table (one lookup) against a min–max mip hierarchy (the
@@ -10,6 +10,9 @@
 //!   one batch of random squares (random levels 0..=log2 l and starts, fixed seed). All six
 //!   answer vectors must be identical, and both device-built structures equal their CPU
 //!   builds; the suite stops otherwise.
+//! - **render**: the glint material's render time on a scene (`scenes/glints.toml`): the
+//!   pruned traversal against the explicit reference (every texel of each footprint, the
+//!   ratio the paper reports as +3 % to +53 %) and against the plain conductor.
 //! - **memory**: the constant storage of the method (the example as 2 × f32 per texel, the
 //!   sparse table, the Gaussianization tables) against the materialized normal map the
 //!   explicit method needs for a coverage of C² texels (2 × f32 per texel and its 16-bit
@@ -34,13 +37,17 @@ use lazysolid_renderer::glint::minmax_mip::{
     brute_force, minmax_mip_bytes, random_squares, table_query, MinMaxMip,
 };
 use lazysolid_renderer::glint::range_table::quantize_texels;
+use lazysolid_renderer::glint::GlintCase;
 use lazysolid_renderer::glint::{
     gpu_range_query::range_query_kernel, record_range_queries, record_range_table, GaussianTables,
     GpuMinMaxMip, NormalExample, RangeMethod, RangeTable,
 };
 use lazysolid_renderer::kernels::render::GLINT_RANGE_LEVEL;
+use lazysolid_renderer::render::PathTracer;
+use lazysolid_renderer::scene::{MaterialKind, Scene};
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
+use std::time::Duration;
 
 /// Which parts of the suite run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -49,6 +56,8 @@ pub enum GlintsPart {
     Structures,
     /// Constant storage against the explicit method's materialized map.
     Memory,
+    /// The glint material's render time against the explicit reference and the conductor.
+    Render,
     /// Every part.
     All,
 }
@@ -90,7 +99,17 @@ pub struct GlintsArgs {
     /// (5K², 10 widths of a 512² example) and Kettle (2K²).
     #[arg(long, value_delimiter = ',', default_value = "5120,2048")]
     pub coverage: Vec<u64>,
-    /// One size (the first), 2^14 queries.
+    /// The scene of the render part (its glint materials are rendered pruned, explicit and as
+    /// their plain conductor).
+    #[arg(long, value_name = "FILE", default_value = "scenes/glints.toml")]
+    pub scene: PathBuf,
+    /// Pixels of the render part's images.
+    #[arg(long, value_name = "WxH", default_value = "128x96")]
+    pub render_res: Resolution,
+    /// Samples per pixel of the render part.
+    #[arg(long, default_value_t = 8)]
+    pub spp: u32,
+    /// One size (the first), 2^14 queries, renders at 64×48 with 2 samples per pixel.
     #[arg(long)]
     pub quick: bool,
 }
@@ -284,9 +303,16 @@ pub fn run(args: &GlintsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     let structures = matches!(args.part, GlintsPart::Structures | GlintsPart::All);
     let memory = matches!(args.part, GlintsPart::Memory | GlintsPart::All);
+    let render = matches!(args.part, GlintsPart::Render | GlintsPart::All);
+    let scene = if render {
+        Some(render_scene(args)?)
+    } else {
+        None
+    };
     let image = load_image(args)?;
     let gpu = global.gpu()?;
-    let cases = if structures { 10 * sizes.len() } else { 0 };
+    let cases = if structures { 10 * sizes.len() } else { 0 }
+        + if render { GlintCase::ALL.len() } else { 0 };
     let mut bench = Bench::new("bench-glints", &gpu, &args.common, cases as u64)?;
     let mut notes: Vec<(String, f64)> = Vec::new();
     let mut results = Vec::new();
@@ -314,6 +340,9 @@ pub fn run(args: &GlintsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     }
     if memory {
         memory_part(&storage, &args.coverage, &mut notes);
+    }
+    if let Some(scene) = &scene {
+        render_part(&mut bench, &gpu, scene, args, &mut notes)?;
     }
     bench.finish(&notes)?;
     Ok(())
@@ -746,4 +775,100 @@ fn memory_part(
          their hierarchy) and 1,119.9 MB for the Kettle's 2K² map (3.1 %)",
         YAN16_BYTES_PER_TEXEL
     );
+}
+
+/// The render part's scene at the asked size and samples, refused before anything is measured
+/// when it has no glint material.
+fn render_scene(args: &GlintsArgs) -> anyhow::Result<Scene> {
+    let (res, spp) = if args.quick {
+        (
+            Resolution {
+                width: 64,
+                height: 48,
+            },
+            2,
+        )
+    } else {
+        (args.render_res, args.spp)
+    };
+    res.check("--render-res", 1..=4096)?;
+    ensure!(
+        (1..=4096).contains(&spp),
+        "--spp {spp}: must lie in 1..=4096"
+    );
+    let mut scene = Scene::load(&args.scene)?;
+    ensure!(
+        scene
+            .materials
+            .iter()
+            .any(|m| m.kind == MaterialKind::Glint),
+        "--scene {}: has no kind = \"glint\" material to measure",
+        args.scene.display()
+    );
+    scene.render.width = res.width;
+    scene.render.height = res.height;
+    scene.render.spp = spp;
+    Ok(scene)
+}
+
+/// The glint material's render time: the scene with its glints evaluated by the pruned
+/// traversal, by the explicit reference (every texel of each footprint), and replaced by the
+/// plain conductor they are made of. Each run builds the path tracer anew and times its
+/// passes only (the device work of tracing and shading, not the scene's preparation).
+fn render_part(
+    bench: &mut Bench,
+    gpu: &lazysolid_compute::gpu::Gpu,
+    scene: &Scene,
+    args: &GlintsArgs,
+    notes: &mut Vec<(String, f64)>,
+) -> anyhow::Result<()> {
+    let r = &scene.render;
+    let name = args
+        .scene
+        .file_name()
+        .map_or_else(|| "scene".into(), |n| n.to_string_lossy().into_owned());
+    let case = format!("render {name} {}×{} {} spp", r.width, r.height, r.spp);
+    let samples = u64::from(r.width) * u64::from(r.height) * u64::from(r.spp);
+    let mut mins = Vec::new();
+    for c in GlintCase::ALL {
+        bench.status(format!("{case}: {}", c.name()));
+        let s = c.apply(scene);
+        let baseline = match c {
+            GlintCase::Pruned => Some(GlintCase::Explicit.name()),
+            _ => None,
+        };
+        let min = bench.case(
+            &case,
+            samples,
+            c.name(),
+            Throughput::Items("sample"),
+            baseline,
+            || {
+                let mut tracer = PathTracer::new(gpu, &s)?;
+                let mut time = Duration::ZERO;
+                tracer.render(|p| time += p.time)?;
+                Ok(time.as_secs_f64() * 1e3)
+            },
+        )?;
+        mins.push((c, min));
+    }
+    let ms = |case: GlintCase| mins.iter().find(|m| m.0 == case).map_or(f64::NAN, |m| m.1);
+    let pruned = ms(GlintCase::Pruned);
+    let explicit = ms(GlintCase::Explicit);
+    let conductor = ms(GlintCase::ALL[2]);
+    let over_explicit = (pruned / explicit - 1.0) * 100.0;
+    let over_conductor = pruned / conductor;
+    println!(
+        "render ({case}, min of {} runs): conductor {conductor:.0} ms, glint explicit \
+         {explicit:.0} ms, glint pruned {pruned:.0} ms: {over_explicit:+.0} % against the \
+         explicit reference (paper: +3 % to +53 % against Yan et al. 2016), {over_conductor:.1}× \
+         the conductor",
+        bench
+            .rows()
+            .last()
+            .map_or(0, |row| row.stats.samples_ms.len())
+    );
+    notes.push((format!("{case}: pruned over explicit %"), over_explicit));
+    notes.push((format!("{case}: pruned / conductor"), over_conductor));
+    Ok(())
 }
