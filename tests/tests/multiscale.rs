@@ -5,13 +5,13 @@
 
 use lazysolid_compute::synth::multiscale::{
     analyze_topology, fit_transfer, synthesize_multiscale_cpu, ExemplarGraph, GraphError,
-    MultiscaleAnalysis, MultiscaleParams, Topology, MAGNIFIED, TRANSFER_ONE,
+    MultiscaleAnalysis, MultiscaleGpu, MultiscaleParams, Topology, MAGNIFIED, TRANSFER_ONE,
 };
 use lazysolid_compute::synth::{
     analyze, default_jitter, default_passes, synthesize_cpu, AnalysisParams, Exemplar, Region,
     SynthParams, DEFAULT_PERIOD_PENALTY,
 };
-use lazysolid_tests::{asset_exemplar, exemplar_crop};
+use lazysolid_tests::{asset_exemplar, exemplar_crop, with_gpu};
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -316,7 +316,9 @@ fn looped() -> &'static MultiscaleAnalysis {
     })
 }
 
-/// Leather with its loop and a 32² terra crop (a leaf) reached with r = 0 from it.
+/// Leather with a 32² terra crop (a leaf) reached with r = 1: at depth 6 leather's finest
+/// level is inadmissible, so every pixel moves to terra's level 4 with a colour transfer, and
+/// from depth 8 on terra's pixels are magnified.
 fn mixed() -> &'static MultiscaleAnalysis {
     static CELL: OnceLock<MultiscaleAnalysis> = OnceLock::new();
     CELL.get_or_init(|| {
@@ -324,7 +326,7 @@ fn mixed() -> &'static MultiscaleAnalysis {
         let terra = exemplar_crop("terra.pat", 0, 0, 32, 32);
         analyze_topology(
             &[e.clone(), terra],
-            &Topology::new(vec![6, 5], &[(0, 0, 1), (0, 1, 0)], 0),
+            &Topology::new(vec![6, 5], &[(0, 1, 1)], 0),
             &AnalysisParams::default(),
         )
         .unwrap()
@@ -379,4 +381,48 @@ fn a_loop_synthesizes_deeper_than_any_exemplar() {
     .unwrap();
     let s = synthesize_multiscale_cpu(&leaf, &p, window(0, 0, 8, 8)).unwrap();
     assert!(s.window_states().iter().all(|s| s.level() == MAGNIFIED));
+}
+
+#[test]
+fn gpu_equals_cpu_on_every_level() {
+    with_gpu(|gpu| {
+        // The chain leather → terra (a leaf reached across exemplars, magnified pixels,
+        // transfers) at a negative offset, and the loop with uneven passes, one depth with none.
+        let cases: [(&MultiscaleAnalysis, MultiscaleParams, Region); 2] = [
+            (
+                mixed(),
+                MultiscaleParams::new(3, 9, &[], &[], DEFAULT_PERIOD_PENALTY).unwrap(),
+                window(-45, 17, 23, 19),
+            ),
+            (
+                looped(),
+                MultiscaleParams::new(11, 8, &[2, 1, 0, 3, 1, 2, 1, 1, 2], &[0.5], 0).unwrap(),
+                window(300, -9, 20, 26),
+            ),
+        ];
+        for (case, (analysis, params, w)) in cases.into_iter().enumerate() {
+            let cpu = synthesize_multiscale_cpu(analysis, &params, w).unwrap();
+            let g = MultiscaleGpu::new(gpu, analysis).unwrap();
+            let (out, times) = g.synthesize(analysis, &params, w, true).unwrap();
+            assert_eq!(times.len(), cpu.levels.len());
+            for (t, (a, b)) in cpu.levels.iter().zip(&out.levels).enumerate() {
+                assert_eq!(a.region, b.region);
+                let differ = a
+                    .states
+                    .iter()
+                    .zip(&b.states)
+                    .filter(|(x, y)| x != y)
+                    .count();
+                assert_eq!(differ, 0, "case {case}, depth {t}: {differ} states differ");
+            }
+            // The case exercises what it is meant to: transfers and several exemplars.
+            if case == 0 {
+                let last = &cpu.levels.last().unwrap().states;
+                assert!(last
+                    .iter()
+                    .all(|s| s.exemplar() == 1 && s.level() == MAGNIFIED));
+                assert!(last.iter().filter(|s| s.transfer != [0; 3]).count() > last.len() / 2);
+            }
+        }
+    });
 }

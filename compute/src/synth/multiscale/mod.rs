@@ -9,6 +9,7 @@
 
 mod analysis;
 mod cpu;
+pub(crate) mod gpu;
 mod graph;
 mod superexemplar;
 
@@ -22,6 +23,7 @@ pub use cpu::{
     upsample_jitter_multiscale, MultiscaleLevel, MultiscaleParams, MultiscaleSynthesis, PixelState,
     MAGNIFIED, MAX_DEPTH, MAX_OFFSET_MOVE,
 };
+pub use gpu::MultiscaleGpu;
 pub use graph::{
     ExemplarGraph, GraphEdge, GraphError, Topology, MAX_GRAPH_EXEMPLARS, R_MAX_MARGIN,
 };
