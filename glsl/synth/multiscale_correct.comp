@@ -48,6 +48,12 @@ int mat[24];
 
 // The move of an appearance vector by offset t (1/16 levels), clamped to +-512.
 void offset_move(ivec3 t, out ivec4 lo, out ivec4 hi) {
+    if (t == ivec3(0)) {
+        // The common case (one exemplar, or within one): no move, no 64-bit arithmetic.
+        lo = ivec4(0);
+        hi = ivec4(0);
+        return;
+    }
     int m[8];
     for (int d = 0; d < 8; d++) {
         int64_t v = int64_t(mat[d * 3]) * t.x + int64_t(mat[d * 3 + 1]) * t.y
@@ -132,8 +138,11 @@ void main() {
     ivec3 best_t = ivec3(current.tr, current.tg, current.tb);
     ivec3 cur_t = best_t;
     // Neighbours whose (member, base texel, transfer) repeat an earlier one offer the same
-    // candidates with the same keys: evaluated once.
+    // candidates with the same keys: evaluated once, from a compacted list (so a SIMD group
+    // loops as often as its lane with the most distinct ones, as in correct.comp).
     uint bases[9];
+    int unique[9];
+    int count = 0;
     for (int n = 0; n < 9; n++) {
         bases[n] = NONE;
         if (mem[n] == NONE || sp[n] == 0) {
@@ -151,9 +160,15 @@ void main() {
                 && ivec3(around[m].tr, around[m].tg, around[m].tb) == tn);
         }
         bases[n] = base;
-        if (repeated) {
-            continue;
+        if (!repeated) {
+            unique[count] = n;
+            count++;
         }
+    }
+    for (int u = 0; u < count; u++) {
+        int n = unique[u];
+        uint base = bases[n];
+        ivec3 tn = ivec3(around[n].tr, around[n].tg, around[n].tb);
         uvec4 mi = UVec4Ptr(pc.members).v[2u * mem[n]];
         for (uint j = 0u; j < pc.k; j++) {
             uvec4 cw = UVec4Ptr(pc.candidates).v[mi.z + base * pc.k + j];

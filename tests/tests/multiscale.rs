@@ -101,6 +101,7 @@ fn superexemplar_depth_sets_of_the_example() {
     );
     assert_eq!(s.depth(11), s.depth(10));
     assert_eq!(s.depth(25), s.depth(10));
+    assert_eq!((s.sets.len(), s.loop_start), (11, 10));
     // The sequence is finite and periodic; every depth has its set.
     let period = s.sequence.len() - s.loop_start;
     assert!(period >= 1);
