@@ -30,21 +30,8 @@ layout(push_constant, scalar) uniform Push {
 
 const uint NONE = 0xffffffffu;
 
-uint member_of(MsState s) {
-    uint e = ms_exemplar(s.meta);
-    uint finest = UVec4Ptr(pc.exemplars).v[e].z;
-    return U32Ptr(pc.lookup).v[e * 16u + min(ms_level(s.meta), finest)];
-}
-
-int spacing_of(MsState s) {
-    uint level = ms_level(s.meta);
-    if (level == MS_MAGNIFIED) {
-        return 0;
-    }
-    return 1 << (UVec4Ptr(pc.exemplars).v[ms_exemplar(s.meta)].z - level);
-}
-
 int mat[24];
+bool mat_ready = false;
 
 // The move of an appearance vector by offset t (1/16 levels), clamped to +-512.
 void offset_move(ivec3 t, out ivec4 lo, out ivec4 hi) {
@@ -53,6 +40,13 @@ void offset_move(ivec3 t, out ivec4 lo, out ivec4 hi) {
         lo = ivec4(0);
         hi = ivec4(0);
         return;
+    }
+    if (!mat_ready) {
+        // Loaded only where some transfer is not zero.
+        for (int j = 0; j < 24; j++) {
+            mat[j] = int(U32Ptr(pc.matrix).v[j]);
+        }
+        mat_ready = true;
     }
     int m[8];
     for (int d = 0; d < 8; d++) {
@@ -69,9 +63,13 @@ uint torus_axis(uint p, uint q, uint n) {
     return min(d, n - d);
 }
 
+// Per neighbour, loaded once: state, member, spacing (0 when magnified), exemplar size and
+// the member's appearance offset.
 MsState around[9];
 uint mem[9];
 int sp[9];
+uvec2 esize[9];
+uint appoff[9];
 
 // Appearance at neighbour n's coordinate moved by its spacing * d, plus its transfer's move.
 void predict(int n, ivec2 d, ivec4 mlo, ivec4 mhi, out ivec4 lo, out ivec4 hi) {
@@ -80,11 +78,10 @@ void predict(int n, ivec2 d, ivec4 mlo, ivec4 mhi, out ivec4 lo, out ivec4 hi) {
         hi = ivec4(0);
         return;
     }
-    uvec4 e = UVec4Ptr(pc.exemplars).v[ms_exemplar(around[n].meta)];
+    uvec2 e = esize[n];
     uvec2 c = synth_unpack(around[n].coord);
     c = uvec2(synth_wrap(c.x, d.x * sp[n], e.x), synth_wrap(c.y, d.y * sp[n], e.y));
-    uvec4 mi = UVec4Ptr(pc.members).v[2u * mem[n]];
-    uvec2 a = UVec2Ptr(pc.appearance).v[mi.x + c.y * e.x + c.x];
+    uvec2 a = UVec2Ptr(pc.appearance).v[appoff[n] + c.y * e.x + c.x];
     lo = synth_i8x4(a.x) + mlo;
     hi = synth_i8x4(a.y) + mhi;
 }
@@ -103,15 +100,17 @@ void main() {
     for (int n = 0; n < 9; n++) {
         uvec2 q = uvec2(ivec2(local) + ivec2(n % 3 - 1, n / 3 - 1));
         around[n] = MsStates(pc.states).v[q.y * pc.size.x + q.x];
-        mem[n] = member_of(around[n]);
-        sp[n] = spacing_of(around[n]);
+        uint ex = ms_exemplar(around[n].meta);
+        uint level = ms_level(around[n].meta);
+        uvec4 e = UVec4Ptr(pc.exemplars).v[ex];
+        esize[n] = e.xy;
+        mem[n] = U32Ptr(pc.lookup).v[ex * 16u + min(level, e.z)];
+        sp[n] = level == MS_MAGNIFIED ? 0 : 1 << (e.z - level);
+        appoff[n] = mem[n] == NONE ? 0u : UVec4Ptr(pc.members).v[2u * mem[n]].x;
     }
     MsState current = around[4];
     if (ms_level(current.meta) == MS_MAGNIFIED || mem[4] == NONE) {
         return;
-    }
-    for (int j = 0; j < 24; j++) {
-        mat[j] = int(U32Ptr(pc.matrix).v[j]);
     }
     ivec4 mlo[9];
     ivec4 mhi[9];
@@ -141,7 +140,9 @@ void main() {
     // candidates with the same keys: evaluated once, from a compacted list (so a SIMD group
     // loops as often as its lane with the most distinct ones, as in correct.comp).
     uint bases[9];
-    int unique[9];
+    uint ubase[9];
+    uint umem[9];
+    ivec3 utr[9];
     int count = 0;
     for (int n = 0; n < 9; n++) {
         bases[n] = NONE;
@@ -149,7 +150,7 @@ void main() {
             continue;
         }
         ivec2 d = ivec2(n % 3 - 1, n / 3 - 1);
-        uvec4 e = UVec4Ptr(pc.exemplars).v[ms_exemplar(around[n].meta)];
+        uvec2 e = esize[n];
         uvec2 c = synth_unpack(around[n].coord);
         c = uvec2(synth_wrap(c.x, -d.x * sp[n], e.x), synth_wrap(c.y, -d.y * sp[n], e.y));
         uint base = c.y * e.x + c.x;
@@ -161,15 +162,18 @@ void main() {
         }
         bases[n] = base;
         if (!repeated) {
-            unique[count] = n;
+            // Compacted by value, so that the candidate loop indexes no per-neighbour array
+            // with a run-time index (which would keep those arrays out of registers).
+            ubase[count] = base;
+            umem[count] = mem[n];
+            utr[count] = tn;
             count++;
         }
     }
     for (int u = 0; u < count; u++) {
-        int n = unique[u];
-        uint base = bases[n];
-        ivec3 tn = ivec3(around[n].tr, around[n].tg, around[n].tb);
-        uvec4 mi = UVec4Ptr(pc.members).v[2u * mem[n]];
+        uint base = ubase[u];
+        ivec3 tn = utr[u];
+        uvec4 mi = UVec4Ptr(pc.members).v[2u * umem[u]];
         for (uint j = 0u; j < pc.k; j++) {
             uvec4 cw = UVec4Ptr(pc.candidates).v[mi.z + base * pc.k + j];
             uint cmember = cw.y & 0xffffu;
