@@ -1674,7 +1674,10 @@ fn multiscale_and_zoom_write_their_images_and_bad_graphs_fail_by_line() {
             .arg(&out)
             .env("LAZYSOLID_VALIDATION", "1"));
         assert!(ok, "{err}");
-        assert!(stdout.contains("exemplar terra") && stdout.contains("100.0 %"), "{stdout}");
+        assert!(
+            stdout.contains("exemplar terra") && stdout.contains("100.0 %"),
+            "{stdout}"
+        );
         let image = image::open(&out).unwrap();
         assert_eq!((image.width(), image.height()), (24, 16));
         assert!(out.with_extension("exemplars.png").exists());
@@ -1685,11 +1688,18 @@ fn multiscale_and_zoom_write_their_images_and_bad_graphs_fail_by_line() {
     let (ok, _, err) = run(lazysolid()
         .arg("zoom")
         .arg(&graph)
-        .args(["--from", "5", "--to", "6.5", "--frames", "3", "--size", "16x12"])
+        .args([
+            "--from", "5", "--to", "6.5", "--frames", "3", "--size", "16x12",
+        ])
         .arg("-o")
         .arg(&zoom));
     assert!(ok, "{err}");
-    for f in ["frame_0000.png", "frame_0001.png", "frame_0002.png", "zoom.gif"] {
+    for f in [
+        "frame_0000.png",
+        "frame_0001.png",
+        "frame_0002.png",
+        "zoom.gif",
+    ] {
         assert!(zoom.join(f).exists(), "{f}");
     }
     // r at r_max (terra is 64², L = 6: r_max = 3), named by file, line and field.
