@@ -9,6 +9,7 @@ use crate::kernels::{hash, prims, store, synth, synth_solid, voxel};
 use crate::prims::push as prims_push;
 use crate::prims::segments;
 use crate::store::{colours, hash_store, octree, perfect_store, tiletree};
+use crate::synth::multiscale::gpu as multiscale_gpu;
 use crate::synth::solid::lazy::gpu as lazy_gpu;
 use crate::synth::solid::{candidates_gpu as solid_candidates, gpu as solid_gpu};
 use crate::synth::{energy, gpu as synth_gpu};
@@ -71,6 +72,8 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<synth_gpu::CorrectPush>(&synth::CORRECT),
         of::<energy::EnergyPush>(&synth::ENERGY),
         of::<synth_gpu::UpsamplePush>(&synth::UPSAMPLE_JITTER),
+        of::<multiscale_gpu::MsUpsamplePush>(&synth::MULTISCALE_UPSAMPLE),
+        of::<multiscale_gpu::MsCorrectPush>(&synth::MULTISCALE_CORRECT),
         of::<solid_candidates::SearchPush>(&synth_solid::STRIP_SEARCH),
         of::<solid_candidates::TriplesPush>(&synth_solid::TRIPLES),
         of::<solid_candidates::CoherencePush>(&synth_solid::COHERENCE),

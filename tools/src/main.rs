@@ -58,6 +58,12 @@ enum Command {
     /// Synthesize a window of the unbounded texture plane from an exemplar (PNG, JPEG or GIMP
     /// .pat) into a PNG and its exemplar-coordinate map, with timings and quality metrics.
     Synth(cli::synth::SynthArgs),
+    /// Synthesize a window of any depth of the multiscale texture an exemplar graph (TOML)
+    /// defines, into a PNG and a map of the exemplar each pixel uses.
+    Multiscale(cli::multiscale::MultiscaleArgs),
+    /// Zoom into a point of an exemplar graph's multiscale texture: numbered PNG frames at
+    /// fractional depths and an animated GIF.
+    Zoom(cli::multiscale::ZoomArgs),
     /// Synthesize a cube of the unbounded solid texture from 2D exemplars into NRRD, with
     /// slices, the candidate slab, timings and per-axis quality.
     Solid(cli::solid::SolidArgs),
@@ -92,6 +98,8 @@ fn main() {
         Command::Diff(d) => cli::diff::run(&d),
         Command::Render(r) => cli::render::run(&r, &global),
         Command::Synth(s) => cli::synth::run(&s, &global),
+        Command::Multiscale(m) => cli::multiscale::run(&m, &global),
+        Command::Zoom(z) => cli::multiscale::run_zoom(&z, &global),
         Command::Fracture(f) => cli::fracture::run(&f),
         Command::Solid(s) => cli::solid::run(&s, &global),
     };

@@ -53,15 +53,71 @@ pub(crate) fn shared_appearance(
     spacing: u32,
     toroidal: bool,
 ) -> (Vec<Vec<[i8; APPEARANCE_DIMS]>>, f64) {
+    let sized: Vec<SizedLevel> = levels
+        .iter()
+        .map(|&pixels| SizedLevel {
+            pixels,
+            width: w,
+            height: h,
+            spacing,
+        })
+        .collect();
+    let shared = sized_appearance(&sized, toroidal);
+    (shared.vectors, shared.residual_variance)
+}
+
+/// One image of a pooled appearance space: its pixels, size and sampling spacing.
+#[derive(Clone, Copy)]
+pub(crate) struct SizedLevel<'a> {
+    /// Row-major RGB in 0..=255.
+    pub pixels: &'a [[f32; 3]],
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// Neighbourhood sampling spacing.
+    pub spacing: u32,
+}
+
+/// Fixed-point bits of [`SharedAppearance::offset_matrix`].
+pub(crate) const OFFSET_MATRIX_BITS: u32 = 8;
+
+/// A pooled appearance space over images of any sizes and spacings.
+pub(crate) struct SharedAppearance {
+    /// One vector list per image.
+    pub vectors: Vec<Vec<[i8; APPEARANCE_DIMS]>>,
+    /// Residual variance of the pooled data.
+    pub residual_variance: f64,
+    /// How a constant colour offset moves a quantized vector: component `d` moves by
+    /// `Σ_c M[d][c] · b_c / 2^OFFSET_MATRIX_BITS` for an offset `b` in colour levels (the
+    /// projection is linear, and a constant offset adds `w_δ · b` to every sample).
+    pub offset_matrix: [[i32; 3]; APPEARANCE_DIMS],
+}
+
+/// [`shared_appearance`] over images of different sizes and spacings (the multiscale
+/// synthesizer's per-depth space); for one image it computes exactly what
+/// [`appearance`] does.
+pub(crate) fn sized_appearance(levels: &[SizedLevel], toroidal: bool) -> SharedAppearance {
     let side = (2 * RADIUS + 1) as usize;
     let dims = side * side * 3;
-    let per_image = w as usize * h as usize;
-    let n = per_image * levels.len();
+    let starts: Vec<usize> = levels
+        .iter()
+        .scan(0usize, |acc, l| {
+            let start = *acc;
+            *acc += l.width as usize * l.height as usize;
+            Some(start)
+        })
+        .collect();
+    let n: usize = levels
+        .iter()
+        .map(|l| l.width as usize * l.height as usize)
+        .sum();
     let mut data = vec![0.0f64; n * dims];
     for (image, level) in levels.iter().enumerate() {
+        let (w, h, spacing) = (level.width, level.height, level.spacing);
         for y in 0..h as i64 {
             for x in 0..w as i64 {
-                let pixel = image * per_image + (y * w as i64 + x) as usize;
+                let pixel = starts[image] + (y * w as i64 + x) as usize;
                 let row = &mut data[pixel * dims..][..dims];
                 let mut j = 0;
                 for dy in -RADIUS..=RADIUS {
@@ -71,7 +127,7 @@ pub(crate) fn shared_appearance(
                             .exp();
                         let sx = border(x + dx * spacing as i64, w, toroidal);
                         let sy = border(y + dy * spacing as i64, h, toroidal);
-                        let s = level[sy * w as usize + sx];
+                        let s = level.pixels[sy * w as usize + sx];
                         for c in s {
                             row[j] = weight * c as f64;
                             j += 1;
@@ -112,24 +168,45 @@ pub(crate) fn shared_appearance(
         let sign = if pivot < 0.0 { -1.0 } else { 1.0 };
         basis.set_column(k, &(v * sign));
     }
-    let projected = x * basis;
+    let projected = x * &basis;
     let max_abs = projected.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let scale = if max_abs > 1e-9 {
         APPEARANCE_QUANT_MAX / max_abs
     } else {
         1.0
     };
-    let vectors = (0..levels.len())
-        .map(|image| {
-            (0..per_image)
+    let vectors = levels
+        .iter()
+        .enumerate()
+        .map(|(image, l)| {
+            (0..l.width as usize * l.height as usize)
                 .map(|p| {
-                    let row = image * per_image + p;
+                    let row = starts[image] + p;
                     std::array::from_fn(|k| (projected[(row, k)] * scale).round() as i8)
                 })
                 .collect()
         })
         .collect();
-    (vectors, residual_variance)
+    let offset_matrix = std::array::from_fn(|d| {
+        std::array::from_fn(|c| {
+            let mut m = 0.0f64;
+            let mut j = 0;
+            for dy in -RADIUS..=RADIUS {
+                for dx in -RADIUS..=RADIUS {
+                    let weight =
+                        (-((dx * dx + dy * dy) as f64) / (2.0 * WEIGHT_SIGMA * WEIGHT_SIGMA)).exp();
+                    m += weight * basis[(j * 3 + c, d)];
+                    j += 1;
+                }
+            }
+            (m * scale * (1u32 << OFFSET_MATRIX_BITS) as f64).round() as i32
+        })
+    });
+    SharedAppearance {
+        vectors,
+        residual_variance,
+        offset_matrix,
+    }
 }
 
 /// Squared distance between two quantized vectors (exact).

@@ -21,6 +21,7 @@ mod error;
 mod exemplar;
 pub(crate) mod gpu;
 mod jitter;
+pub mod multiscale;
 mod neighbourhood;
 mod params;
 mod pat;

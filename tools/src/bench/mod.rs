@@ -6,6 +6,7 @@ mod glints;
 pub mod harness;
 mod hash;
 mod lazy;
+mod multiscale;
 mod plot;
 mod prims;
 mod psh;
@@ -33,6 +34,9 @@ pub enum BenchCommand {
     Trace(trace::TraceArgs),
     /// GPU appearance-space synthesis against the texture-synthesis crate: time and quality.
     Synth(synth::SynthArgs),
+    /// Multiscale synthesis from exemplar graphs: throughput against the single-exemplar
+    /// synthesizer, analysis time, per-depth energy and repetition.
+    Multiscale(multiscale::MultiscaleBenchArgs),
     /// Solid synthesis from 2D exemplars: candidate and synthesis times, per-axis quality
     /// beside the 2D synthesizer and two ablations.
     Solid(solid::SolidArgs),
@@ -74,6 +78,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Psh(a) => &a.common,
         BenchCommand::Trace(a) => &a.common,
         BenchCommand::Synth(a) => &a.common,
+        BenchCommand::Multiscale(a) => &a.common,
         BenchCommand::Solid(a) => &a.common,
         BenchCommand::Lazy(a) => &a.common,
         BenchCommand::Cuts(a) => &a.common,
@@ -87,6 +92,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Psh(args) => psh::run(&args, global),
         BenchCommand::Trace(args) => trace::run(&args, global),
         BenchCommand::Synth(args) => synth::run(&args, global),
+        BenchCommand::Multiscale(args) => multiscale::run(&args, global),
         BenchCommand::Solid(args) => solid::run(&args, global),
         BenchCommand::Lazy(args) => lazy::run(&args, global),
         BenchCommand::Cuts(args) => cuts::run(&args, global),

@@ -6,6 +6,7 @@ pub mod device;
 pub mod diff;
 pub mod exit_status;
 pub mod fracture;
+pub mod multiscale;
 pub mod output;
 pub mod render;
 pub mod resolution;
