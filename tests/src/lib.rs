@@ -31,6 +31,33 @@ pub fn rng(seed: u64) -> rand_pcg::Pcg64Mcg {
     rand_pcg::Pcg64Mcg::seed_from_u64(seed)
 }
 
+/// The glint tests' example: a deterministic height field of Gaussian bumps and straight
+/// scratches (a few texels deep), like scratched leather, wrapped around the example's edges.
+pub fn bumps_and_scratches(size: usize, seed: u64) -> Vec<f32> {
+    let mut r = rng(seed);
+    let mut h = vec![0.0f32; size * size];
+    let s = size as f32;
+    let wrap = |d: f32| d - s * (d / s).round();
+    for _ in 0..size / 2 {
+        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
+        let (radius, height) = (1.5 + 4.0 * r.random::<f32>(), r.random::<f32>() * 2.0 - 1.0);
+        for (i, v) in h.iter_mut().enumerate() {
+            let (dx, dy) = (wrap((i % size) as f32 - cx), wrap((i / size) as f32 - cy));
+            *v += height * (-(dx * dx + dy * dy) / (2.0 * radius * radius)).exp();
+        }
+    }
+    for _ in 0..size / 8 {
+        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
+        let angle = r.random::<f32>() * std::f32::consts::PI;
+        let (nx, ny) = (-angle.sin(), angle.cos());
+        for (i, v) in h.iter_mut().enumerate() {
+            let d = wrap((i % size) as f32 - cx) * nx + wrap((i / size) as f32 - cy) * ny;
+            *v -= 0.8 * (-d * d / 0.8).exp();
+        }
+    }
+    h
+}
+
 /// `n` distinct random points of `u` as keys, and the keys of `absent` other points (keys
 /// that a table built from the first `n` must reject).
 pub fn random_keys(u: &Universe, n: usize, absent: usize, seed: u64) -> (Vec<u64>, Vec<u64>) {

@@ -10,38 +10,12 @@ use lazysolid_renderer::glint::{
     BlendMode, ByExampleMap, Footprint, MaterializedMap, NormalExample, RangeTable, SampleTexels,
 };
 use lazysolid_renderer::kernels::render::GLINT_PNDF_TEST;
-use lazysolid_tests::{rng, with_gpu, GlintPndfTestPush};
+use lazysolid_tests::{bumps_and_scratches, rng, with_gpu, GlintPndfTestPush};
 use rand::Rng;
 
 const SIZE: usize = 64;
 const PATCH: u32 = 16;
 const SEED: u32 = 7;
-
-/// Gaussian bumps and scratches, as in `glint.rs`.
-fn bumps_and_scratches(size: usize, seed: u64) -> Vec<f32> {
-    let mut r = rng(seed);
-    let mut h = vec![0.0f32; size * size];
-    let s = size as f32;
-    let wrap = |d: f32| d - s * (d / s).round();
-    for _ in 0..size / 2 {
-        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
-        let (radius, height) = (1.5 + 4.0 * r.random::<f32>(), r.random::<f32>() * 2.0 - 1.0);
-        for (i, v) in h.iter_mut().enumerate() {
-            let (dx, dy) = (wrap((i % size) as f32 - cx), wrap((i / size) as f32 - cy));
-            *v += height * (-(dx * dx + dy * dy) / (2.0 * radius * radius)).exp();
-        }
-    }
-    for _ in 0..size / 8 {
-        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
-        let angle = r.random::<f32>() * std::f32::consts::PI;
-        let (nx, ny) = (-angle.sin(), angle.cos());
-        for (i, v) in h.iter_mut().enumerate() {
-            let d = wrap((i % size) as f32 - cx) * nx + wrap((i / size) as f32 - cy) * ny;
-            *v -= 0.8 * (-d * d / 0.8).exp();
-        }
-    }
-    h
-}
 
 fn map(mode: BlendMode) -> (ByExampleMap, RangeTable) {
     scaled_map(mode, 1.0)

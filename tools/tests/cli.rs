@@ -1742,6 +1742,8 @@ fn bench_glints_measures_range_queries_memory_and_render_time() {
     );
 }
 
+/// `lazysolid multiscale` and `lazysolid zoom` on a loop graph: the window and the frames are
+/// written, and a bad graph fails with its file, line and field and leaves no output.
 #[test]
 fn multiscale_and_zoom_write_their_images_and_bad_graphs_fail_by_line() {
     let dir = tempfile::tempdir().unwrap();

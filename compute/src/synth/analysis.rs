@@ -37,6 +37,30 @@ pub struct AnalysisParams {
     pub toroidal: bool,
 }
 
+impl AnalysisParams {
+    /// Checks `k` and `spread` against their limits (every analysis, 2D or multiscale).
+    ///
+    /// # Errors
+    /// [`SynthError::Parameter`] naming the field out of range.
+    pub fn check(&self) -> SynthResult<()> {
+        if !(1..=MAX_COHERENCE_K).contains(&self.k) {
+            return Err(SynthError::Parameter {
+                name: "k",
+                value: self.k.to_string(),
+                limit: format!("must lie in 1..={MAX_COHERENCE_K}"),
+            });
+        }
+        if self.spread > MAX_COHERENCE_SPREAD {
+            return Err(SynthError::Parameter {
+                name: "spread",
+                value: self.spread.to_string(),
+                limit: format!("must be at most {MAX_COHERENCE_SPREAD}"),
+            });
+        }
+        Ok(())
+    }
+}
+
 impl Default for AnalysisParams {
     fn default() -> Self {
         AnalysisParams {
@@ -88,20 +112,7 @@ impl ExemplarAnalysis {
 /// # Errors
 /// [`SynthError::Parameter`] when `k` or `spread` is out of range.
 pub fn analyze(exemplar: &Exemplar, params: &AnalysisParams) -> SynthResult<ExemplarAnalysis> {
-    if !(1..=MAX_COHERENCE_K).contains(&params.k) {
-        return Err(SynthError::Parameter {
-            name: "k",
-            value: params.k.to_string(),
-            limit: format!("must lie in 1..={MAX_COHERENCE_K}"),
-        });
-    }
-    if params.spread > MAX_COHERENCE_SPREAD {
-        return Err(SynthError::Parameter {
-            name: "spread",
-            value: params.spread.to_string(),
-            limit: format!("must be at most {MAX_COHERENCE_SPREAD}"),
-        });
-    }
+    params.check()?;
     let (w, h) = (exemplar.width, exemplar.height);
     let finest = exemplar.finest_level();
     let stack = gaussian_stack(exemplar, params.toroidal);

@@ -74,14 +74,37 @@ pub fn check_window(
     params: &SynthParams,
     window: Region,
 ) -> SynthResult<()> {
-    for (name, side) in [("width", window.size[0]), ("height", window.size[1])] {
+    check_window_bounds(window)?;
+    if params.passes.len() != analysis.levels.len() {
+        return Err(SynthError::Parameter {
+            name: "passes",
+            value: format!("{} counts", params.passes.len()),
+            limit: format!("the exemplar has {} levels", analysis.levels.len()),
+        });
+    }
+    if params.jitter.len() != analysis.levels.len() {
+        return Err(SynthError::Parameter {
+            name: "jitter",
+            value: format!("{} strengths", params.jitter.len()),
+            limit: format!("the exemplar has {} levels", analysis.levels.len()),
+        });
+    }
+    Ok(())
+}
+
+/// Checks a window's size and origin against the limits every synthesizer shares (the 2D and
+/// the multiscale one).
+///
+/// # Errors
+/// [`SynthError::Parameter`] naming the window's width, height or offset.
+pub fn check_window_bounds(window: Region) -> SynthResult<()> {
+    for (name, side) in [
+        ("window width", window.size[0]),
+        ("window height", window.size[1]),
+    ] {
         if !(1..=MAX_WINDOW_SIDE).contains(&side) {
             return Err(SynthError::Parameter {
-                name: if name == "width" {
-                    "window width"
-                } else {
-                    "window height"
-                },
+                name,
                 value: side.to_string(),
                 limit: format!("must lie in 1..={MAX_WINDOW_SIDE}"),
             });
@@ -97,20 +120,6 @@ pub fn check_window(
                 ),
             });
         }
-    }
-    if params.passes.len() != analysis.levels.len() {
-        return Err(SynthError::Parameter {
-            name: "passes",
-            value: format!("{} counts", params.passes.len()),
-            limit: format!("the exemplar has {} levels", analysis.levels.len()),
-        });
-    }
-    if params.jitter.len() != analysis.levels.len() {
-        return Err(SynthError::Parameter {
-            name: "jitter",
-            value: format!("{} strengths", params.jitter.len()),
-            limit: format!("the exemplar has {} levels", analysis.levels.len()),
-        });
     }
     Ok(())
 }

@@ -11,13 +11,13 @@
 
 use super::graph::{ExemplarGraph, Topology};
 use super::superexemplar::{StackLevel, Superexemplar};
-use crate::synth::analysis::{AnalysisParams, MAX_COHERENCE_K, MAX_COHERENCE_SPREAD};
+use crate::synth::analysis::AnalysisParams;
 use crate::synth::appearance::{
     appearance_distance, sized_appearance, SizedLevel, APPEARANCE_DIMS,
 };
 use crate::synth::coherence::{coherence_sets, MAX_POOL};
 use crate::synth::coords::{pack, torus_distance};
-use crate::synth::error::{SynthError, SynthResult};
+use crate::synth::error::SynthResult;
 use crate::synth::exemplar::Exemplar;
 use crate::synth::neighbourhood::{exemplar_neighbourhoods, NEIGHBOURHOOD_DIMS};
 use crate::synth::stack::{border, gaussian_stack};
@@ -141,7 +141,7 @@ pub fn fit_transfer(
 /// Analyses `graph` (see the module docs).
 ///
 /// # Errors
-/// [`SynthError::Parameter`] when `k` or `spread` is out of range.
+/// [`SynthError::Parameter`](crate::synth::SynthError::Parameter) when `k` or `spread` is out of range.
 pub fn analyze_graph(
     graph: &ExemplarGraph,
     params: &AnalysisParams,
@@ -158,20 +158,7 @@ pub fn analyze_topology(
     topology: &Topology,
     params: &AnalysisParams,
 ) -> SynthResult<MultiscaleAnalysis> {
-    if !(1..=MAX_COHERENCE_K).contains(&params.k) {
-        return Err(SynthError::Parameter {
-            name: "k",
-            value: params.k.to_string(),
-            limit: format!("must lie in 1..={MAX_COHERENCE_K}"),
-        });
-    }
-    if params.spread > MAX_COHERENCE_SPREAD {
-        return Err(SynthError::Parameter {
-            name: "spread",
-            value: params.spread.to_string(),
-            limit: format!("must be at most {MAX_COHERENCE_SPREAD}"),
-        });
-    }
+    params.check()?;
     let stacks: Vec<Vec<Vec<[f32; 3]>>> = exemplars
         .iter()
         .map(|e| gaussian_stack(e, params.toroidal))

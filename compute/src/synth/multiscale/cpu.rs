@@ -16,7 +16,6 @@ use crate::synth::params::{
 };
 use crate::synth::period::{period_reach, PERIOD_TOLERANCE};
 use crate::synth::plan::{correction_padding, Region};
-use crate::synth::synthesis::{MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};
 
 /// Deepest synthesis level (window origins at depth `t` are absolute positions of a plane
 /// `2^t` times finer than the root's level 0).
@@ -259,30 +258,7 @@ pub fn plan_multiscale(window: Region, passes: &[u32]) -> Vec<Region> {
 /// # Errors
 /// [`SynthError::Parameter`] naming the field.
 pub fn check_multiscale_window(window: Region) -> SynthResult<()> {
-    for (name, side) in [
-        ("window width", window.size[0]),
-        ("window height", window.size[1]),
-    ] {
-        if !(1..=MAX_WINDOW_SIDE).contains(&side) {
-            return Err(SynthError::Parameter {
-                name,
-                value: side.to_string(),
-                limit: format!("must lie in 1..={MAX_WINDOW_SIDE}"),
-            });
-        }
-    }
-    for o in window.origin {
-        if o.unsigned_abs() > MAX_WINDOW_ORIGIN as u32 {
-            return Err(SynthError::Parameter {
-                name: "window offset",
-                value: o.to_string(),
-                limit: format!(
-                    "each component must lie in -{MAX_WINDOW_ORIGIN}..={MAX_WINDOW_ORIGIN}"
-                ),
-            });
-        }
-    }
-    Ok(())
+    crate::synth::synthesis::check_window_bounds(window)
 }
 
 /// Spacing of a state's level in its exemplar (0 when magnified).
