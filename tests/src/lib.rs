@@ -207,6 +207,22 @@ lazysolid_compute::push_block! {
     }
 }
 
+lazysolid_compute::push_block! {
+    /// Push block of `glsl/render/glint_bsdf_test.comp`, the kernel that runs the glint
+    /// material (`render/glint_bsdf.glsl`) on test cases.
+    #[derive(Clone, Copy)]
+    pub struct GlintBsdfTestPush<'a> {
+        /// The `GlintRecord`s the cases index.
+        pub records: DeviceAddress<'a>,
+        /// 33 floats per case.
+        pub cases: DeviceAddress<'a>,
+        /// 24 floats per case.
+        pub results: DeviceAddress<'a>,
+        /// Number of cases.
+        pub n: u32,
+    }
+}
+
 /// Every kernel of the workspace with the push block its dispatches use: the compute crate's,
 /// the renderer's and the shading and glint test kernels.
 pub fn push_registry() -> Vec<PushRegistration> {
@@ -220,6 +236,9 @@ pub fn push_registry() -> Vec<PushRegistration> {
     ));
     all.push(PushRegistration::of::<GlintPndfTestPush>(
         &lazysolid_renderer::kernels::render::GLINT_PNDF_TEST,
+    ));
+    all.push(PushRegistration::of::<GlintBsdfTestPush>(
+        &lazysolid_renderer::kernels::render::GLINT_BSDF_TEST,
     ));
     all
 }

@@ -7,7 +7,8 @@
 // Sampling draws s from the 4 texels around the footprint centre (glint_sample_s) and reflects;
 // its solid-angle density is p_s(s) h.z / (4 wo.h), the density MIS weights use.
 // Host side: renderer/src/glint/gpu_material.rs; CPU twins of the P-NDF and sampling:
-// renderer/src/glint/pndf.rs.
+// renderer/src/glint/pndf.rs, of this file: renderer/src/shading/reference/glint.rs (tested
+// input by input through glsl/render/glint_bsdf_test.comp in tests/tests/glint_bsdf.rs).
 #ifndef LAZYSOLID_RENDER_GLINT_BSDF_GLSL
 #define LAZYSOLID_RENDER_GLINT_BSDF_GLSL
 

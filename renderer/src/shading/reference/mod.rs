@@ -5,6 +5,7 @@
 mod bsdf;
 mod environment;
 mod fresnel;
+mod glint;
 mod lights;
 mod microfacet;
 mod rng;
@@ -14,6 +15,9 @@ mod texture;
 pub use bsdf::{bsdf_eval, bsdf_has_smooth_lobe, bsdf_pdf, bsdf_sample, BsdfSample};
 pub use environment::{env_eval, env_pdf, env_sample, EnvSample};
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
+pub use glint::{
+    glint_eval, glint_pdf, glint_pndf, glint_sample, glint_shade, GlintParams, GlintShade,
+};
 pub use lights::{light_intersect, light_pdf, light_sample, LightHit, LightSample};
 pub use microfacet::{ggx_d, ggx_g1, ggx_g2, ggx_sample_vndf, ggx_vndf_pdf, GGX_MIN_ALPHA};
 pub use rng::{rng_hash, rng_init, rng_next, rng_next2};
