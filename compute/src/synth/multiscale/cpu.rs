@@ -11,9 +11,7 @@ use crate::synth::cpu::{offsets, CLASSES};
 use crate::synth::error::{SynthError, SynthResult};
 use crate::synth::jitter::jitter;
 use crate::synth::neighbourhood::{wrap, DIAGONALS, NEIGHBOURHOOD_DIMS, PREDICTIONS};
-use crate::synth::params::{
-    default_jitter, default_passes, JITTER_ONE, MAX_PASSES, MAX_PERIOD_PENALTY,
-};
+use crate::synth::params::{default_jitter, default_passes, SynthParams};
 use crate::synth::period::{period_reach, PERIOD_TOLERANCE};
 use crate::synth::plan::{correction_padding, Region};
 
@@ -95,7 +93,6 @@ impl MultiscaleParams {
                 limit: format!("must be at most {MAX_DEPTH}"),
             });
         }
-        let levels = depth as usize + 1;
         let passes = if passes.is_empty() {
             default_passes(depth + 1)
         } else {
@@ -106,50 +103,15 @@ impl MultiscaleParams {
         } else {
             jitter.to_vec()
         };
-        if passes.len() != 1 && passes.len() != levels {
-            return Err(SynthError::Parameter {
-                name: "passes",
-                value: format!("{} counts", passes.len()),
-                limit: format!("give one count or one per level ({levels} levels)"),
-            });
-        }
-        if let Some(bad) = passes.iter().find(|&&p| p > MAX_PASSES) {
-            return Err(SynthError::Parameter {
-                name: "passes",
-                value: bad.to_string(),
-                limit: format!("must be at most {MAX_PASSES}"),
-            });
-        }
-        if jitter.len() != 1 && jitter.len() != levels {
-            return Err(SynthError::Parameter {
-                name: "jitter",
-                value: format!("{} strengths", jitter.len()),
-                limit: format!("give one strength or one per level ({levels} levels)"),
-            });
-        }
-        if let Some(bad) = jitter.iter().find(|r| !(0.0..=1.0).contains(*r)) {
-            return Err(SynthError::Parameter {
-                name: "jitter",
-                value: bad.to_string(),
-                limit: "each strength must lie in 0..=1".into(),
-            });
-        }
-        if period_penalty > MAX_PERIOD_PENALTY {
-            return Err(SynthError::Parameter {
-                name: "period penalty",
-                value: period_penalty.to_string(),
-                limit: format!("must be at most {MAX_PERIOD_PENALTY}"),
-            });
-        }
+        // One depth per level of the 2D synthesizer's schedule: the same checks and
+        // quantization.
+        let p = SynthParams::new(depth + 1, seed, &passes, &jitter)?
+            .with_period_penalty(period_penalty)?;
         Ok(MultiscaleParams {
-            seed,
-            passes: (0..levels)
-                .map(|l| passes[l.min(passes.len() - 1)])
-                .collect(),
-            jitter: (0..levels)
-                .map(|l| (jitter[l.min(jitter.len() - 1)] * JITTER_ONE as f32).round() as u32)
-                .collect(),
-            period_penalty,
+            seed: p.seed,
+            passes: p.passes,
+            jitter: p.jitter,
+            period_penalty: p.period_penalty,
         })
     }
 
