@@ -12,6 +12,7 @@ use lazysolid_compute::synth::{
     SynthParams, DEFAULT_PERIOD_PENALTY,
 };
 use lazysolid_tests::{asset_exemplar, exemplar_crop, with_gpu};
+use std::collections::HashSet;
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -334,6 +335,22 @@ fn mixed() -> &'static MultiscaleAnalysis {
     })
 }
 
+/// [`mixed`] with a loop on terra (r = 1): past depth 6 the pixels carry transfers into depth
+/// sets holding terra's coarsest levels, whose candidates can be period-penalized.
+fn mixed_loop() -> &'static MultiscaleAnalysis {
+    static CELL: OnceLock<MultiscaleAnalysis> = OnceLock::new();
+    CELL.get_or_init(|| {
+        let (e, _) = leather();
+        let terra = exemplar_crop("terra.pat", 0, 0, 32, 32);
+        analyze_topology(
+            &[e.clone(), terra],
+            &Topology::new(vec![6, 5], &[(0, 1, 1), (1, 1, 1)], 0),
+            &AnalysisParams::default(),
+        )
+        .unwrap()
+    })
+}
+
 #[test]
 fn windows_agree_on_their_overlaps_at_several_levels() {
     let a = mixed();
@@ -388,8 +405,9 @@ fn a_loop_synthesizes_deeper_than_any_exemplar() {
 fn gpu_equals_cpu_on_every_level() {
     with_gpu(|gpu| {
         // The chain leather → terra (a leaf reached across exemplars, magnified pixels,
-        // transfers) at a negative offset, and the loop with uneven passes, one depth with none.
-        let cases: [(&MultiscaleAnalysis, MultiscaleParams, Region); 2] = [
+        // transfers) at a negative offset, the loop with uneven passes, one depth with none,
+        // and the chain with a loop on terra (transfers and the period test together).
+        let cases: [(&MultiscaleAnalysis, MultiscaleParams, Region); 3] = [
             (
                 mixed(),
                 MultiscaleParams::new(3, 9, &[], &[], DEFAULT_PERIOD_PENALTY).unwrap(),
@@ -400,10 +418,17 @@ fn gpu_equals_cpu_on_every_level() {
                 MultiscaleParams::new(11, 8, &[2, 1, 0, 3, 1, 2, 1, 1, 2], &[0.5], 0).unwrap(),
                 window(300, -9, 20, 26),
             ),
+            (
+                mixed_loop(),
+                MultiscaleParams::new(7, 8, &[], &[], DEFAULT_PERIOD_PENALTY).unwrap(),
+                window(-6, 40, 18, 15),
+            ),
         ];
+        let mut variants = HashSet::new();
         for (case, (analysis, params, w)) in cases.into_iter().enumerate() {
             let cpu = synthesize_multiscale_cpu(analysis, &params, w).unwrap();
             let g = MultiscaleGpu::new(gpu, analysis).unwrap();
+            variants.extend(g.correction_variants(analysis, &params));
             let (out, times) = g.synthesize(analysis, &params, w, true).unwrap();
             assert_eq!(times.len(), cpu.levels.len());
             for (t, (a, b)) in cpu.levels.iter().zip(&out.levels).enumerate() {
@@ -425,5 +450,8 @@ fn gpu_equals_cpu_on_every_level() {
                 assert!(last.iter().filter(|s| s.transfer != [0; 3]).count() > last.len() / 2);
             }
         }
+        // Every correction kernel (with and without transfers, with and without the period
+        // test) was compared.
+        assert_eq!(variants.len(), 4, "variants run: {variants:?}");
     });
 }

@@ -82,6 +82,11 @@ pub(crate) struct SizedLevel<'a> {
 /// Fixed-point bits of [`SharedAppearance::offset_matrix`].
 pub(crate) const OFFSET_MATRIX_BITS: u32 = 8;
 
+/// Largest magnitude of an [`SharedAppearance::offset_matrix`] entry: one colour level then
+/// moves a component by up to 2⁸ quantized units, past its whole ±127 range, so larger entries
+/// would only saturate sooner; the bound keeps the multiscale offset move in 32-bit integers.
+pub(crate) const OFFSET_MATRIX_MAX: i32 = 1 << 16;
+
 /// A pooled appearance space over images of any sizes and spacings.
 pub(crate) struct SharedAppearance {
     /// One vector list per image.
@@ -199,7 +204,8 @@ pub(crate) fn sized_appearance(levels: &[SizedLevel], toroidal: bool) -> SharedA
                     j += 1;
                 }
             }
-            (m * scale * (1u32 << OFFSET_MATRIX_BITS) as f64).round() as i32
+            ((m * scale * (1u32 << OFFSET_MATRIX_BITS) as f64).round() as i64)
+                .clamp(-OFFSET_MATRIX_MAX as i64, OFFSET_MATRIX_MAX as i64) as i32
         })
     });
     SharedAppearance {

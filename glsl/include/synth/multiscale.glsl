@@ -15,7 +15,29 @@ struct MsState {
 };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer MsStates { MsState v[]; };
 
-// Per exemplar: width, height, finest level, unused.
+// A pixel's working state during correction (compute/src/synth/multiscale/atlas.rs), in two
+// buffers: its texel index in the depth set's packed layout, MS_FIXED set when it is not
+// corrected and offers no candidates (magnified: its leaf's finest texel, predicted without
+// shift; its stack level absent from the set: the zero texel after the last), and its
+// transfer packed by ms_pack_transfer.
+const uint MS_ABSENT = 0xffffffffu;
+const uint MS_FIXED = 0x80000000u;
+// Lookup slots per exemplar (atlas.rs, LEVEL_SLOTS).
+const uint MS_LEVEL_SLOTS = 16u;
+
+// Largest cumulative transfer component (cpu.rs, MAX_TRANSFER): every one fits 16 bits.
+const int MS_MAX_TRANSFER = 255 * 16;
+
+// A transfer as 2 words: r | g << 16, b (16-bit two's complement each).
+uvec2 ms_pack_transfer(ivec3 t) {
+    return uvec2((uint(t.x) & 0xffffu) | (uint(t.y) << 16), uint(t.z) & 0xffffu);
+}
+
+ivec3 ms_unpack_transfer(uvec2 w) {
+    return ivec3(bitfieldExtract(int(w.x), 0, 16), bitfieldExtract(int(w.x), 16, 16),
+                 bitfieldExtract(int(w.y), 0, 16));
+}
+
 // Level field of a magnified pixel.
 const uint MS_MAGNIFIED = 0xffu;
 

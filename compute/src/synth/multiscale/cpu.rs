@@ -23,6 +23,11 @@ pub const MAX_DEPTH: u32 = 40;
 /// inside `u32` (32 · (3 · (2 · 127 + 2 · 512))² < 2³²) whatever the transfers.
 pub const MAX_OFFSET_MOVE: i32 = 512;
 
+/// Largest magnitude of a cumulative transfer component: one full colour range (255 levels).
+/// A larger offset shows the same colours (they clamp), and the bound keeps the offset move
+/// inside 32-bit arithmetic (3 · `OFFSET_MATRIX_MAX` · 4080 < 2³¹) on the GPU.
+pub const MAX_TRANSFER: i32 = 255 * TRANSFER_ONE;
+
 /// Level field of a magnified pixel: beyond every finest level.
 pub const MAGNIFIED: u32 = 0xff;
 
@@ -410,7 +415,9 @@ pub fn correct_subpass_multiscale(
                     let cm = &set.members[c.member as usize];
                     let ce = &analysis.exemplars[cm.exemplar];
                     let (cx, cy) = unpack(c.coord);
-                    let transfer: [i32; 3] = std::array::from_fn(|i| s.transfer[i] + c.transfer[i]);
+                    let transfer: [i32; 3] = std::array::from_fn(|i| {
+                        (s.transfer[i] + c.transfer[i]).clamp(-MAX_TRANSFER, MAX_TRANSFER)
+                    });
                     let mv = offset_move(set, transfer);
                     let record = &cm.neighbourhoods[(cy * ce.width + cx) as usize];
                     let mut d = 0u32;

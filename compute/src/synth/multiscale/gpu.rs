@@ -1,9 +1,12 @@
-//! The multiscale synthesizer on the GPU (`glsl/synth/multiscale_*.comp`): the analysis of every
-//! distinct depth set uploaded once, then per depth one submission of the upsample-and-jitter
-//! kernel and `4 × passes` correction subpasses over the state buffer (5 words per pixel:
-//! coordinate, meta, transfer). Equal to [`super::synthesize_multiscale_cpu`] exactly.
+//! The multiscale synthesizer on the GPU (`glsl/synth/multiscale_*.comp`): every distinct depth
+//! set uploaded once in its packed layout ([`DepthAtlas`]), then per depth one submission: the
+//! upsample-and-jitter kernel over the state buffer (5 words per pixel: coordinate, meta,
+//! transfer), the states turned into working states (texel index in the packed layout and
+//! transfer), `4 × passes` correction subpasses over those, and the corrected ones turned back.
+//! Equal to [`super::synthesize_multiscale_cpu`] exactly.
 
 use super::analysis::MultiscaleAnalysis;
+use super::atlas::DepthAtlas;
 use super::cpu::{
     check_multiscale_window, plan_multiscale, MultiscaleLevel, MultiscaleParams,
     MultiscaleSynthesis, PixelState,
@@ -13,7 +16,6 @@ use crate::kernels::synth;
 use crate::synth::cpu::CLASSES;
 use crate::synth::error::SynthResult;
 use crate::synth::gpu::{class_span, LevelTimes};
-use crate::synth::neighbourhood::pack_i8_words;
 use crate::synth::plan::Region;
 use std::sync::Arc;
 
@@ -38,16 +40,31 @@ crate::push_block! {
 
 crate::push_block! {
     #[derive(Clone, Copy)]
-    pub(crate) struct MsCorrectPush<'a> {
+    pub(crate) struct MsEnterPush<'a> {
         states: DeviceAddress<'a>,
+        texel: DeviceAddress<'a>,
+        transfer: DeviceAddress<'a>,
         exemplars: DeviceAddress<'a>,
-        members: DeviceAddress<'a>,
         lookup: DeviceAddress<'a>,
+        pixels: u32,
+        zero_texel: u32,
+    }
+}
+
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct MsCorrectPush<'a> {
+        texel: DeviceAddress<'a>,
+        transfer: DeviceAddress<'a>,
+        texels: DeviceAddress<'a>,
+        continued: DeviceAddress<'a>,
         appearance: DeviceAddress<'a>,
         records: DeviceAddress<'a>,
-        candidates: DeviceAddress<'a>,
+        cand_texel: DeviceAddress<'a>,
+        cand_extra: DeviceAddress<'a>,
+        cand_period: DeviceAddress<'a>,
+        exemplars: DeviceAddress<'a>,
         matrix: DeviceAddress<'a>,
-        origin: [i32; 2],
         size: [u32; 2],
         first: [u32; 2],
         count: [u32; 2],
@@ -56,23 +73,51 @@ crate::push_block! {
     }
 }
 
-/// Lookup slots per exemplar (levels `0..=L`, `L ≤ 8`).
-const LEVEL_SLOTS: usize = 16;
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct MsExitPush<'a> {
+        texel: DeviceAddress<'a>,
+        transfer: DeviceAddress<'a>,
+        states: DeviceAddress<'a>,
+        texels: DeviceAddress<'a>,
+        pixels: u32,
+    }
+}
 
+/// Which correction kernel a depth runs: a CPU driver executes every branch of a kernel for
+/// every lane, so work a depth cannot need is compiled out rather than skipped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct CorrectionVariant {
+    /// Transfers read, moved and composed (else all are zero).
+    pub transfers: bool,
+    /// The period test (else no candidate of the set can be penalized, or the penalty is 0).
+    pub period: bool,
+}
+
+/// A depth set's packed layout on the device ([`DepthAtlas`]).
 struct GpuSet {
-    members: GpuBuffer<u32>,
     lookup: GpuBuffer<u32>,
+    texels: GpuBuffer<u32>,
+    continued: GpuBuffer<u32>,
     appearance: GpuBuffer<u32>,
     records: GpuBuffer<u32>,
-    candidates: GpuBuffer<u32>,
+    candidate_texels: GpuBuffer<u32>,
+    candidate_extras: GpuBuffer<u32>,
+    candidate_periods: GpuBuffer<u32>,
     matrix: GpuBuffer<u32>,
+    has_reach: bool,
+    has_transfer: bool,
+    zero_texel: u32,
 }
 
 /// A graph analysis on the GPU.
 pub struct MultiscaleGpu {
     gpu: Gpu,
     upsample: Arc<Kernel>,
-    correct: Arc<Kernel>,
+    enter: Arc<Kernel>,
+    /// The correction variants, by [transfers][period test].
+    correct: [[Arc<Kernel>; 2]; 2],
+    exit: Arc<Kernel>,
     exemplars: GpuBuffer<u32>,
     sets: Vec<GpuSet>,
 }
@@ -101,34 +146,7 @@ impl MultiscaleGpu {
             .collect();
         let mut sets = Vec::new();
         for (s, set) in analysis.sets.iter().enumerate() {
-            let mut members = Vec::new();
-            let mut lookup = vec![u32::MAX; analysis.exemplars.len() * LEVEL_SLOTS];
-            let (mut appearance, mut records, mut candidates) =
-                (Vec::new(), Vec::new(), Vec::new());
-            for (m, member) in set.members.iter().enumerate() {
-                let e = &analysis.exemplars[member.exemplar];
-                lookup[member.exemplar * LEVEL_SLOTS + member.level as usize] = m as u32;
-                members.extend_from_slice(&[
-                    (appearance.len() / 2) as u32,
-                    (records.len() / 8) as u32,
-                    (candidates.len() / 4) as u32,
-                    e.width | (e.height << 16),
-                    member.exemplar as u32,
-                    member.level,
-                    member.spacing,
-                    0,
-                ]);
-                appearance.extend(pack_i8_words(member.appearance.as_flattened()));
-                records.extend(pack_i8_words(member.neighbourhoods.as_flattened()));
-                for c in &member.candidates {
-                    candidates.extend_from_slice(&[
-                        c.coord,
-                        c.member | ((c.transfer[2] as u32 & 0xffff) << 16),
-                        c.transfer[0] as u32,
-                        c.transfer[1] as u32,
-                    ]);
-                }
-            }
+            let atlas = DepthAtlas::new(analysis, set)?;
             let matrix: Vec<u32> = set
                 .offset_matrix
                 .iter()
@@ -138,21 +156,60 @@ impl MultiscaleGpu {
                 GpuBuffer::from_slice(gpu, format!("multiscale {name} set {s}"), data)
             };
             sets.push(GpuSet {
-                members: buf("members", &members)?,
-                lookup: buf("lookup", &lookup)?,
-                appearance: buf("appearance", &appearance)?,
-                records: buf("records", &records)?,
-                candidates: buf("candidates", &candidates)?,
+                lookup: buf("lookup", &atlas.lookup)?,
+                texels: buf("texels", &atlas.texels)?,
+                continued: buf("continued", &atlas.continued)?,
+                appearance: buf("appearance", &atlas.appearance)?,
+                records: buf("records", &atlas.records)?,
+                candidate_texels: buf("candidate texels", &atlas.candidate_texels)?,
+                candidate_extras: buf("candidate extras", &atlas.candidate_extras)?,
+                candidate_periods: buf("candidate periods", &atlas.candidate_periods)?,
                 matrix: buf("matrix", &matrix)?,
+                has_reach: atlas.has_reach,
+                has_transfer: atlas.has_transfer,
+                zero_texel: atlas.texel_count,
             });
         }
         Ok(MultiscaleGpu {
             gpu: gpu.clone(),
             upsample: gpu.kernel(&synth::MULTISCALE_UPSAMPLE)?,
-            correct: gpu.kernel(&synth::MULTISCALE_CORRECT)?,
+            enter: gpu.kernel(&synth::MULTISCALE_ENTER)?,
+            correct: [
+                [
+                    gpu.kernel(&synth::MULTISCALE_CORRECT_PLAIN)?,
+                    gpu.kernel(&synth::MULTISCALE_CORRECT_PERIOD)?,
+                ],
+                [
+                    gpu.kernel(&synth::MULTISCALE_CORRECT_TRANSFERS)?,
+                    gpu.kernel(&synth::MULTISCALE_CORRECT)?,
+                ],
+            ],
+            exit: gpu.kernel(&synth::MULTISCALE_EXIT)?,
             exemplars: GpuBuffer::from_slice(gpu, "multiscale exemplars", &exemplar_words)?,
             sets,
         })
+    }
+
+    /// The correction kernel each depth `0..=params.depth()` runs. Transfers can differ from
+    /// zero from the first depth whose set has a candidate with one (states start at zero,
+    /// upsampling blends them): until then the correction reads none. The period test runs
+    /// only where a candidate can fail it.
+    pub fn correction_variants(
+        &self,
+        analysis: &MultiscaleAnalysis,
+        params: &MultiscaleParams,
+    ) -> Vec<CorrectionVariant> {
+        let mut transfers = false;
+        (0..=params.depth())
+            .map(|t| {
+                let set = &self.sets[analysis.superexemplar.set_of(t)];
+                transfers |= set.has_transfer;
+                CorrectionVariant {
+                    transfers,
+                    period: set.has_reach && params.period_penalty != 0,
+                }
+            })
+            .collect()
     }
 
     /// Synthesizes `window` of depth `params.depth()`; `keep_levels` reads every depth back,
@@ -175,6 +232,7 @@ impl MultiscaleGpu {
         let mut levels = Vec::new();
         let mut times = Vec::new();
         let mut parent: Option<(Region, GpuBuffer<u32>)> = None;
+        let variants = self.correction_variants(analysis, params);
         for (t, &region) in regions.iter().enumerate() {
             let set = &self.sets[analysis.superexemplar.set_of(t as u32)];
             let states = GpuBuffer::<u32>::new(
@@ -182,6 +240,18 @@ impl MultiscaleGpu {
                 format!("multiscale states depth {t}"),
                 region.pixels() * 5,
             )?;
+            let texel = GpuBuffer::<u32>::new(
+                &self.gpu,
+                format!("multiscale working texels depth {t}"),
+                region.pixels(),
+            )?;
+            let transfer = GpuBuffer::<u32>::new(
+                &self.gpu,
+                format!("multiscale working transfers depth {t}"),
+                region.pixels() * 2,
+            )?;
+            let variant = variants[t];
+            let correct = &self.correct[variant.transfers as usize][variant.period as usize];
             let push = MsUpsamplePush {
                 parent: parent
                     .as_ref()
@@ -207,6 +277,18 @@ impl MultiscaleGpu {
                 let k = &self.upsample;
                 rec.dispatch(k, k.groups_for(region.pixels() as u64), &[], &push)?;
                 rec.timestamp()?;
+                let pixels = region.pixels() as u32;
+                let enter = MsEnterPush {
+                    states: states.address(),
+                    texel: texel.address(),
+                    transfer: transfer.address(),
+                    exemplars: self.exemplars.address(),
+                    lookup: set.lookup.address(),
+                    pixels,
+                    zero_texel: set.zero_texel,
+                };
+                let k = &self.enter;
+                rec.dispatch(k, k.groups_for(pixels as u64), &[], &enter)?;
                 for _ in 0..params.passes[t] {
                     for class in CLASSES {
                         let (fx, cx) = class_span(region.origin[0], region.size[0], class[0]);
@@ -215,25 +297,36 @@ impl MultiscaleGpu {
                             continue;
                         }
                         let push = MsCorrectPush {
-                            states: states.address(),
-                            exemplars: self.exemplars.address(),
-                            members: set.members.address(),
-                            lookup: set.lookup.address(),
+                            texel: texel.address(),
+                            transfer: transfer.address(),
+                            texels: set.texels.address(),
+                            continued: set.continued.address(),
                             appearance: set.appearance.address(),
                             records: set.records.address(),
-                            candidates: set.candidates.address(),
+                            cand_texel: set.candidate_texels.address(),
+                            cand_extra: set.candidate_extras.address(),
+                            cand_period: set.candidate_periods.address(),
+                            exemplars: self.exemplars.address(),
                             matrix: set.matrix.address(),
-                            origin: region.origin,
                             size: region.size,
                             first: [fx, fy],
                             count: [cx, cy],
                             k: analysis.k,
                             penalty: params.period_penalty,
                         };
-                        let k = &self.correct;
+                        let k = correct;
                         rec.dispatch(k, k.groups_for(cx as u64 * cy as u64), &[], &push)?;
                     }
                 }
+                let exit = MsExitPush {
+                    texel: texel.address(),
+                    transfer: transfer.address(),
+                    states: states.address(),
+                    texels: set.texels.address(),
+                    pixels,
+                };
+                let k = &self.exit;
+                rec.dispatch(k, k.groups_for(pixels as u64), &[], &exit)?;
                 rec.timestamp()
             })?;
             times.push(LevelTimes {

@@ -8,6 +8,7 @@
 //! [`synthesize_multiscale_cpu`] or the GPU twin, which agree exactly.
 
 mod analysis;
+mod atlas;
 mod cpu;
 pub(crate) mod gpu;
 mod graph;
@@ -21,9 +22,9 @@ pub use cpu::{
     check_multiscale_window, colour, correct_subpass_multiscale, meta, offset_move,
     plan_multiscale, spacing_of, spans_period_multiscale, synthesize_multiscale_cpu,
     upsample_jitter_multiscale, MultiscaleLevel, MultiscaleParams, MultiscaleSynthesis, PixelState,
-    MAGNIFIED, MAX_DEPTH, MAX_OFFSET_MOVE,
+    MAGNIFIED, MAX_DEPTH, MAX_OFFSET_MOVE, MAX_TRANSFER,
 };
-pub use gpu::MultiscaleGpu;
+pub use gpu::{CorrectionVariant, MultiscaleGpu};
 pub use graph::{
     ExemplarGraph, GraphEdge, GraphError, Topology, MAX_GRAPH_EXEMPLARS, R_MAX_MARGIN,
 };
