@@ -318,37 +318,31 @@ fn looped() -> &'static MultiscaleAnalysis {
     })
 }
 
-/// Leather with a 32² terra crop (a leaf) reached with r = 1: at depth 6 leather's finest
-/// level is inadmissible, so every pixel moves to terra's level 4 with a colour transfer, and
-/// from depth 8 on terra's pixels are magnified.
+/// Leather (L = 6) and a 32² terra crop (L = 5) analysed with `edges`.
+fn leather_terra(edges: &[(usize, usize, u32)]) -> MultiscaleAnalysis {
+    let (e, _) = leather();
+    let terra = exemplar_crop("terra.pat", 0, 0, 32, 32);
+    analyze_topology(
+        &[e.clone(), terra],
+        &Topology::new(vec![6, 5], edges, 0),
+        &AnalysisParams::default(),
+    )
+    .unwrap()
+}
+
+/// Leather with terra (a leaf) reached with r = 1: at depth 6 leather's finest level is
+/// inadmissible, so every pixel moves to terra's level 4 with a colour transfer, and from
+/// depth 8 on terra's pixels are magnified.
 fn mixed() -> &'static MultiscaleAnalysis {
     static CELL: OnceLock<MultiscaleAnalysis> = OnceLock::new();
-    CELL.get_or_init(|| {
-        let (e, _) = leather();
-        let terra = exemplar_crop("terra.pat", 0, 0, 32, 32);
-        analyze_topology(
-            &[e.clone(), terra],
-            &Topology::new(vec![6, 5], &[(0, 1, 1)], 0),
-            &AnalysisParams::default(),
-        )
-        .unwrap()
-    })
+    CELL.get_or_init(|| leather_terra(&[(0, 1, 1)]))
 }
 
 /// [`mixed`] with a loop on terra (r = 1): past depth 6 the pixels carry transfers into depth
 /// sets holding terra's coarsest levels, whose candidates can be period-penalized.
 fn mixed_loop() -> &'static MultiscaleAnalysis {
     static CELL: OnceLock<MultiscaleAnalysis> = OnceLock::new();
-    CELL.get_or_init(|| {
-        let (e, _) = leather();
-        let terra = exemplar_crop("terra.pat", 0, 0, 32, 32);
-        analyze_topology(
-            &[e.clone(), terra],
-            &Topology::new(vec![6, 5], &[(0, 1, 1), (1, 1, 1)], 0),
-            &AnalysisParams::default(),
-        )
-        .unwrap()
-    })
+    CELL.get_or_init(|| leather_terra(&[(0, 1, 1), (1, 1, 1)]))
 }
 
 #[test]
