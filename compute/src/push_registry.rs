@@ -79,6 +79,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<multiscale_gpu::MsCorrectPush>(&synth::MULTISCALE_CORRECT_TRANSFERS),
         of::<multiscale_gpu::MsEnterPush>(&synth::MULTISCALE_ENTER),
         of::<multiscale_gpu::MsExitPush>(&synth::MULTISCALE_EXIT),
+        of::<multiscale_gpu::MsSelectPush>(&synth::MULTISCALE_SELECT),
         of::<solid_candidates::SearchPush>(&synth_solid::STRIP_SEARCH),
         of::<solid_candidates::TriplesPush>(&synth_solid::TRIPLES),
         of::<solid_candidates::CoherencePush>(&synth_solid::COHERENCE),

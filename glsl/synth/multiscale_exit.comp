@@ -9,7 +9,7 @@ layout(push_constant, scalar) uniform Push {
     uint64_t texel;     // working texel index per pixel
     uint64_t transfer;  // working transfer per pixel (ms_pack_transfer)
     uint64_t states;  // states of the region, updated
-    uint64_t texels;  // per texel: packed coordinate, meta
+    uint64_t texels;    // per texel: packed coordinate, meta | offers-period flag << 16
     uint pixels;
 } pc;
 
@@ -24,5 +24,5 @@ void main() {
     }
     uvec2 c = UVec2Ptr(pc.texels).v[a];
     ivec3 t = ms_unpack_transfer(UVec2Ptr(pc.transfer).v[i]);
-    MsStates(pc.states).v[i] = MsState(c.x, c.y, t.x, t.y, t.z);
+    MsStates(pc.states).v[i] = MsState(c.x, c.y & 0xffffu, t.x, t.y, t.z);
 }

@@ -4,8 +4,9 @@
 //! overlaps, synthesis deeper than any exemplar through a loop, and GPU = CPU.
 
 use lazysolid_compute::synth::multiscale::{
-    analyze_topology, fit_transfer, synthesize_multiscale_cpu, ExemplarGraph, GraphError,
-    MultiscaleAnalysis, MultiscaleGpu, MultiscaleParams, Topology, MAGNIFIED, TRANSFER_ONE,
+    analyze_topology, fit_transfer, synthesize_multiscale_cpu, CorrectionVariant, ExemplarGraph,
+    GraphError, MultiscaleAnalysis, MultiscaleGpu, MultiscaleParams, Topology, MAGNIFIED,
+    TRANSFER_ONE,
 };
 use lazysolid_compute::synth::{
     analyze, default_jitter, default_passes, synthesize_cpu, AnalysisParams, Exemplar, Region,
@@ -422,8 +423,24 @@ fn gpu_equals_cpu_on_every_level() {
         for (case, (analysis, params, w)) in cases.into_iter().enumerate() {
             let cpu = synthesize_multiscale_cpu(analysis, &params, w).unwrap();
             let g = MultiscaleGpu::new(gpu, analysis).unwrap();
-            variants.extend(g.correction_variants(analysis, &params));
-            let (out, times) = g.synthesize(analysis, &params, w, true).unwrap();
+            let (out, times, tested) = g.synthesize_counted(analysis, &params, w, true).unwrap();
+            // The kernels that ran: where the test is available the device runs it from the
+            // subpass after a pixel reaches a level offering candidates it can penalize.
+            for (t, v) in g
+                .correction_variants(analysis, &params)
+                .into_iter()
+                .enumerate()
+            {
+                let subpasses = 4 * params.passes[t];
+                assert!(tested[t] <= subpasses);
+                assert!(v.period || tested[t] == 0);
+                if tested[t] > 0 {
+                    variants.insert(v);
+                }
+                if tested[t] < subpasses {
+                    variants.insert(CorrectionVariant { period: false, ..v });
+                }
+            }
             assert_eq!(times.len(), cpu.levels.len());
             for (t, (a, b)) in cpu.levels.iter().zip(&out.levels).enumerate() {
                 assert_eq!(a.region, b.region);

@@ -184,7 +184,8 @@ impl Recorder<'_> {
         }
     }
 
-    /// A full memory barrier between compute and transfer work.
+    /// A full memory barrier between compute and transfer work (and the reads of indirect
+    /// dispatch arguments).
     pub fn barrier(&mut self) {
         let stages = vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
         let barrier = vk::MemoryBarrier::default()
@@ -193,13 +194,14 @@ impl Recorder<'_> {
                 vk::AccessFlags::SHADER_READ
                     | vk::AccessFlags::SHADER_WRITE
                     | vk::AccessFlags::TRANSFER_READ
-                    | vk::AccessFlags::TRANSFER_WRITE,
+                    | vk::AccessFlags::TRANSFER_WRITE
+                    | vk::AccessFlags::INDIRECT_COMMAND_READ,
             );
         unsafe {
             self.gpu.device.cmd_pipeline_barrier(
                 self.cmd,
                 stages,
-                stages,
+                stages | vk::PipelineStageFlags::DRAW_INDIRECT,
                 vk::DependencyFlags::empty(),
                 &[barrier],
                 &[],
@@ -222,6 +224,49 @@ impl Recorder<'_> {
         &mut self,
         kernel: &Kernel,
         groups: [u32; 3],
+        bindings: &[(&str, BufferArg<'_>)],
+        push: &P,
+    ) -> GpuResult<()> {
+        self.launch(kernel, Launch::Direct(groups), bindings, push)
+    }
+
+    /// As [`Recorder::dispatch`], with the workgroup counts read on the device from the 3
+    /// words at `word` of `args` (written by an earlier dispatch: a count of 0 runs nothing,
+    /// which is how a kernel choice made on the device skips work).
+    ///
+    /// # Errors
+    /// As [`Recorder::dispatch`].
+    pub fn dispatch_indirect<P: PushBlock>(
+        &mut self,
+        kernel: &Kernel,
+        args: &GpuBuffer<u32>,
+        word: u64,
+        bindings: &[(&str, BufferArg<'_>)],
+        push: &P,
+    ) -> GpuResult<()> {
+        if (word + 3) * 4 > args.bytes() {
+            return Err(GpuError::KernelInterface {
+                kernel: kernel.def.name,
+                problem: format!(
+                    "indirect counts at word {word} lie past the end of {} ({} bytes)",
+                    args.name(),
+                    args.bytes()
+                ),
+            });
+        }
+        self.used.hold(args.memory());
+        self.launch(
+            kernel,
+            Launch::Indirect(args.raw(), word * 4),
+            bindings,
+            push,
+        )
+    }
+
+    fn launch<P: PushBlock>(
+        &mut self,
+        kernel: &Kernel,
+        launch: Launch,
         bindings: &[(&str, BufferArg<'_>)],
         push: &P,
     ) -> GpuResult<()> {
@@ -307,7 +352,7 @@ impl Recorder<'_> {
                     .buffer_info(info)
             })
             .collect();
-        if groups.contains(&0) {
+        if matches!(launch, Launch::Direct(groups) if groups.contains(&0)) {
             return Ok(());
         }
         push.keep_alive(&mut self.used);
@@ -336,7 +381,12 @@ impl Recorder<'_> {
                     &push_bytes,
                 );
             }
-            d.cmd_dispatch(self.cmd, groups[0], groups[1], groups[2]);
+            match launch {
+                Launch::Direct([x, y, z]) => d.cmd_dispatch(self.cmd, x, y, z),
+                Launch::Indirect(buffer, offset) => {
+                    d.cmd_dispatch_indirect(self.cmd, buffer, offset)
+                }
+            }
         }
         self.pending_write = true;
         Ok(())
@@ -460,4 +510,12 @@ impl Recorder<'_> {
         self.timestamps += 1;
         Ok(())
     }
+}
+
+/// How a dispatch gets its workgroup counts.
+#[derive(Clone, Copy)]
+enum Launch {
+    Direct([u32; 3]),
+    /// The buffer and byte offset of 3 words of counts.
+    Indirect(vk::Buffer, u64),
 }

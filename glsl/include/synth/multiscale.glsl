@@ -22,6 +22,16 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer MsStates { M
 // transfer packed by ms_pack_transfer.
 const uint MS_ABSENT = 0xffffffffu;
 const uint MS_FIXED = 0x80000000u;
+// Flag of a candidate texel (and of a level's lookup entry) whose level offers candidates that
+// can be period-penalized (atlas.rs, OFFERS_PERIOD).
+const uint MS_OFFERS_PERIOD = 0x80000000u;
+
+// The control words of a depth's correction (gpu.rs): [0] whether some pixel sits at a level
+// offering candidates that can be period-penalized (set, never cleared, by the kernels),
+// [1..4] and [4..7] the workgroup counts of the correction without and with the period test,
+// [7] how many subpasses ran the period test.
+const uint MS_CONTROL_WORDS = 8u;
+
 // Lookup slots per exemplar (atlas.rs, LEVEL_SLOTS).
 const uint MS_LEVEL_SLOTS = 16u;
 

@@ -25,15 +25,16 @@
 layout(push_constant, scalar) uniform Push {
     uint64_t texel;       // working texel index per pixel, updated in place
     uint64_t transfer;    // working transfer per pixel (ms_pack_transfer), updated in place
-    uint64_t texels;      // per texel: packed coordinate, meta
+    uint64_t texels;      // per texel: packed coordinate, meta (| offers-period flag << 16)
     uint64_t continued;   // per texel: 8 continued texels, neighbours in row order but the centre
     uint64_t appearance;  // per texel: 5 appearance vectors (2 words each): self, -x, +x, -y, +y
     uint64_t records;     // per texel: 8 words
-    uint64_t cand_texel;  // per texel: k candidate texels
+    uint64_t cand_texel;  // per texel: k candidate texels (| MS_OFFERS_PERIOD)
     uint64_t cand_extra;  // per texel, k: transfer r | g << 16, b
     uint64_t cand_period; // per texel, k: x | y << 8 | meta << 16, (w-1) | (h-1) << 8 | reach << 16
     uint64_t exemplars;   // uvec4 per exemplar: width, height, finest level, 0
     uint64_t matrix;      // 8 x 3 ints: the offset move (appearance.rs)
+    uint64_t control;     // MS_CONTROL_WORDS words (multiscale.glsl)
     uvec2 size;
     uvec2 first;
     uvec2 count;
@@ -162,13 +163,14 @@ void main() {
     uvec2 continued_texel[9];
     for (int m = 0; m < 9; m++) {
         continued_texel[m] = m == 4 || bases[m] == MS_ABSENT ? uvec2(0u, MS_ABSENT)
-            : UVec2Ptr(pc.texels).v[bases[m]];
+            : UVec2Ptr(pc.texels).v[bases[m]] & uvec2(0xffffffffu, 0xffffu);
     }
 #endif
     ivec3 cur_t = tr[4];
     uint best_d = 0xffffffffu;
     uint best_nc = 0xffffffffu;
     uint best_a = current;
+    uint best_offers = 0u;
     ivec3 best_t = cur_t;
     for (int u = 0; u < count; u++) {
         uint base = ubase[u];
@@ -177,7 +179,8 @@ void main() {
 #endif
         for (uint j = 0u; j < pc.k; j++) {
             uint slot = base * pc.k + j;
-            uint c = U32Ptr(pc.cand_texel).v[slot];
+            uint flagged = U32Ptr(pc.cand_texel).v[slot];
+            uint c = flagged & ~MS_OFFERS_PERIOD;
             uvec4 rlo = UVec4Ptr(pc.records).v[2u * c];
             uvec4 rhi = UVec4Ptr(pc.records).v[2u * c + 1u];
 #if MS_TRANSFERS
@@ -236,11 +239,19 @@ void main() {
                 best_nc = nc;
                 best_a = c;
                 best_t = t;
+                best_offers = flagged >> 31;
             }
         }
     }
     uint p = local.y * pc.size.x + local.x;
     U32Ptr(pc.texel).v[p] = best_a;
+#if !MS_PERIOD
+    // The pixel moved to a level offering candidates that can be period-penalized: the next
+    // subpass runs the test (multiscale_select.comp). (Its old level was counted already.)
+    if (best_offers != 0u) {
+        atomicOr(U32Ptr(pc.control).v[0], 1u);
+    }
+#endif
 #if MS_TRANSFERS
     UVec2Ptr(pc.transfer).v[p] = ms_pack_transfer(best_t);
 #endif

@@ -29,6 +29,10 @@ pub(crate) const ABSENT: u32 = u32::MAX;
 /// level): it predicts its texel's appearance without shift and offers no candidates.
 pub(crate) const FIXED: u32 = 1 << 31;
 
+/// Flag of a candidate texel index whose level offers candidates that can be period-penalized
+/// (see [`DepthAtlas::candidate_texels`]); of a texel's `meta` word, the same bit 16 up.
+pub(crate) const OFFERS_PERIOD: u32 = 1 << 31;
+
 /// Shifts of the stored appearance, in units of the member's spacing: the texel itself,
 /// then −x, +x, −y, +y (what the 4-diagonal neighbourhood reads of edge neighbours).
 pub(crate) const APPEARANCE_SHIFTS: [(i32, i32); 5] = [(0, 0), (-1, 0), (1, 0), (0, -1), (0, 1)];
@@ -36,10 +40,11 @@ pub(crate) const APPEARANCE_SHIFTS: [(i32, i32); 5] = [(0, 0), (-1, 0), (1, 0), 
 /// One depth set in the packed layout, as `u32` words ready for upload.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct DepthAtlas {
-    /// First texel index of each stack level: `exemplar · LEVEL_SLOTS + level`, or
-    /// [`ABSENT`].
+    /// First texel index of each stack level (| [`OFFERS_PERIOD`]): `exemplar · LEVEL_SLOTS +
+    /// level`, or [`ABSENT`].
     pub lookup: Vec<u32>,
-    /// Per texel: packed coordinate, `meta`.
+    /// Per texel: packed coordinate, `meta` | 1 << 16 where its level offers candidates that
+    /// can be period-penalized.
     pub texels: Vec<u32>,
     /// Per texel, for the 8 neighbours `n ≠ 4` in row order: the texel index of the
     /// coordinate moved back by the neighbour's offset times the spacing (the texel that
@@ -50,7 +55,9 @@ pub(crate) struct DepthAtlas {
     pub appearance: Vec<u32>,
     /// Per texel, the 4-diagonal neighbourhood record (8 words).
     pub records: Vec<u32>,
-    /// Per texel, `k` candidate texel indices.
+    /// Per texel, `k` candidate texel indices, [`OFFERS_PERIOD`] set where the candidate's level
+    /// offers candidates that can be period-penalized: a pixel moving there makes the period
+    /// test needed from the next subpass on (the GPU switches kernels on it).
     pub candidate_texels: Vec<u32>,
     /// Per texel, `k` × 2 words: the candidate's transfer r | g << 16 and b (16-bit two's
     /// complement each).
@@ -99,6 +106,19 @@ impl DepthAtlas {
             });
         }
         let texel_count = total as u32;
+        // Whether a member's candidate lists hold one whose level spans at most 2 of its
+        // pixels.
+        let offers: Vec<bool> = set
+            .members
+            .iter()
+            .map(|member| {
+                member.candidates.iter().any(|c| {
+                    let cm = &set.members[c.member as usize];
+                    let ce = &analysis.exemplars[cm.exemplar];
+                    period_reach(cm.spacing, ce.width, ce.height) != [0, 0]
+                })
+            })
+            .collect();
         let start: Vec<u32> = start.into_iter().map(|s| s as u32).collect();
         let mut lookup = vec![ABSENT; analysis.exemplars.len() * LEVEL_SLOTS];
         let n = texel_count as usize;
@@ -119,13 +139,16 @@ impl DepthAtlas {
             let member = &set.members[m];
             let e = &analysis.exemplars[member.exemplar];
             let (w, h, sp) = (e.width, e.height, member.spacing as i32);
-            lookup[member.exemplar * LEVEL_SLOTS + member.level as usize] = start[m];
+            lookup[member.exemplar * LEVEL_SLOTS + member.level as usize] =
+                start[m] | if offers[m] { OFFERS_PERIOD } else { 0 };
             let index = |x: u32, y: u32| start[m] + y * w + x;
             for y in 0..h {
                 for x in 0..w {
                     let t = (y * w + x) as usize;
                     atlas.texels.push(pack(x, y));
-                    atlas.texels.push(meta(member.exemplar, member.level));
+                    atlas
+                        .texels
+                        .push(meta(member.exemplar, member.level) | ((offers[m] as u32) << 16));
                     for (slot, (dx, dy)) in offsets().enumerate() {
                         if slot != 4 {
                             let c = index(wrap(x, -dx * sp, w), wrap(y, -dy * sp, h));
@@ -156,9 +179,14 @@ impl DepthAtlas {
                         let reach = period_reach(cm.spacing, ce.width, ce.height);
                         atlas.has_reach |= reach != [0, 0];
                         atlas.has_transfer |= c.transfer != [0; 3];
+                        let flag = if offers[c.member as usize] {
+                            OFFERS_PERIOD
+                        } else {
+                            0
+                        };
                         atlas
                             .candidate_texels
-                            .push(start[c.member as usize] + cy * ce.width + cx);
+                            .push((start[c.member as usize] + cy * ce.width + cx) | flag);
                         atlas.candidate_extras.extend_from_slice(&[
                             (tr as u32 & 0xffff) | ((tg as u32) << 16),
                             tb as u32 & 0xffff,
@@ -225,16 +253,27 @@ mod tests {
             assert_eq!(atlas.candidate_texels.len(), 2 * n);
             assert_eq!(atlas.candidate_extras.len(), 2 * 2 * n);
             assert_eq!(atlas.candidate_periods.len(), 2 * 2 * n);
-            let key = |i: usize| (atlas.texels[2 * i + 1], unpack(atlas.texels[2 * i]));
+            let key = |i: usize| {
+                (
+                    atlas.texels[2 * i + 1] & 0xffff,
+                    unpack(atlas.texels[2 * i]),
+                )
+            };
+            for &c in &atlas.candidate_texels {
+                let target = (c & !OFFERS_PERIOD) as usize;
+                assert!(target < n);
+                assert_eq!(c >> 31, (atlas.texels[2 * target + 1] >> 16) & 1);
+            }
             for i in 1..n {
                 let ((ma, (xa, ya)), (mb, (xb, yb))) = (key(i - 1), key(i));
                 assert!((ma, ya, xa) < (mb, yb, xb), "texel {i} out of order");
             }
             for member in &set.members {
                 let e = &analysis.exemplars[member.exemplar];
-                let first = atlas.lookup[member.exemplar * LEVEL_SLOTS + member.level as usize];
+                let first = atlas.lookup[member.exemplar * LEVEL_SLOTS + member.level as usize]
+                    & !OFFERS_PERIOD;
                 assert_eq!(
-                    atlas.texels[2 * first as usize + 1],
+                    atlas.texels[2 * first as usize + 1] & 0xffff,
                     meta(member.exemplar, member.level)
                 );
                 let sp = member.spacing as i32;

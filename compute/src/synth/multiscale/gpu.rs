@@ -46,6 +46,7 @@ crate::push_block! {
         transfer: DeviceAddress<'a>,
         exemplars: DeviceAddress<'a>,
         lookup: DeviceAddress<'a>,
+        control: DeviceAddress<'a>,
         pixels: u32,
         zero_texel: u32,
     }
@@ -65,6 +66,7 @@ crate::push_block! {
         cand_period: DeviceAddress<'a>,
         exemplars: DeviceAddress<'a>,
         matrix: DeviceAddress<'a>,
+        control: DeviceAddress<'a>,
         size: [u32; 2],
         first: [u32; 2],
         count: [u32; 2],
@@ -84,13 +86,26 @@ crate::push_block! {
     }
 }
 
+crate::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct MsSelectPush<'a> {
+        control: DeviceAddress<'a>,
+        groups: [u32; 3],
+    }
+}
+
+/// Control words per depth (`MS_CONTROL_WORDS`, glsl/include/synth/multiscale.glsl).
+const CONTROL_WORDS: usize = 8;
+
 /// Which correction kernel a depth runs: a CPU driver executes every branch of a kernel for
 /// every lane, so work a depth cannot need is compiled out rather than skipped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct CorrectionVariant {
     /// Transfers read, moved and composed (else all are zero).
     pub transfers: bool,
-    /// The period test (else no candidate of the set can be penalized, or the penalty is 0).
+    /// The period test available: the device then runs it from the first subpass where some
+    /// pixel sits at a level offering candidates it can penalize (else no candidate of the set
+    /// can be penalized, or the penalty is 0).
     pub period: bool,
 }
 
@@ -118,6 +133,7 @@ pub struct MultiscaleGpu {
     /// The correction variants, by [transfers][period test].
     correct: [[Arc<Kernel>; 2]; 2],
     exit: Arc<Kernel>,
+    select: Arc<Kernel>,
     exemplars: GpuBuffer<u32>,
     sets: Vec<GpuSet>,
 }
@@ -185,6 +201,7 @@ impl MultiscaleGpu {
                 ],
             ],
             exit: gpu.kernel(&synth::MULTISCALE_EXIT)?,
+            select: gpu.kernel(&synth::MULTISCALE_SELECT)?,
             exemplars: GpuBuffer::from_slice(gpu, "multiscale exemplars", &exemplar_words)?,
             sets,
         })
@@ -224,6 +241,23 @@ impl MultiscaleGpu {
         window: Region,
         keep_levels: bool,
     ) -> SynthResult<(MultiscaleSynthesis, Vec<LevelTimes>)> {
+        self.synthesize_counted(analysis, params, window, keep_levels)
+            .map(|(s, times, _)| (s, times))
+    }
+
+    /// [`MultiscaleGpu::synthesize`], also returning per depth how many correction subpasses
+    /// ran the period test (the device switches to it from the subpass after a pixel reaches
+    /// a level offering candidates it can penalize).
+    ///
+    /// # Errors
+    /// As [`MultiscaleGpu::synthesize`].
+    pub fn synthesize_counted(
+        &self,
+        analysis: &MultiscaleAnalysis,
+        params: &MultiscaleParams,
+        window: Region,
+        keep_levels: bool,
+    ) -> SynthResult<(MultiscaleSynthesis, Vec<LevelTimes>, Vec<u32>)> {
         check_multiscale_window(window)?;
         let regions = plan_multiscale(window, &params.passes);
         let depth = params.depth();
@@ -233,6 +267,8 @@ impl MultiscaleGpu {
         let mut times = Vec::new();
         let mut parent: Option<(Region, GpuBuffer<u32>)> = None;
         let variants = self.correction_variants(analysis, params);
+        let words = CONTROL_WORDS * regions.len();
+        let control = GpuBuffer::from_slice(&self.gpu, "multiscale control", &vec![0u32; words])?;
         for (t, &region) in regions.iter().enumerate() {
             let set = &self.sets[analysis.superexemplar.set_of(t as u32)];
             let states = GpuBuffer::<u32>::new(
@@ -251,7 +287,9 @@ impl MultiscaleGpu {
                 region.pixels() * 2,
             )?;
             let variant = variants[t];
-            let correct = &self.correct[variant.transfers as usize][variant.period as usize];
+            let [plain, tested] = &self.correct[variant.transfers as usize];
+            let first_word = CONTROL_WORDS * t;
+            let control_t = control.address_at(first_word)?;
             let push = MsUpsamplePush {
                 parent: parent
                     .as_ref()
@@ -284,6 +322,7 @@ impl MultiscaleGpu {
                     transfer: transfer.address(),
                     exemplars: self.exemplars.address(),
                     lookup: set.lookup.address(),
+                    control: control_t,
                     pixels,
                     zero_texel: set.zero_texel,
                 };
@@ -308,14 +347,28 @@ impl MultiscaleGpu {
                             cand_period: set.candidate_periods.address(),
                             exemplars: self.exemplars.address(),
                             matrix: set.matrix.address(),
+                            control: control_t,
                             size: region.size,
                             first: [fx, fy],
                             count: [cx, cy],
                             k: analysis.k,
                             penalty: params.period_penalty,
                         };
-                        let k = correct;
-                        rec.dispatch(k, k.groups_for(cx as u64 * cy as u64), &[], &push)?;
+                        let groups = plain.groups_for(cx as u64 * cy as u64);
+                        if variant.period {
+                            // The device picks the kernel (multiscale_select.comp): the one
+                            // not picked gets no workgroups.
+                            let select = MsSelectPush {
+                                control: control_t,
+                                groups,
+                            };
+                            rec.dispatch(&self.select, [1, 1, 1], &[], &select)?;
+                            let (w, tw) = (first_word as u64 + 1, first_word as u64 + 4);
+                            rec.dispatch_indirect(plain, &control, w, &[], &push)?;
+                            rec.dispatch_indirect(tested, &control, tw, &[], &push)?;
+                        } else {
+                            rec.dispatch(plain, groups, &[], &push)?;
+                        }
                     }
                 }
                 let exit = MsExitPush {
@@ -343,6 +396,14 @@ impl MultiscaleGpu {
             }
             parent = Some((region, states));
         }
-        Ok((MultiscaleSynthesis { window, levels }, times))
+        let counts = control.read()?;
+        let period_subpasses = (0..regions.len())
+            .map(|t| counts[CONTROL_WORDS * t + 7])
+            .collect();
+        Ok((
+            MultiscaleSynthesis { window, levels },
+            times,
+            period_subpasses,
+        ))
     }
 }
