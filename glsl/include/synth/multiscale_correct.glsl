@@ -12,8 +12,9 @@
 // plus the transfers.
 //
 // Four variants: MS_TRANSFERS 0 for depths where no transfer can be other than zero (no depth so
-// far has a candidate with one; none is read), MS_PERIOD 0 for depth sets where no candidate's
-// level spans at most 2 of its pixels (no period penalty can apply). A CPU driver (llvmpipe)
+// far has a candidate with one; none is read), MS_PERIOD 0 for subpasses where no candidate can
+// be period-penalized (no pixel sits at a level offering one: multiscale_select.comp picks the
+// variant on the device, from the flag the MS_PERIOD 0 kernels keep). A CPU driver (llvmpipe)
 // runs every branch under a lane mask whether or not a lane takes it, so work a dispatch does
 // not need must be absent from its kernel, not skipped; and every load is a gather per lane,
 // hence few words per state.
