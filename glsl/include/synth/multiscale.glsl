@@ -20,23 +20,24 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer MsStates { M
 // corrected and offers no candidates (magnified: its leaf's finest texel, predicted without
 // shift; its stack level absent from the set: the zero texel after the last), and its
 // transfer packed by ms_pack_transfer.
-const uint MS_ABSENT = 0xffffffffu;
-const uint MS_FIXED = 0x80000000u;
+// (The MULTISCALE_* values come from compute/src/shader_constants.rs.)
+const uint MS_ABSENT = MULTISCALE_ABSENT;
+const uint MS_FIXED = MULTISCALE_FIXED;
 // Flag of a candidate texel (and of a level's lookup entry) whose level offers candidates that
 // can be period-penalized (atlas.rs, OFFERS_PERIOD).
-const uint MS_OFFERS_PERIOD = 0x80000000u;
+const uint MS_OFFERS_PERIOD = MULTISCALE_OFFERS_PERIOD;
 
 // The control words of a depth's correction (gpu.rs): [0] whether some pixel sits at a level
 // offering candidates that can be period-penalized (set, never cleared, by the kernels),
 // [1..4] and [4..7] the workgroup counts of the correction without and with the period test,
 // [7] how many subpasses ran the period test.
-const uint MS_CONTROL_WORDS = 8u;
+const uint MS_CONTROL_WORDS = MULTISCALE_CONTROL_WORDS;
 
 // Lookup slots per exemplar (atlas.rs, LEVEL_SLOTS).
-const uint MS_LEVEL_SLOTS = 16u;
+const uint MS_LEVEL_SLOTS = MULTISCALE_LEVEL_SLOTS;
 
 // Largest cumulative transfer component (cpu.rs, MAX_TRANSFER): every one fits 16 bits.
-const int MS_MAX_TRANSFER = 255 * 16;
+const int MS_MAX_TRANSFER = int(MULTISCALE_MAX_TRANSFER);
 
 // A transfer as 2 words: r | g << 16, b (16-bit two's complement each).
 uvec2 ms_pack_transfer(ivec3 t) {
@@ -49,7 +50,7 @@ ivec3 ms_unpack_transfer(uvec2 w) {
 }
 
 // Level field of a magnified pixel.
-const uint MS_MAGNIFIED = 0xffu;
+const uint MS_MAGNIFIED = MULTISCALE_MAGNIFIED;
 
 uint ms_exemplar(uint meta) { return meta & 0xffu; }
 uint ms_level(uint meta) { return (meta >> 8) & 0xffu; }

@@ -52,7 +52,9 @@ void offset_move(ivec3 t, out ivec4 lo, out ivec4 hi) {
     int m[8];
     for (int d = 0; d < 8; d++) {
         int v = mat[d * 3] * t.x + mat[d * 3 + 1] * t.y + mat[d * 3 + 2] * t.z;
-        m[d] = clamp((v + 2048) >> 12, -512, 512);
+        const int move = int(MULTISCALE_MAX_OFFSET_MOVE);
+        m[d] = clamp((v + (1 << (MULTISCALE_OFFSET_MOVE_SHIFT - 1))) >> MULTISCALE_OFFSET_MOVE_SHIFT,
+                     -move, move);
     }
     lo = ivec4(m[0], m[1], m[2], m[3]);
     hi = ivec4(m[4], m[5], m[6], m[7]);

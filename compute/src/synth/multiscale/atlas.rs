@@ -13,6 +13,7 @@
 
 use super::analysis::{DepthSetAnalysis, MultiscaleAnalysis};
 use super::cpu::{meta, MAX_TRANSFER};
+use crate::shader_constants;
 use crate::synth::coords::pack;
 use crate::synth::cpu::offsets;
 use crate::synth::error::{SynthError, SynthResult};
@@ -20,18 +21,18 @@ use crate::synth::neighbourhood::{pack_i8_words, wrap};
 use crate::synth::period::period_reach;
 
 /// Lookup slots per exemplar (levels `0..=L`, `L ≤ 8`).
-pub(crate) const LEVEL_SLOTS: usize = 16;
+pub(crate) const LEVEL_SLOTS: usize = shader_constants::MULTISCALE_LEVEL_SLOTS as usize;
 
 /// Texel index of a pixel whose stack level is not in the depth set.
-pub(crate) const ABSENT: u32 = u32::MAX;
+pub(crate) const ABSENT: u32 = shader_constants::MULTISCALE_ABSENT;
 
 /// Flag of a texel index whose pixel is not corrected (magnified past its leaf's finest
 /// level): it predicts its texel's appearance without shift and offers no candidates.
-pub(crate) const FIXED: u32 = 1 << 31;
+pub(crate) const FIXED: u32 = shader_constants::MULTISCALE_FIXED;
 
 /// Flag of a candidate texel index whose level offers candidates that can be period-penalized
 /// (see [`DepthAtlas::candidate_texels`]); of a texel's `meta` word, the same bit 16 up.
-pub(crate) const OFFERS_PERIOD: u32 = 1 << 31;
+pub(crate) const OFFERS_PERIOD: u32 = shader_constants::MULTISCALE_OFFERS_PERIOD;
 
 /// Shifts of the stored appearance, in units of the member's spacing: the texel itself,
 /// then −x, +x, −y, +y (what the 4-diagonal neighbourhood reads of edge neighbours).
@@ -106,17 +107,24 @@ impl DepthAtlas {
             });
         }
         let texel_count = total as u32;
-        // Whether a member's candidate lists hold one whose level spans at most 2 of its
-        // pixels.
+        // Each member's period reach, and whether its candidate lists hold one whose level
+        // spans at most 2 of its pixels.
+        let reaches: Vec<[u32; 2]> = set
+            .members
+            .iter()
+            .map(|m| {
+                let e = &analysis.exemplars[m.exemplar];
+                period_reach(m.spacing, e.width, e.height)
+            })
+            .collect();
         let offers: Vec<bool> = set
             .members
             .iter()
             .map(|member| {
-                member.candidates.iter().any(|c| {
-                    let cm = &set.members[c.member as usize];
-                    let ce = &analysis.exemplars[cm.exemplar];
-                    period_reach(cm.spacing, ce.width, ce.height) != [0, 0]
-                })
+                member
+                    .candidates
+                    .iter()
+                    .any(|c| reaches[c.member as usize] != [0, 0])
             })
             .collect();
         let start: Vec<u32> = start.into_iter().map(|s| s as u32).collect();
@@ -176,7 +184,7 @@ impl DepthAtlas {
                                 limit: format!("must be within ±{MAX_TRANSFER}"),
                             });
                         }
-                        let reach = period_reach(cm.spacing, ce.width, ce.height);
+                        let reach = reaches[c.member as usize];
                         atlas.has_reach |= reach != [0, 0];
                         atlas.has_transfer |= c.transfer != [0; 3];
                         let flag = if offers[c.member as usize] {

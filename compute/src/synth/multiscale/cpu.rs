@@ -5,6 +5,7 @@
 //! Integer arithmetic throughout, mirrored exactly by `glsl/synth/multiscale_*.comp`.
 
 use super::analysis::{DepthSetAnalysis, MultiscaleAnalysis, TRANSFER_ONE};
+use crate::shader_constants;
 use crate::synth::appearance::{APPEARANCE_DIMS, OFFSET_MATRIX_BITS};
 use crate::synth::coords::{pack, torus_distance, unpack};
 use crate::synth::cpu::{offsets, CLASSES};
@@ -21,15 +22,21 @@ pub const MAX_DEPTH: u32 = 40;
 
 /// Largest magnitude of an offset's move of one appearance component: keeps every distance
 /// inside `u32` (32 · (3 · (2 · 127 + 2 · 512))² < 2³²) whatever the transfers.
-pub const MAX_OFFSET_MOVE: i32 = 512;
+pub const MAX_OFFSET_MOVE: i32 = shader_constants::MULTISCALE_MAX_OFFSET_MOVE as i32;
 
 /// Largest magnitude of a cumulative transfer component: one full colour range (255 levels).
 /// A larger offset shows the same colours (they clamp), and the bound keeps the offset move
 /// inside 32-bit arithmetic (3 · `OFFSET_MATRIX_MAX` · 4080 < 2³¹) on the GPU.
-pub const MAX_TRANSFER: i32 = 255 * TRANSFER_ONE;
+pub const MAX_TRANSFER: i32 = shader_constants::MULTISCALE_MAX_TRANSFER as i32;
 
 /// Level field of a magnified pixel: beyond every finest level.
-pub const MAGNIFIED: u32 = 0xff;
+pub const MAGNIFIED: u32 = shader_constants::MULTISCALE_MAGNIFIED;
+
+/// Fixed-point bits of [`offset_move`].
+const OFFSET_MOVE_SHIFT: u32 = shader_constants::MULTISCALE_OFFSET_MOVE_SHIFT;
+
+const _: () = assert!(MAX_TRANSFER == 255 * TRANSFER_ONE);
+const _: () = assert!(OFFSET_MOVE_SHIFT == OFFSET_MATRIX_BITS + TRANSFER_ONE.trailing_zeros());
 
 /// One synthesized pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -326,8 +333,7 @@ pub fn offset_move(set: &DepthSetAnalysis, b: [i32; 3]) -> [i32; APPEARANCE_DIMS
     std::array::from_fn(|d| {
         let m = &set.offset_matrix[d];
         let v: i64 = (0..3).map(|c| m[c] as i64 * b[c] as i64).sum();
-        let shift = OFFSET_MATRIX_BITS + TRANSFER_ONE.trailing_zeros();
-        ((v + (1i64 << (shift - 1))) >> shift)
+        ((v + (1i64 << (OFFSET_MOVE_SHIFT - 1))) >> OFFSET_MOVE_SHIFT)
             .clamp(-MAX_OFFSET_MOVE as i64, MAX_OFFSET_MOVE as i64) as i32
     })
 }

@@ -94,8 +94,8 @@ crate::push_block! {
     }
 }
 
-/// Control words per depth (`MS_CONTROL_WORDS`, glsl/include/synth/multiscale.glsl).
-const CONTROL_WORDS: usize = 8;
+/// Control words per depth (see glsl/include/synth/multiscale.glsl).
+const CONTROL_WORDS: usize = crate::shader_constants::MULTISCALE_CONTROL_WORDS as usize;
 
 /// Which correction kernel a depth runs: a CPU driver executes every branch of a kernel for
 /// every lane, so work a depth cannot need is compiled out rather than skipped.
