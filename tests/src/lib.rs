@@ -6,6 +6,7 @@
 
 use lazysolid_compute::gpu::{DeviceAddress, Gpu, GpuOptions, PushRegistration};
 use lazysolid_compute::hash::Universe;
+use lazysolid_renderer::glint::synthetic::{self, BumpExtent};
 use rand::{Rng, SeedableRng};
 
 /// Runs `test` on a fresh validated device, then destroys the device and asserts that the
@@ -31,31 +32,10 @@ pub fn rng(seed: u64) -> rand_pcg::Pcg64Mcg {
     rand_pcg::Pcg64Mcg::seed_from_u64(seed)
 }
 
-/// The glint tests' example: a deterministic height field of Gaussian bumps and straight
-/// scratches (a few texels deep), like scratched leather, wrapped around the example's edges.
+/// The glint tests' example: the generated bumps-and-scratches field, every bump evaluated at
+/// every texel.
 pub fn bumps_and_scratches(size: usize, seed: u64) -> Vec<f32> {
-    let mut r = rng(seed);
-    let mut h = vec![0.0f32; size * size];
-    let s = size as f32;
-    let wrap = |d: f32| d - s * (d / s).round();
-    for _ in 0..size / 2 {
-        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
-        let (radius, height) = (1.5 + 4.0 * r.random::<f32>(), r.random::<f32>() * 2.0 - 1.0);
-        for (i, v) in h.iter_mut().enumerate() {
-            let (dx, dy) = (wrap((i % size) as f32 - cx), wrap((i / size) as f32 - cy));
-            *v += height * (-(dx * dx + dy * dy) / (2.0 * radius * radius)).exp();
-        }
-    }
-    for _ in 0..size / 8 {
-        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
-        let angle = r.random::<f32>() * std::f32::consts::PI;
-        let (nx, ny) = (-angle.sin(), angle.cos());
-        for (i, v) in h.iter_mut().enumerate() {
-            let d = wrap((i % size) as f32 - cx) * nx + wrap((i / size) as f32 - cy) * ny;
-            *v -= 0.8 * (-d * d / 0.8).exp();
-        }
-    }
-    h
+    synthetic::bumps_and_scratches(size, seed, BumpExtent::Everywhere)
 }
 
 /// `n` distinct random points of `u` as keys, and the keys of `absent` other points (keys

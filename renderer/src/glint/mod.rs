@@ -17,6 +17,7 @@
 //! - [`gpu_material`]: the device records of a scene's glint materials.
 //! - [`pndf`]: the P-NDF of a footprint (pruned traversal, the explicit reference) and its
 //!   importance sampling.
+//! - [`synthetic`]: a generated bumps-and-scratches height field for examples.
 
 pub mod by_example;
 pub mod error;
@@ -30,6 +31,7 @@ pub mod minmax_mip;
 pub mod pndf;
 pub mod range_blend;
 pub mod range_table;
+pub mod synthetic;
 pub mod timing;
 
 pub use by_example::{BlendMode, ByExampleMap, PointQuery};

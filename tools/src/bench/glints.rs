@@ -37,6 +37,7 @@ use lazysolid_renderer::glint::minmax_mip::{
     brute_force, minmax_mip_bytes, random_squares, table_query, MinMaxMip,
 };
 use lazysolid_renderer::glint::range_table::quantize_texels;
+use lazysolid_renderer::glint::synthetic::{bumps_and_scratches, BumpExtent};
 use lazysolid_renderer::glint::GlintCase;
 use lazysolid_renderer::glint::{
     gpu_range_query::range_query_kernel, record_range_queries, record_range_table, GaussianTables,
@@ -45,7 +46,6 @@ use lazysolid_renderer::glint::{
 use lazysolid_renderer::kernels::render::GLINT_RANGE_LEVEL;
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::{MaterialKind, Scene};
-use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -125,38 +125,6 @@ const YAN16_BYTES_PER_TEXEL: f64 = 7896.0e6 / (5120.0 * 5120.0);
 struct Example {
     example: NormalExample,
     source: String,
-}
-
-/// A deterministic height field of Gaussian bumps and straight scratches (a few texels deep),
-/// wrapped around the edges: the tests' field, with each bump evaluated within 4 σ.
-fn bumps_and_scratches(size: usize, seed: u64) -> Vec<f32> {
-    let mut r = rand_pcg::Pcg64Mcg::seed_from_u64(seed);
-    let mut h = vec![0.0f32; size * size];
-    let s = size as f32;
-    let wrap = |d: f32| d - s * (d / s).round();
-    for _ in 0..size / 2 {
-        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
-        let (radius, height) = (1.5 + 4.0 * r.random::<f32>(), r.random::<f32>() * 2.0 - 1.0);
-        let reach = (4.0 * radius).ceil() as i64;
-        for dy in -reach..=reach {
-            for dx in -reach..=reach {
-                let x = (cx.floor() as i64 + dx).rem_euclid(size as i64) as usize;
-                let y = (cy.floor() as i64 + dy).rem_euclid(size as i64) as usize;
-                let (ex, ey) = (wrap(x as f32 - cx), wrap(y as f32 - cy));
-                h[y * size + x] += height * (-(ex * ex + ey * ey) / (2.0 * radius * radius)).exp();
-            }
-        }
-    }
-    for _ in 0..size / 8 {
-        let (cx, cy) = (r.random::<f32>() * s, r.random::<f32>() * s);
-        let angle = r.random::<f32>() * std::f32::consts::PI;
-        let (nx, ny) = (-angle.sin(), angle.cos());
-        for (i, v) in h.iter_mut().enumerate() {
-            let d = wrap((i % size) as f32 - cx) * nx + wrap((i / size) as f32 - cy) * ny;
-            *v -= 0.8 * (-d * d / 0.8).exp();
-        }
-    }
-    h
 }
 
 /// The height map image: its luminance (0..1), row by row.
@@ -240,7 +208,7 @@ fn example_of(
                 example: NormalExample::from_heights(
                     &source,
                     size,
-                    &bumps_and_scratches(size, args.seed),
+                    &bumps_and_scratches(size, args.seed, BumpExtent::FourSigma),
                 )?,
                 source,
             })
