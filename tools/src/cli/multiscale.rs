@@ -4,6 +4,7 @@
 //! frame a window at a fractional depth (a blend of the two depths around it), as numbered PNGs
 //! and an animated GIF. See docs/multiscale.md.
 
+use super::components::components;
 use super::output::check_writable;
 use super::resolution::Resolution;
 use super::synth::write_png;
@@ -99,15 +100,7 @@ pub struct ZoomArgs {
 }
 
 fn parse_pair<T: std::str::FromStr>(s: &str) -> Result<(T, T), String> {
-    let (x, y) = s
-        .split_once(',')
-        .ok_or_else(|| format!("{s:?} is not X,Y"))?;
-    let parse = |v: &str| -> Result<T, String> {
-        v.trim()
-            .parse()
-            .map_err(|_| format!("{v:?} in {s:?} is not a number"))
-    };
-    Ok((parse(x)?, parse(y)?))
+    components(s, "", "a number").map(|[x, y]| (x, y))
 }
 
 /// Loads the graph, resolving images as asset names or paths relative to the graph file.

@@ -4,6 +4,7 @@
 //! a render of a cube and a sphere carved out of it (`solid_render.rs`), and score the slices
 //! against their exemplars.
 
+use super::components::components;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
 use super::GlobalArgs;
@@ -85,18 +86,7 @@ pub struct SolidArgs {
 }
 
 fn parse_offset3(s: &str) -> Result<[i32; 3], String> {
-    let parts: Vec<&str> = s.split(',').collect();
-    if parts.len() != 3 {
-        return Err(format!("{s:?} is not X,Y,Z (e.g. -64,0,128)"));
-    }
-    let mut out = [0; 3];
-    for (o, v) in out.iter_mut().zip(parts) {
-        *o = v
-            .trim()
-            .parse()
-            .map_err(|_| format!("{v:?} in {s:?} is not a whole number"))?;
-    }
-    Ok(out)
+    components(s, " (e.g. -64,0,128)", "a whole number")
 }
 
 /// `out.nrrd` → `out.SUFFIX.png`.

@@ -1,6 +1,7 @@
 //! `lazysolid synth EXEMPLAR --res WxH --offset X,Y --seed S -o out.png`: synthesize a window
 //! of the unbounded texture plane from an exemplar on the device, and score it.
 
+use super::components::components;
 use super::output::{check_writable, write_atomically};
 use super::resolution::Resolution;
 use super::{assets, GlobalArgs};
@@ -66,15 +67,7 @@ pub struct SynthArgs {
 }
 
 fn parse_offset(s: &str) -> Result<(i32, i32), String> {
-    let (x, y) = s
-        .split_once(',')
-        .ok_or_else(|| format!("{s:?} is not X,Y (e.g. -512,1024)"))?;
-    let parse = |v: &str| -> Result<i32, String> {
-        v.trim()
-            .parse()
-            .map_err(|_| format!("{v:?} in {s:?} is not a whole number"))
-    };
-    Ok((parse(x)?, parse(y)?))
+    components(s, " (e.g. -512,1024)", "a whole number").map(|[x, y]| (x, y))
 }
 
 /// `out.png` → `out.coords.png`.
