@@ -5,9 +5,9 @@
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
     analyze_solid, candidates_cached, candidates_cpu, candidates_key, decode_candidates,
-    encode_candidates, plan_boxes, synthesize_solid_cpu, voxel_colour, CandidateParams,
-    GpuCandidates, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox,
-    CANDIDATES_CACHE_KIND, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
+    encode_candidates, plan_boxes, synthesize_solid_cpu, triple_consistency, voxel_colour,
+    CandidateParams, GpuCandidates, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates,
+    SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
 use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, with_gpu};
@@ -111,27 +111,48 @@ fn synthesis_gpu_equals_cpu_on_every_level() {
         // the level's box by up to 5, 3 and 2 voxels a side along x, y and z, which the CPU
         // reference pays for on 2 cores.
         let passes: Vec<u32> = (0..levels).map(|l| (levels - l) % 2).collect();
-        let params = SynthParams::new(levels, 11, &passes, &[0.5]).unwrap();
         let window = boxed([-5, 7, 2], [16, 16, 16]);
-        let cpu = synthesize_solid_cpu(analysis, candidates, &params, window).unwrap();
-        let gpu = with_gpu(|gpu| {
-            let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
-            synth
-                .synthesize(analysis, candidates, &params, window, true, &mut |_| {})
+        // The default rule, then the ablation in which the current triple always competes.
+        let mut shares = Vec::new();
+        let mut gpu = None;
+        for keep_current in [false, true] {
+            let params = SynthParams::new(levels, 11, &passes, &[0.5])
                 .unwrap()
-                .0
-        });
-        assert_eq!(gpu.levels.len(), levels as usize);
-        for (l, (c, g)) in cpu.levels.iter().zip(&gpu.levels).enumerate() {
-            assert_eq!(c.region, g.region, "{name} level {l}");
-            let differ = c
-                .triples
-                .iter()
-                .zip(&g.triples)
-                .filter(|(a, b)| a != b)
-                .count();
-            assert_eq!(differ, 0, "{name} level {l}: {differ} triples differ");
+                .with_keep_current(keep_current);
+            let cpu = synthesize_solid_cpu(analysis, candidates, &params, window).unwrap();
+            let g = with_gpu(|gpu| {
+                let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
+                synth
+                    .synthesize(analysis, candidates, &params, window, true, &mut |_| {})
+                    .unwrap()
+                    .0
+            });
+            assert_eq!(g.levels.len(), levels as usize);
+            for (l, (c, g)) in cpu.levels.iter().zip(&g.levels).enumerate() {
+                assert_eq!(c.region, g.region, "{name} level {l} keep {keep_current}");
+                let differ = c
+                    .triples
+                    .iter()
+                    .zip(&g.triples)
+                    .filter(|(a, b)| a != b)
+                    .count();
+                assert_eq!(
+                    differ, 0,
+                    "{name} level {l} keep {keep_current}: {differ} triples differ"
+                );
+            }
+            shares.push(triple_consistency(&three().0, candidates, &g).candidate_share);
+            gpu.get_or_insert(g);
         }
+        // The finest level is corrected, and by the default rule every voxel takes a gathered
+        // candidate, i.e. one of its own pixel's candidates in some role; the ablation keeps
+        // merely translated triples that are none.
+        assert_eq!(shares[0], 1.0, "{name}: every triple a candidate");
+        assert!(
+            shares[1] < 1.0,
+            "{name}: the ablation keeps translated triples ({shares:?})"
+        );
+        let gpu = gpu.expect("the default rule ran");
         // Correction did something: most voxels are not the projected tiling.
         let m = analysis.side as i32;
         let tiling = gpu
@@ -232,7 +253,14 @@ fn zero_jitter_reproduces_a_lattice_volume() {
     let passes: Vec<u32> = (0..levels)
         .map(|l| (l == 0 || l + 1 == levels) as u32)
         .collect();
-    let params = SynthParams::new(levels, 9, &passes, &[0.0]).unwrap();
+    // The rule in which the current triple always competes: the 3D tiling is none of the
+    // candidates here (the lattice's slices differ in the channel each holds constant, so the
+    // crossbar of the tiling's triples is not zero and the strip search prefers other pixels),
+    // and only that rule carries it through the correction. What this test shows is that
+    // upsampling, zero jitter and the plane distances keep a zero-distance translation intact.
+    let params = SynthParams::new(levels, 9, &passes, &[0.0])
+        .unwrap()
+        .with_keep_current(true);
     let window = boxed([-37, 50, 3], [10, 9, 11]);
     let synthesis = with_gpu(|gpu| {
         let synth = GpuSolidSynthesizer::new(gpu, &analysis, &candidates).unwrap();

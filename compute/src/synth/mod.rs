@@ -27,6 +27,7 @@ mod params;
 mod pat;
 mod period;
 mod plan;
+pub mod quality;
 mod repetition;
 pub mod solid;
 mod stack;

@@ -104,6 +104,13 @@ pub struct SynthParams {
     /// Added to the distance of a candidate whose coherent patch would span an exemplar period
     /// (`period.rs`); 0 turns the test off.
     pub period_penalty: u32,
+    /// Solid synthesis only: a voxel's current triple competes in the correction even when it
+    /// is none of the gathered candidates. Off by default: upsampling and jitter only translate
+    /// a parent's triple, so inside a block it keeps a near-zero distance and wins, although
+    /// its three exemplar colours disagree and the median shows them as axis-aligned
+    /// rectangles (`docs/solid.md`, "Correction"). On reproduces the rule before 2026-12-03,
+    /// an ablation of `bench solid`.
+    pub keep_current: bool,
 }
 
 impl SynthParams {
@@ -154,6 +161,7 @@ impl SynthParams {
             passes,
             jitter,
             period_penalty: DEFAULT_PERIOD_PENALTY,
+            keep_current: false,
         })
     }
 
@@ -173,5 +181,14 @@ impl SynthParams {
             period_penalty: penalty,
             ..self
         })
+    }
+
+    /// The same parameters with the solid correction's current triple always competing (or
+    /// not): see [`SynthParams::keep_current`].
+    pub fn with_keep_current(self, keep_current: bool) -> SynthParams {
+        SynthParams {
+            keep_current,
+            ..self
+        }
     }
 }

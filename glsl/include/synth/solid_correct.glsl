@@ -56,8 +56,11 @@ bool better(uint d, uint rank, uvec3 t, uint bd, uint br, uvec3 bt) {
 
 // The corrected triple of the voxel whose 3x3x3 neighbourhood (x fastest, 13 the centre) is
 // `around`; only the 19 voxels of the three planes through the centre are read. `table` holds
-// the level's 12 buffer addresses (see correct.comp).
-uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing) {
+// the level's 12 buffer addresses (see correct.comp). The current triple competes only as one
+// of the gathered candidates unless `keep_current` is set (the rule before 2026-12-03, kept as
+// an ablation): a merely translated triple has a near-zero distance inside its block and would
+// otherwise win although its three exemplar colours disagree.
+uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, uint keep_current) {
     solid_side = side;
     for (uint r = 0; r < 3; r++) {
         appearance[r] = U64Ptr(table).v[r];
@@ -86,9 +89,15 @@ uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing) {
         }
     }
     uvec3 current = around[13];
-    uint best_d = distance_of(current, 0xffffffffu);
-    uint best_r = 0u;
+    // "No best yet": above every distance (at most 3 * 1.9e7), the rank of a non-current
+    // triple; the first gathered candidate replaces it (sets are never empty).
+    uint best_d = 0xffffffffu;
+    uint best_r = 1u;
     uvec3 best_t = current;
+    if (keep_current != 0u) {
+        best_d = distance_of(current, 0xffffffffu);
+        best_r = 0u;
+    }
     for (uint r = 0; r < 3; r++) {
         uint unique[9];
         uint n_unique = 0u;

@@ -5,7 +5,8 @@
 // through the voxel perpendicular to the role's axis: its coordinate in that role shifted back
 // by its offset in the plane), the one whose three exemplar neighbourhoods best match the
 // three planes through the voxel (per plane the 2D synthesizer's 4-diagonal, 3-prediction
-// appearance sums, integer SSD). Ties keep the current triple, then go to the smallest triple.
+// appearance sums, integer SSD). The current triple competes only when gathered (unless
+// keep_current). Ties keep the current triple, then go to the smallest triple.
 // Each distinct shifted-back pixel of a role is evaluated once (a repeat gives the same
 // candidates, so it cannot change the choice), and a candidate's distance stops once its
 // partial sum exceeds the best (it cannot win). CPU reference: compute/src/synth/solid/cpu.rs.
@@ -25,6 +26,7 @@ layout(push_constant, scalar) uniform Push {
     uvec3 count;               // class voxels per axis
     uint side;
     uint spacing;
+    uint keep_current;         // the current triple competes even when not gathered
 } pc;
 
 void main() {
@@ -47,7 +49,7 @@ void main() {
         around[n] = uvec3(U32Ptr(pc.triples).v[vi * 3u], U32Ptr(pc.triples).v[vi * 3u + 1u],
                           U32Ptr(pc.triples).v[vi * 3u + 2u]);
     }
-    uvec3 best_t = solid_correct(around, pc.table, pc.side, pc.spacing);
+    uvec3 best_t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current);
     uint vi = (local.z * pc.size.y + local.y) * pc.size.x + local.x;
     U32Ptr(pc.triples).v[vi * 3u] = best_t.x;
     U32Ptr(pc.triples).v[vi * 3u + 1u] = best_t.y;

@@ -22,6 +22,7 @@ layout(push_constant, scalar) uniform Push {
     uint version;      // the version it produces
     uint side;
     uint spacing;
+    uint keep_current; // the current triple competes even when not gathered
 } pc;
 
 void main() {
@@ -56,7 +57,7 @@ void main() {
         }
         around[n] = lazy_version(l, sq, lazy_version_at(pc.stage - 1u, lazy_class(q)));
     }
-    uvec3 t = solid_correct(around, pc.table, pc.side, pc.spacing);
+    uvec3 t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current);
     lazy_store(l, s, pc.version, t);
     U32Ptr(l.counts).v[s] = pc.version + 1u;
 }

@@ -9,8 +9,13 @@
 //! paid; first size only) and warm (read back, as on every later run of an exemplar). The
 //! cache is a temporary folder, not the user's. Quality, from one run
 //! at the first size: for each axis the mid slice perpendicular to it against that axis's
-//! exemplar — neighbourhood energy, colour-histogram distance and period repetition — for
+//! exemplar — the multi-scale sliced Wasserstein distance and its ratio to the exemplar's own
+//! variability, blockiness, neighbourhood energy, colour-histogram distance and period
+//! repetition (`synth::quality`) — and, for the solid variants, how consistent the triples are
+//! (`TripleConsistency`), for
 //! - `solid`: the defaults;
+//! - `keep current`: the correction's current triple competes even when it is none of the
+//!   gathered candidates (the rule before 2026-12-03);
 //! - `crossbar only`: candidates without the coherence filter (each pixel's 12 smallest
 //!   crossbar errors);
 //! - `extruded`: every voxel copies `E_z` at its (x, y), i.e. `E_z` extruded along z;
@@ -19,7 +24,9 @@
 use super::harness::{time_cpu, Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::assets;
-use crate::cli::solid::{axis_quality, slice, synthesize_cube, AxisQuality};
+use crate::cli::solid::{
+    axis_quality, oblique, role_scorers, slice, synthesize_cube, AxisQuality, ImageScorer,
+};
 use crate::cli::synth::write_png;
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
@@ -28,11 +35,11 @@ use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
     analyze_solid, candidates_key, CandidateParams, GpuCandidates, LevelTriples, SolidExemplars,
-    SolidSynthesis, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
+    SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
-    analyze, default_jitter, default_passes, histogram_distance, pack, period_repetition,
-    AnalysisParams, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer, Region, SynthParams,
+    analyze, default_jitter, default_passes, pack, period_repetition, AnalysisParams, EnergyKernel,
+    Exemplar, GpuSynthesizer, Region, SynthParams,
 };
 use serde::Serialize;
 
@@ -77,6 +84,10 @@ pub struct SolidArgs {
     /// side along x, y and z, so fewer passes make a small run possible on a slow device.
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
+    /// Jitter strength in 0..=1, one for all levels or one per level, coarsest first
+    /// [default: as `lazysolid solid`].
+    #[arg(long, value_delimiter = ',')]
+    pub jitter: Vec<f32>,
     /// Most pixels of each slice the energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -91,6 +102,8 @@ struct QualityRow {
     case: String,
     variant: String,
     axes: [AxisQuality; 3],
+    /// The solid variants' triple consistency.
+    consistency: Option<TripleConsistency>,
 }
 
 /// The top-left `side`² of an exemplar.
@@ -154,6 +167,7 @@ fn extruded(exemplars: &SolidExemplars, n: u32) -> (SolidSynthesis, Vec<[u8; 3]>
 fn synth_2d(
     gpu: &Gpu,
     energy: &EnergyKernel,
+    scorers: &[ImageScorer; 3],
     exemplars: &SolidExemplars,
     n: u32,
     seed: u32,
@@ -182,12 +196,8 @@ fn synth_2d(
             &mut |_| {},
         )?;
         let rgb = s.colours(e);
-        let minima = energy.minima(e, &rgb, n, n, samples)?;
-        out.push(AxisQuality {
-            energy: EnergyReport::from_minima(&minima).mean,
-            histogram: histogram_distance(&e.rgb, &rgb),
-            repetition: period_repetition(&s.window_coords(), n, n, e.width, e.height),
-        });
+        let repetition = period_repetition(&s.window_coords(), n, n, e.width, e.height);
+        out.push(scorers[r].score(energy, e, &rgb, n, n, repetition, samples)?);
         if r == 0 {
             image = rgb;
         }
@@ -195,7 +205,8 @@ fn synth_2d(
     Ok((out.try_into().expect("three roles"), image))
 }
 
-/// Exemplar, 2D synthesis and the three mid slices of a cube side by side (8-pixel gaps).
+/// Exemplar, 2D synthesis, the three mid slices of a cube and its oblique slice side by side
+/// (8-pixel gaps).
 fn figure(
     exemplar: &Exemplar,
     two_d: &[[u8; 3]],
@@ -209,6 +220,7 @@ fn figure(
     for axis in 0..3 {
         panels.push((n, slice(synthesis, colours, axis, n / 2).0));
     }
+    panels.push((n, oblique(colours, n as usize)));
     let width: u32 = panels.iter().map(|p| p.0).sum::<u32>() + gap * (panels.len() as u32 - 1);
     let height = panels.iter().map(|p| p.0).max().unwrap_or(0);
     let mut rgb = vec![[255u8; 3]; (width * height) as usize];
@@ -294,11 +306,12 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     &CandidateParams::default(),
                     args.seed,
                     &args.passes,
-                    &[],
+                    &args.jitter,
                     n,
                     [0; 3],
                     false,
                     cache,
+                    false,
                 )
             };
             let tag = format!("{case} {}² -> {n}³", args.side);
@@ -353,81 +366,141 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 continue;
             }
             bench.status(format!("{case}: scoring"));
+            let scorers = role_scorers(&run.exemplars);
             let q = |s: &SolidSynthesis, c: &[[u8; 3]]| {
-                axis_quality(&energy, &run.exemplars, s, c, args.energy_samples)
+                axis_quality(&energy, &scorers, &run.exemplars, s, c, args.energy_samples)
             };
-            let mut push = |variant: &str, axes| {
+            let mut push = |variant: &str, axes, consistency| {
                 quality.push(QualityRow {
                     case: case.clone(),
                     variant: variant.into(),
                     axes,
+                    consistency,
                 })
             };
-            push("solid", q(&run.synthesis, &run.colours)?);
-            let ablation = synthesize_cube(
-                &gpu,
-                exemplars.clone(),
+            push(
+                "solid",
+                q(&run.synthesis, &run.colours)?,
+                Some(run.consistency),
+            );
+            let ablation = |candidate_params: &CandidateParams, keep_current: bool| {
+                synthesize_cube(
+                    &gpu,
+                    exemplars.clone(),
+                    candidate_params,
+                    args.seed,
+                    &args.passes,
+                    &args.jitter,
+                    n,
+                    [0; 3],
+                    false,
+                    Some(&cache),
+                    keep_current,
+                )
+            };
+            let keep = ablation(&CandidateParams::default(), true)?;
+            push(
+                "keep current",
+                q(&keep.synthesis, &keep.colours)?,
+                Some(keep.consistency),
+            );
+            let crossbar = ablation(
                 &CandidateParams {
                     coherence: false,
                     ..CandidateParams::default()
                 },
-                args.seed,
-                &args.passes,
-                &[],
-                n,
-                [0; 3],
                 false,
-                Some(&cache),
             )?;
-            push("crossbar only", q(&ablation.synthesis, &ablation.colours)?);
+            push(
+                "crossbar only",
+                q(&crossbar.synthesis, &crossbar.colours)?,
+                Some(crossbar.consistency),
+            );
             let (ex, ex_colours) = extruded(&exemplars, n);
-            push("extruded E_z", q(&ex, &ex_colours)?);
-            let (two_d, image) =
-                synth_2d(&gpu, &energy, &exemplars, n, args.seed, args.energy_samples)?;
-            push("2d synth", two_d);
-            let (w, h, rgb) = figure(exemplars.role(0), &image, &run.synthesis, &run.colours);
+            push("extruded E_z", q(&ex, &ex_colours)?, None);
+            let (two_d, image) = synth_2d(
+                &gpu,
+                &energy,
+                &scorers,
+                &exemplars,
+                n,
+                args.seed,
+                args.energy_samples,
+            )?;
+            push("2d synth", two_d, None);
             let name = case.replace('+', "-");
-            write_png(&dir.join(format!("{name}-{n}-slices.png")), w, h, &rgb)?;
+            for (variant, s) in [("", &run), ("-keep-current", &keep)] {
+                let (w, h, rgb) = figure(exemplars.role(0), &image, &s.synthesis, &s.colours);
+                write_png(
+                    &dir.join(format!("{name}-{n}{variant}-slices.png")),
+                    w,
+                    h,
+                    &rgb,
+                )?;
+            }
             let (sw, sh, slab) = &run.slab;
             write_png(&dir.join(format!("{name}-slab.png")), *sw, *sh, slab)?;
         }
     }
 
     println!(
-        "{:<28} {:<14} {}",
+        "{:<28} {:<14} {}  {:>6} {:>6}",
         "case",
         "variant",
         (0..3)
             .map(|a| format!(
-                "{:>9} {:>6} {:>5}",
-                format!("E {}", ROLE_NAMES[a]),
+                "{:>7} {:>5} {:>5} {:>5} {:>8}",
+                format!("SWDr {}", ROLE_NAMES[a]),
+                "block",
                 "hist",
-                "rep"
+                "rep",
+                "E"
             ))
             .collect::<Vec<_>>()
-            .join("  ")
+            .join("  "),
+        "cand%",
+        "spread"
     );
-    let mut csv = String::from("case,variant,axis,energy,histogram,repetition\n");
+    let mut csv = String::from(
+        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,candidate_share,spread,candidate_spread\n",
+    );
     for row in &quality {
+        let (share, spread) = row.consistency.map_or((String::new(), String::new()), |c| {
+            (
+                format!("{:.1}", 100.0 * c.candidate_share),
+                format!("{:.1}", c.spread),
+            )
+        });
         println!(
-            "{:<28} {:<14} {}",
+            "{:<28} {:<14} {}  {:>6} {:>6}",
             row.case,
             row.variant,
             row.axes
                 .iter()
                 .map(|q| format!(
-                    "{:>9.1} {:>6.3} {:>5.2}",
-                    q.energy, q.histogram, q.repetition
+                    "{:>7.2} {:>5.2} {:>5.3} {:>5.2} {:>8.1}",
+                    q.swd_ratio, q.blockiness, q.histogram, q.repetition, q.energy
                 ))
                 .collect::<Vec<_>>()
-                .join("  ")
+                .join("  "),
+            share,
+            spread
         );
         for (a, q) in row.axes.iter().enumerate() {
+            let c = row.consistency.map_or(",,".to_string(), |c| {
+                format!(
+                    "{:.4},{:.2},{:.2}",
+                    c.candidate_share, c.spread, c.candidate_spread
+                )
+            });
             csv.push_str(&format!(
-                "{},{},{},{:.3},{:.5},{:.4}\n",
+                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{c}\n",
                 row.case,
                 row.variant,
                 ["x", "y", "z"][a],
+                q.swd,
+                q.swd_ratio,
+                q.blockiness,
                 q.energy,
                 q.histogram,
                 q.repetition

@@ -13,11 +13,12 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
+use lazysolid_compute::synth::quality::ExemplarFigures;
 use lazysolid_compute::synth::solid::{
     analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
-    solid_jitter_or_default, solid_passes_or_default, CandidateParams, GpuCandidates,
-    GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_S, DEFAULT_STRIP,
-    ROLE_NAMES,
+    solid_jitter_or_default, solid_passes_or_default, triple_consistency, CandidateParams,
+    GpuCandidates, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency,
+    VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
     histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar, SynthParams,
@@ -159,11 +160,66 @@ pub struct AxisQuality {
     pub histogram: f64,
     /// Period repetition of the role's coordinates in the mid slice.
     pub repetition: f64,
+    /// Multi-scale sliced Wasserstein distance of the mid slice's patches to the exemplar's
+    /// (8-bit levels, mean over octaves).
+    pub swd: f64,
+    /// `swd` over the distance between the exemplar's two halves: 1 is the material's own
+    /// variability.
+    pub swd_ratio: f64,
+    /// Share of oriented gradient energy along the image axes over the exemplar's: 1 is as
+    /// axis-aligned as the material, above it blocks.
+    pub blockiness: f64,
+}
+
+/// One exemplar's calibrated figures, computed once and applied to every image scored
+/// against it.
+pub struct ImageScorer(ExemplarFigures);
+
+impl ImageScorer {
+    /// Calibrates on `exemplar`.
+    pub fn new(exemplar: &Exemplar) -> ImageScorer {
+        ImageScorer(ExemplarFigures::new(
+            &exemplar.rgb,
+            exemplar.width,
+            exemplar.height,
+        ))
+    }
+
+    /// Scores a `w`×`h` image: energy (GPU), histogram, the given repetition, SWD and
+    /// blockiness.
+    #[allow(clippy::too_many_arguments)]
+    pub fn score(
+        &self,
+        energy: &EnergyKernel,
+        exemplar: &Exemplar,
+        rgb: &[[u8; 3]],
+        w: u32,
+        h: u32,
+        repetition: f64,
+        samples: usize,
+    ) -> anyhow::Result<AxisQuality> {
+        let minima = energy.minima(exemplar, rgb, w, h, samples)?;
+        let figures = self.0.measure(rgb, w, h);
+        Ok(AxisQuality {
+            energy: EnergyReport::from_minima(&minima).mean,
+            histogram: histogram_distance(&exemplar.rgb, rgb),
+            repetition,
+            swd: figures.swd.mean,
+            swd_ratio: figures.swd.ratio,
+            blockiness: figures.blockiness.ratio,
+        })
+    }
+}
+
+/// One [`ImageScorer`] per role of `exemplars`.
+pub fn role_scorers(exemplars: &SolidExemplars) -> [ImageScorer; 3] {
+    std::array::from_fn(|r| ImageScorer::new(exemplars.role(r)))
 }
 
 /// Scores the mid slices of a cube perpendicular to each axis against that axis's exemplar.
 pub fn axis_quality(
     energy: &EnergyKernel,
+    scorers: &[ImageScorer; 3],
     exemplars: &SolidExemplars,
     synthesis: &SolidSynthesis,
     colours: &[[u8; 3]],
@@ -175,12 +231,8 @@ pub fn axis_quality(
     for axis in 0..3 {
         let (rgb, coords) = slice(synthesis, colours, axis, n / 2);
         let e = exemplars.role(axis);
-        let minima = energy.minima(e, &rgb, n, n, samples)?;
-        out.push(AxisQuality {
-            energy: EnergyReport::from_minima(&minima).mean,
-            histogram: histogram_distance(&e.rgb, &rgb),
-            repetition: period_repetition(&coords, n, n, m, m),
-        });
+        let repetition = period_repetition(&coords, n, n, m, m);
+        out.push(scorers[axis].score(energy, e, &rgb, n, n, repetition, samples)?);
     }
     Ok(out.try_into().expect("three axes"))
 }
@@ -240,6 +292,8 @@ pub struct SolidRun {
     pub fallbacks: u64,
     /// What the candidate cache did.
     pub cached: CacheOutcome,
+    /// How consistent the window's triples are (`TripleConsistency`).
+    pub consistency: TripleConsistency,
 }
 
 /// Analysis, candidates and synthesis of a cube of side `n` at `offset`.
@@ -255,6 +309,7 @@ pub fn synthesize_cube(
     offset: [i32; 3],
     progress: bool,
     cache: Option<&DiskCache>,
+    keep_current: bool,
 ) -> anyhow::Result<SolidRun> {
     let start = Instant::now();
     let analysis = analyze_solid(&exemplars);
@@ -265,7 +320,8 @@ pub fn synthesize_cube(
         seed,
         &solid_passes_or_default(passes, levels),
         &solid_jitter_or_default(jitter, levels),
-    )?;
+    )?
+    .with_keep_current(keep_current);
     let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };
     let start = Instant::now();
     let b = show(bar(levels as u64, "candidates"));
@@ -291,7 +347,9 @@ pub fn synthesize_cube(
     let colours = synthesis.colours(&exemplars);
     let plan = plan_levels(window, &params.passes);
     let slab = candidate_slab(&exemplars, &candidates, 4);
+    let consistency = triple_consistency(&exemplars, &candidates, &synthesis);
     Ok(SolidRun {
+        consistency,
         peak_bytes: synth.peak_bytes(window, &params.passes),
         voxels: plan.iter().map(|p| p.region.voxels() as u64).sum(),
         voxel_updates: plan.iter().map(|p| p.updates()).sum(),
@@ -361,10 +419,12 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.offset,
         true,
         cache.as_ref(),
+        false,
     )?;
     let energy = EnergyKernel::new(&gpu)?;
     let quality = axis_quality(
         &energy,
+        &role_scorers(&run.exemplars),
         &run.exemplars,
         &run.synthesis,
         &run.colours,
@@ -452,14 +512,23 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "peak GPU memory of the synthesis {:.1} MiB",
         run.peak_bytes as f64 / (1 << 20) as f64
     );
+    println!(
+        "triples: {:.1} % are candidates of their pixel, colour spread {:.1} (candidates {:.1})",
+        100.0 * run.consistency.candidate_share,
+        run.consistency.spread,
+        run.consistency.candidate_spread
+    );
     for (axis, q) in quality.iter().enumerate() {
         println!(
-            "slice perpendicular to {} vs {}: energy {:.1}, histogram distance {:.4}, period repetition {:.3}",
+            "slice perpendicular to {} vs {}: SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}, histogram distance {:.4}, period repetition {:.3}, energy {:.1}",
             ["x", "y", "z"][axis],
             ROLE_NAMES[axis],
-            q.energy,
+            q.swd,
+            q.swd_ratio,
+            q.blockiness,
             q.histogram,
-            q.repetition
+            q.repetition,
+            q.energy,
         );
     }
     println!(

@@ -11,8 +11,9 @@
 //! synthesizer's k-coherence, once per plane), the one
 //! minimizing the sum over the three planes through the voxel of the 2D synthesizer's
 //! 4-diagonal appearance distance — plane ⊥ x compares the `E_x` coordinates of the voxels in
-//! that plane with the candidate's `E_x` neighbourhood, and so on. Ties keep the current
-//! triple, then go to the smallest triple.
+//! that plane with the candidate's `E_x` neighbourhood, and so on. The current triple competes
+//! only as one of the gathered candidates (unless [`SynthParams::keep_current`]). Ties keep
+//! the current triple, then go to the smallest triple.
 
 use super::analysis::SolidAnalysis;
 use super::candidates::SolidCandidates;
@@ -152,6 +153,7 @@ pub fn correct_subpass_3d(
     region: VolumeBox,
     triples: &mut [[u32; 3]],
     subpass: Subpass,
+    keep_current: bool,
 ) {
     let span = subpass.update.class_span(subpass.class);
     let class_voxels: Vec<usize> = (0..span[2].1 as i32)
@@ -172,7 +174,7 @@ pub fn correct_subpass_3d(
                 let d = offset27(n);
                 triples[region.index([p[0] + d[0], p[1] + d[1], p[2] + d[2]])]
             });
-            correct_voxel(analysis, candidates, level, &around)
+            correct_voxel(analysis, candidates, level, keep_current, &around)
         })
         .collect();
     for (i, t) in class_voxels.into_iter().zip(updated) {
@@ -181,13 +183,15 @@ pub fn correct_subpass_3d(
 }
 
 /// The corrected triple of the voxel whose 3×3×3 neighbourhood (x fastest, 13 the centre)
-/// holds `around`: the current triple or the best candidate gathered in each role's plane
-/// (module docs). Only the 19 voxels of the three planes through the centre are read; the 8
-/// corners may hold anything. What lazy synthesis calls per voxel.
+/// holds `around`: the best candidate gathered in each role's plane, among which the current
+/// triple competes only if it was gathered, or always with `keep_current` (module docs).
+/// Only the 19 voxels of the three planes through the centre are read; the 8 corners may hold
+/// anything. What lazy synthesis calls per voxel.
 pub fn correct_voxel(
     analysis: &SolidAnalysis,
     candidates: &SolidCandidates,
     level: u32,
+    keep_current: bool,
     around: &[[u32; 3]; 27],
 ) -> [u32; 3] {
     let m = analysis.side;
@@ -195,11 +199,18 @@ pub fn correct_voxel(
     let sets = &candidates.levels[level as usize];
     let planes = plane_neighbourhoods(analysis, level, around);
     let current = around[13];
-    let mut best = (
-        triple_distance(analysis, level, &planes, current),
-        0u32,
-        current,
-    );
+    // Without `keep_current` the start is "no best yet" (above every distance, rank of a
+    // non-current triple), which the first gathered candidate replaces; the sets are never
+    // empty, so the current triple stays only when it is gathered and wins.
+    let mut best = if keep_current {
+        (
+            triple_distance(analysis, level, &planes, current),
+            0u32,
+            current,
+        )
+    } else {
+        (u32::MAX, 1u32, current)
+    };
     for (r, role_sets) in sets.iter().enumerate() {
         // Each distinct shifted-back pixel once: a repeat has the same candidates.
         let mut bases: Vec<u32> = plane_offsets(r)
@@ -241,7 +252,15 @@ pub fn synthesize_solid_cpu(
         let region = plan.region;
         let mut triples = upsample_jitter_3d(analysis, params, l, region, levels.last());
         for &subpass in &plan.subpasses {
-            correct_subpass_3d(analysis, candidates, l, region, &mut triples, subpass);
+            correct_subpass_3d(
+                analysis,
+                candidates,
+                l,
+                region,
+                &mut triples,
+                subpass,
+                params.keep_current,
+            );
         }
         levels.push(LevelTriples { region, triples });
     }

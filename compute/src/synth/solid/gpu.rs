@@ -43,6 +43,7 @@ crate::push_block! {
         count: [u32; 3],
         side: u32,
         spacing: u32,
+        keep_current: u32,
     }
 }
 
@@ -193,6 +194,7 @@ impl GpuSolidSynthesizer {
                         count: spans.map(|s| s.1),
                         side: self.side,
                         spacing: *spacing,
+                        keep_current: params.keep_current as u32,
                     };
                     let k = &self.correct;
                     rec.dispatch(k, k.groups_for(n), &[], &push)?;

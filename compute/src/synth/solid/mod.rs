@@ -8,6 +8,7 @@ mod analysis;
 mod candidates;
 mod candidates_cache;
 pub(crate) mod candidates_gpu;
+mod consistency;
 mod cpu;
 mod defaults;
 pub(crate) mod gpu;
@@ -31,6 +32,7 @@ pub use candidates_cache::{
     CANDIDATES_FORMAT_VERSION,
 };
 pub use candidates_gpu::GpuCandidates;
+pub use consistency::{triple_consistency, triple_spread, TripleConsistency};
 pub use cpu::{
     correct_subpass_3d, correct_voxel, synthesize_solid_cpu, upsample_jitter_3d, upsample_voxel,
 };

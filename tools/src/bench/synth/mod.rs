@@ -27,6 +27,7 @@ use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::synth::quality::ExemplarFigures;
 use lazysolid_compute::synth::{
     analysis_key, analyze, analyze_cached, jitter_or_default, passes_or_default, AnalysisParams,
     CacheOutcome, DiskCache, EnergyKernel, Exemplar, ExemplarAnalysis, GpuSynthesizer, LevelTimes,
@@ -334,8 +335,17 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 exemplar,
                 size,
             )?;
+            let figures = ExemplarFigures::new(&exemplar.rgb, exemplar.width, exemplar.height);
             let score = |image: &[[u8; 3]], coords: &[u32]| {
-                quality::measure(&energy, exemplar, image, coords, size, args.energy_samples)
+                quality::measure(
+                    &energy,
+                    &figures,
+                    exemplar,
+                    image,
+                    coords,
+                    size,
+                    args.energy_samples,
+                )
             };
             let mut ours_q = SeedScores {
                 per_seed: vec![score(&ours, &ours_coords)?],
@@ -453,6 +463,16 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 format!("{c}: texture-synthesis energy max"),
                 r.theirs.energy_range().1,
             ),
+            (format!("{c}: lazysolid SWD ratio"), r.ours.swd_ratio()),
+            (
+                format!("{c}: texture-synthesis SWD ratio"),
+                r.theirs.swd_ratio(),
+            ),
+            (format!("{c}: lazysolid blockiness"), r.ours.blockiness()),
+            (
+                format!("{c}: texture-synthesis blockiness"),
+                r.theirs.blockiness(),
+            ),
             (
                 format!("{c}: lazysolid histogram distance"),
                 r.ours.histogram(),
@@ -503,7 +523,7 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
          period repetition: share of pixels one exemplar period apart copying exemplar pixels at most 4 apart)"
     );
     println!(
-        "{:<28} {:>8} {:>34} {:>34} {:>10} {:>11} {:>9} {:>10}",
+        "{:<28} {:>8} {:>34} {:>34} {:>10} {:>11} {:>9} {:>10} {:>9} {:>11} {:>10} {:>12}",
         "case",
         "samples",
         "energy lazysolid",
@@ -511,7 +531,11 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
         "hist ours",
         "hist theirs",
         "rep ours",
-        "rep theirs"
+        "rep theirs",
+        "SWDr ours",
+        "SWDr theirs",
+        "block ours",
+        "block theirs"
     );
     let cell = |q: &SeedScores| {
         let (lo, hi) = q.energy_range();
@@ -523,7 +547,7 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
     };
     for r in results {
         println!(
-            "{:<28} {:>8} {:>34} {:>34} {:>10.4} {:>11.4} {:>9.3} {:>10.3}",
+            "{:<28} {:>8} {:>34} {:>34} {:>10.4} {:>11.4} {:>9.3} {:>10.3} {:>9.2} {:>11.2} {:>10.2} {:>12.2}",
             r.case,
             r.ours.samples(),
             cell(&r.ours),
@@ -531,7 +555,11 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
             r.ours.histogram(),
             r.theirs.histogram(),
             r.ours.repetition(),
-            r.theirs.repetition()
+            r.theirs.repetition(),
+            r.ours.swd_ratio(),
+            r.theirs.swd_ratio(),
+            r.ours.blockiness(),
+            r.theirs.blockiness()
         );
     }
 }

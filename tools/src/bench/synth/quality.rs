@@ -1,8 +1,10 @@
 //! Output quality of both synthesizers, scored the same way: the project's 7×7 neighbourhood
-//! energy (GPU kernel, same sample positions for both) and the colour-histogram distance, both
-//! against the exemplar; and a side-by-side image so the numbers can be checked by eye.
+//! energy (GPU kernel, same sample positions for both), the colour-histogram distance, the
+//! calibrated multi-scale sliced Wasserstein distance and the blockiness (`synth::quality`),
+//! all against the exemplar; and a side-by-side image so the numbers can be checked by eye.
 
 use super::super::plot::rgb_image;
+use lazysolid_compute::synth::quality::ExemplarFigures;
 use lazysolid_compute::synth::{
     histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar,
 };
@@ -22,12 +24,18 @@ pub struct Quality {
     /// Share of pixel pairs one exemplar period apart that copy (nearly) the same exemplar pixel
     /// (`period_repetition`): the plain tiling scores 1.
     pub repetition: f64,
+    /// Multi-scale sliced Wasserstein distance over the exemplar's own (its two halves'): 1 is
+    /// the material's variability.
+    pub swd_ratio: f64,
+    /// Axis share of the gradient energy over the exemplar's: above 1, blocks.
+    pub blockiness: f64,
 }
 
 /// Scores a `size`² image (and its coordinate map) against `exemplar` with at most `samples`
 /// energy positions.
 pub fn measure(
     kernel: &EnergyKernel,
+    figures: &ExemplarFigures,
     exemplar: &Exemplar,
     image: &[[u8; 3]],
     coords: &[u32],
@@ -36,7 +44,10 @@ pub fn measure(
 ) -> anyhow::Result<Quality> {
     let minima = kernel.minima(exemplar, image, size, size, samples)?;
     let report = EnergyReport::from_minima(&minima);
+    let f = figures.measure(image, size, size);
     Ok(Quality {
+        swd_ratio: f.swd.ratio,
+        blockiness: f.blockiness.ratio,
         energy: report.mean,
         energy_per_value: report.per_value,
         samples: report.samples,
@@ -80,6 +91,16 @@ impl SeedScores {
     /// Mean period repetition.
     pub fn repetition(&self) -> f64 {
         self.mean(|q| q.repetition)
+    }
+
+    /// Mean SWD ratio.
+    pub fn swd_ratio(&self) -> f64 {
+        self.mean(|q| q.swd_ratio)
+    }
+
+    /// Mean blockiness.
+    pub fn blockiness(&self) -> f64 {
+        self.mean(|q| q.blockiness)
     }
 
     /// Mean histogram distance.

@@ -102,6 +102,7 @@ crate::push_block! {
         version: u32,
         side: u32,
         spacing: u32,
+        keep_current: u32,
     }
 }
 
@@ -837,6 +838,7 @@ impl GpuLazySolid {
                     version: version_at(stage, cls),
                     side,
                     spacing,
+                    keep_current: self.params.keep_current as u32,
                 };
                 rec.dispatch(&self.correct, self.correct.groups_for(n as u64), &[], &push)?;
             }

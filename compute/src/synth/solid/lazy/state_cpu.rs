@@ -122,7 +122,10 @@ impl LazySolidCpu {
                             let v = version_at(stage - 1, class_index(q)) as usize;
                             state[&lazy_key(q)][v]
                         });
-                        (k, correct_voxel(analysis, candidates, l32, &around))
+                        (
+                            k,
+                            correct_voxel(analysis, candidates, l32, params.keep_current, &around),
+                        )
                     })
                     .collect();
                 self.computed[l] += updated.len() as u64;

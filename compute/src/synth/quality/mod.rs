@@ -1,0 +1,63 @@
+//! Figures of how much a synthesized image (a 2D output or a slice of a volume) looks like its
+//! exemplar, made to be read side by side because each one alone can be gamed: a near-copy has
+//! a low neighbourhood energy, blocks have no repetition, a blur keeps the colour histogram.
+//!
+//! - [`swd`]: a multi-scale sliced Wasserstein distance between the 7×7 patch distributions of
+//!   the image and of the exemplar on three octaves of a Gaussian pyramid, calibrated by the
+//!   same distance between two disjoint halves of the exemplar (the material's own
+//!   variability): the ratio is 1 for an output as close to the exemplar as the exemplar is to
+//!   itself, and large structures count through the coarse octaves.
+//! - [`blockiness`]: the share of oriented gradient energy that lies along the image axes,
+//!   against the exemplar's: axis-aligned blocks raise it, a blur or a shift leave it.
+//!
+//! See `docs/synthesis.md`, "Quality figures".
+
+pub mod blockiness;
+mod image;
+pub mod swd;
+
+pub use blockiness::{axis_share, Blockiness};
+pub use image::LinearImage;
+pub use swd::{PatchSets, SwdCalibration, SwdParams, SwdReport};
+
+/// The figures of one image against an exemplar.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ImageFigures {
+    /// Sliced Wasserstein distance of the patch distributions, calibrated.
+    pub swd: SwdReport,
+    /// Axis share against the exemplar's.
+    pub blockiness: Blockiness,
+}
+
+/// An exemplar's calibration for every figure, made once and applied to each image scored
+/// against it.
+#[derive(Clone, Debug)]
+pub struct ExemplarFigures {
+    swd: SwdCalibration,
+    axis_share: f64,
+}
+
+impl ExemplarFigures {
+    /// Calibrates on an 8-bit RGB exemplar of `width`×`height`.
+    pub fn new(rgb: &[[u8; 3]], width: u32, height: u32) -> ExemplarFigures {
+        let e = LinearImage::from_rgb8(rgb, width as usize, height as usize);
+        ExemplarFigures {
+            swd: SwdCalibration::new(&e, SwdParams::default()),
+            axis_share: axis_share(&e),
+        }
+    }
+
+    /// The SWD calibration.
+    pub fn swd(&self) -> &SwdCalibration {
+        &self.swd
+    }
+
+    /// Scores an 8-bit RGB image of `width`×`height`.
+    pub fn measure(&self, rgb: &[[u8; 3]], width: u32, height: u32) -> ImageFigures {
+        let image = LinearImage::from_rgb8(rgb, width as usize, height as usize);
+        ImageFigures {
+            swd: self.swd.measure(&image),
+            blockiness: Blockiness::against(&image, self.axis_share),
+        }
+    }
+}
