@@ -4,10 +4,11 @@
 
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cached, candidates_cpu, candidates_key, decode_candidates,
-    encode_candidates, plan_boxes, synthesize_solid_cpu, triple_consistency, voxel_colour,
-    CandidateParams, GpuCandidates, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates,
-    SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
+    analyze_solid, candidates_cached, candidates_cpu, candidates_host, candidates_key,
+    decode_candidates, encode_candidates, plan_boxes, synthesize_solid_cpu, triple_consistency,
+    voxel_colour, CandidateParams, GpuCandidates, GpuSolidSynthesizer, SolidAnalysis,
+    SolidCandidates, SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND, LOOP_BUDGET, MAX_CANDIDATES,
+    ROLE_AXES,
 };
 use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, with_gpu};
@@ -95,6 +96,49 @@ fn candidates_gpu_equal_cpu() {
         // The finest level's coherence filter ran (more than 12 triples to start with).
         assert!(cpu.reports.last().unwrap().iterations >= 1, "{name}");
     }
+}
+
+#[test]
+fn host_candidates_equal_the_reference() {
+    // The pruned host searches against the brute-force CPU reference, with the defaults and
+    // with parameters that change what is pruned: fewer strips kept (S² below the 100 kept
+    // triples), a shorter strip, no coherence filter.
+    let variants = [
+        CandidateParams::default(),
+        CandidateParams {
+            s: 8,
+            strip: 3,
+            coherence: true,
+        },
+        CandidateParams {
+            coherence: false,
+            ..CandidateParams::default()
+        },
+    ];
+    for (name, (_, analysis, reference)) in [("shared", shared()), ("three", three())] {
+        for (v, params) in variants.iter().enumerate() {
+            let host = candidates_host(analysis, params, &mut |_| {}).unwrap();
+            let want = if v == 0 {
+                reference.clone()
+            } else {
+                candidates_cpu(analysis, params).unwrap()
+            };
+            assert_eq!(host, want, "{name} variant {v}");
+        }
+    }
+    // A 32² exemplar (a real texture's range of strips, where the pruning matters) against
+    // the GPU kernels, which equal the CPU reference (candidates_gpu_equal_cpu).
+    let exemplars =
+        SolidExemplars::new(crop("walnut.pat", 17, 60, 32), [None, None, None]).unwrap();
+    let analysis = analyze_solid(&exemplars);
+    let host = candidates_host(&analysis, &CandidateParams::default(), &mut |_| {}).unwrap();
+    let gpu = with_gpu(|gpu| {
+        GpuCandidates::new(gpu)
+            .unwrap()
+            .compute(&analysis, &CandidateParams::default(), &mut |_| {})
+            .unwrap()
+    });
+    assert_eq!(host, gpu, "32² walnut");
 }
 
 fn boxed(origin: [i32; 3], size: [u32; 3]) -> VolumeBox {

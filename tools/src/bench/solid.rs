@@ -25,7 +25,8 @@ use super::harness::{time_cpu, Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::assets;
 use crate::cli::solid::{
-    axis_quality, oblique, role_scorers, slice, synthesize_cube, AxisQuality, ImageScorer,
+    axis_quality, oblique, role_scorers, slice, synthesize_cube, AxisQuality, CubeRequest,
+    ImageScorer,
 };
 use crate::cli::synth::write_png;
 use crate::cli::GlobalArgs;
@@ -34,7 +35,7 @@ use clap::Args;
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_key, CandidateParams, GpuCandidates, LevelTriples, SolidExemplars,
+    analyze_solid, candidates_key, CandidateBuilder, CandidateParams, LevelTriples, SolidExemplars,
     SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
@@ -43,6 +44,8 @@ use lazysolid_compute::synth::{
 };
 use serde::Serialize;
 
+const CANDIDATES_GPU: &str = "lazysolid gpu kernels (wall)";
+const CANDIDATES_HOST: &str = "lazysolid host, pruned (wall)";
 const END_TO_END_COLD: &str = "lazysolid end-to-end cold (wall)";
 const END_TO_END_WARM: &str = "lazysolid end-to-end warm (wall)";
 use std::path::PathBuf;
@@ -267,7 +270,6 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let total = cases.len() as u64 * (candidate_sides.len() + 2 * sizes.len() + 1) as u64;
     let mut bench = Bench::new("bench-solid", &gpu, &args.common, total)?;
     let dir = bench.artifact_dir()?;
-    let candidates = GpuCandidates::new(&gpu)?;
     // The candidate cache of the synthesis rows: a temporary folder, not the user's.
     let cache_dir = tempfile::Builder::new()
         .prefix("lazysolid-bench-cache-")
@@ -281,38 +283,55 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         for &side in candidate_sides {
             let exemplars = exemplars_of(args, case, side)?;
             let analysis = analyze_solid(&exemplars);
-            bench.case(
-                &format!("{case} {side}² candidates"),
-                (side * side * 3) as u64,
-                "lazysolid gpu (wall)",
-                Throughput::Elements,
-                None,
-                || {
-                    let (r, ms) = time_cpu(|| {
-                        candidates.compute(&analysis, &CandidateParams::default(), &mut |_| {})
-                    });
-                    r?;
-                    Ok(ms)
-                },
-            )?;
+            // Both builders, side by side; the host's pruned searches must give the kernels'
+            // candidates bit for bit.
+            let mut results = Vec::new();
+            for (builder, baseline) in [
+                (CandidateBuilder::Gpu, None),
+                (CandidateBuilder::Host, Some(CANDIDATES_GPU)),
+            ] {
+                let mut last = None;
+                bench.case(
+                    &format!("{case} {side}² candidates"),
+                    (side * side * 3) as u64,
+                    if baseline.is_some() {
+                        CANDIDATES_HOST
+                    } else {
+                        CANDIDATES_GPU
+                    },
+                    Throughput::Elements,
+                    baseline,
+                    || {
+                        let (r, ms) = time_cpu(|| {
+                            builder.compute(
+                                &gpu,
+                                &analysis,
+                                &CandidateParams::default(),
+                                &mut |_| {},
+                            )
+                        });
+                        last = Some(r?);
+                        Ok(ms)
+                    },
+                )?;
+                results.push(last.expect("ran at least once"));
+            }
+            ensure!(
+                results[0] == results[1],
+                "{case} {side}²: the host's candidates differ from the GPU's"
+            );
         }
         let exemplars = exemplars_of(args, case, args.side)?;
         let key = candidates_key(&exemplars, &CandidateParams::default());
         for (i, &n) in sizes.iter().enumerate() {
+            let request = CubeRequest {
+                seed: args.seed,
+                passes: &args.passes,
+                jitter: &args.jitter,
+                ..CubeRequest::new(n)
+            };
             let cube = |cache: Option<&DiskCache>| {
-                synthesize_cube(
-                    &gpu,
-                    exemplars.clone(),
-                    &CandidateParams::default(),
-                    args.seed,
-                    &args.passes,
-                    &args.jitter,
-                    n,
-                    [0; 3],
-                    false,
-                    cache,
-                    false,
-                )
+                synthesize_cube(&gpu, exemplars.clone(), &request, cache)
             };
             let tag = format!("{case} {}² -> {n}³", args.side);
             let mut last = None;
@@ -384,19 +403,12 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 Some(run.consistency),
             );
             let ablation = |candidate_params: &CandidateParams, keep_current: bool| {
-                synthesize_cube(
-                    &gpu,
-                    exemplars.clone(),
-                    candidate_params,
-                    args.seed,
-                    &args.passes,
-                    &args.jitter,
-                    n,
-                    [0; 3],
-                    false,
-                    Some(&cache),
+                let r = CubeRequest {
+                    candidate_params: *candidate_params,
                     keep_current,
-                )
+                    ..request.clone()
+                };
+                synthesize_cube(&gpu, exemplars.clone(), &r, Some(&cache))
             };
             let keep = ablation(&CandidateParams::default(), true)?;
             push(

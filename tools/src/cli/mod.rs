@@ -2,6 +2,7 @@
 
 pub mod assets;
 pub mod builder;
+pub mod candidate_builder;
 pub mod components;
 pub mod device;
 pub mod diff;

@@ -4,6 +4,7 @@
 //! a render of a cube and a sphere carved out of it (`solid_render.rs`), and score the slices
 //! against their exemplars.
 
+use super::candidate_builder::Candidates;
 use super::components::components;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
@@ -16,8 +17,8 @@ use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::quality::ExemplarFigures;
 use lazysolid_compute::synth::solid::{
     analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
-    solid_jitter_or_default, solid_passes_or_default, triple_consistency, CandidateParams,
-    GpuCandidates, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency,
+    solid_jitter_or_default, solid_passes_or_default, triple_consistency, CandidateBuilder,
+    CandidateParams, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency,
     VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
@@ -80,6 +81,10 @@ pub struct SolidArgs {
     /// Most pixels of each slice the neighbourhood energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
+    /// Where the candidates are computed (the same candidates either way): auto is the host
+    /// on a CPU driver (lavapipe), the GPU otherwise.
+    #[arg(long, value_enum, default_value_t = Candidates::Auto)]
+    pub candidates: Candidates,
     /// The NRRD volume to write; slices and the candidate slab go next to it as
     /// NAME.x.png, NAME.y.png, NAME.z.png, NAME.oblique.png and NAME.slab.png.
     #[arg(short, long)]
@@ -292,25 +297,70 @@ pub struct SolidRun {
     pub fallbacks: u64,
     /// What the candidate cache did.
     pub cached: CacheOutcome,
+    /// Where the candidates were (or would have been) computed.
+    pub builder: CandidateBuilder,
     /// How consistent the window's triples are (`TripleConsistency`).
     pub consistency: TripleConsistency,
 }
 
+/// What [`synthesize_cube`] makes and how.
+#[derive(Clone, Debug)]
+pub struct CubeRequest<'a> {
+    /// The candidates' parameters.
+    pub candidate_params: CandidateParams,
+    /// Where the candidates are computed when the cache does not hold them.
+    pub builder: CandidateBuilder,
+    /// Seed of the jitter.
+    pub seed: u32,
+    /// Correction passes (one, or one per level; empty: the defaults).
+    pub passes: &'a [u32],
+    /// Jitter strengths (one, or one per level; empty: the defaults).
+    pub jitter: &'a [f32],
+    /// The correction's current triple always competes (`SynthParams::keep_current`).
+    pub keep_current: bool,
+    /// Cube side.
+    pub n: u32,
+    /// Absolute position of the cube's first voxel.
+    pub offset: [i32; 3],
+    /// Show progress bars.
+    pub progress: bool,
+}
+
+impl CubeRequest<'_> {
+    /// The defaults for a cube of side `n` at the origin, without progress bars.
+    pub fn new(n: u32) -> CubeRequest<'static> {
+        CubeRequest {
+            candidate_params: CandidateParams::default(),
+            builder: CandidateBuilder::Auto,
+            seed: 1,
+            passes: &[],
+            jitter: &[],
+            keep_current: false,
+            n,
+            offset: [0; 3],
+            progress: false,
+        }
+    }
+}
+
 /// Analysis, candidates and synthesis of a cube of side `n` at `offset`.
-#[allow(clippy::too_many_arguments)]
 pub fn synthesize_cube(
     gpu: &Gpu,
     exemplars: SolidExemplars,
-    candidate_params: &CandidateParams,
-    seed: u32,
-    passes: &[u32],
-    jitter: &[f32],
-    n: u32,
-    offset: [i32; 3],
-    progress: bool,
+    request: &CubeRequest,
     cache: Option<&DiskCache>,
-    keep_current: bool,
 ) -> anyhow::Result<SolidRun> {
+    let CubeRequest {
+        ref candidate_params,
+        builder,
+        seed,
+        passes,
+        jitter,
+        keep_current,
+        n,
+        offset,
+        progress,
+    } = *request;
     let start = Instant::now();
     let analysis = analyze_solid(&exemplars);
     let analysis_s = start.elapsed().as_secs_f64();
@@ -326,7 +376,7 @@ pub fn synthesize_cube(
     let start = Instant::now();
     let b = show(bar(levels as u64, "candidates"));
     let (candidates, cached) = candidates_cached(&exemplars, candidate_params, cache, || {
-        GpuCandidates::new(gpu)?.compute(&analysis, candidate_params, &mut |_| b.inc(1))
+        builder.compute(gpu, &analysis, candidate_params, &mut |_| b.inc(1))
     })?;
     b.finish_and_clear();
     let candidates_s = start.elapsed().as_secs_f64();
@@ -349,6 +399,7 @@ pub fn synthesize_cube(
     let slab = candidate_slab(&exemplars, &candidates, 4);
     let consistency = triple_consistency(&exemplars, &candidates, &synthesis);
     Ok(SolidRun {
+        builder: builder.resolve(gpu),
         consistency,
         peak_bytes: synth.peak_bytes(window, &params.passes),
         voxels: plan.iter().map(|p| p.region.voxels() as u64).sum(),
@@ -411,15 +462,18 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let run = synthesize_cube(
         &gpu,
         exemplars,
-        &candidate_params,
-        args.seed,
-        &args.passes,
-        &args.jitter,
-        n,
-        args.offset,
-        true,
+        &CubeRequest {
+            candidate_params,
+            builder: args.candidates.into(),
+            seed: args.seed,
+            passes: &args.passes,
+            jitter: &args.jitter,
+            keep_current: false,
+            n,
+            offset: args.offset,
+            progress: true,
+        },
         cache.as_ref(),
-        false,
     )?;
     let energy = EnergyKernel::new(&gpu)?;
     let quality = axis_quality(
@@ -486,7 +540,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     println!("analysis (CPU)    {:8.3} s", run.analysis_s);
     println!(
-        "candidates (GPU)  {:8.3} s ({} coherence fallbacks; cache {}{})",
+        "candidates ({:<4})  {:8.3} s ({} coherence fallbacks; cache {}{})",
+        run.builder.name(),
         run.candidates_s,
         run.fallbacks,
         run.cached.label(),

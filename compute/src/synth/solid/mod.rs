@@ -8,6 +8,7 @@ mod analysis;
 mod candidates;
 mod candidates_cache;
 pub(crate) mod candidates_gpu;
+mod candidates_host;
 mod consistency;
 mod cpu;
 mod defaults;
@@ -18,6 +19,7 @@ mod loop_budget;
 mod plan;
 mod roles;
 mod slab;
+mod strip_tree;
 mod strips;
 mod volume;
 
@@ -32,6 +34,7 @@ pub use candidates_cache::{
     CANDIDATES_FORMAT_VERSION,
 };
 pub use candidates_gpu::GpuCandidates;
+pub use candidates_host::{candidates_host, CandidateBuilder};
 pub use consistency::{triple_consistency, triple_spread, TripleConsistency};
 pub use cpu::{
     correct_subpass_3d, correct_voxel, synthesize_solid_cpu, upsample_jitter_3d, upsample_voxel,

@@ -335,11 +335,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 exemplar,
                 size,
             )?;
-            let figures = ExemplarFigures::new(&exemplar.rgb, exemplar.width, exemplar.height);
+            let calibration = ExemplarFigures::new(&exemplar.rgb, exemplar.width, exemplar.height);
             let score = |image: &[[u8; 3]], coords: &[u32]| {
                 quality::measure(
                     &energy,
-                    &figures,
+                    &calibration,
                     exemplar,
                     image,
                     coords,

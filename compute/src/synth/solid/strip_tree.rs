@@ -1,0 +1,215 @@
+//! An exact k-nearest-neighbour search over integer strips: a k-d tree built in the principal
+//! axes of the target strips, whose pruning only skips what cannot enter the result.
+//!
+//! Strips of neighbouring samples are strongly correlated, so in their principal axes most of
+//! the spread lies along a few coordinates, where the tree splits. A query descends to its
+//! leaf first and visits a far child only while the squared distance from the query to that
+//! child's cell (accumulated per axis, Arya & Mount's incremental distance) does not exceed the
+//! current k-th distance. Distances of the strips themselves are computed exactly in integers,
+//! and a cell is skipped only when its bound exceeds the k-th distance by more than any
+//! rounding of the rotation, so the result — ranked by (distance, index) — is the brute
+//! force's, ties included.
+
+use nalgebra::{DMatrix, SymmetricEigen};
+use std::collections::BinaryHeap;
+
+/// Most strips in a leaf.
+const LEAF: usize = 12;
+
+enum Node {
+    Leaf {
+        start: u32,
+        end: u32,
+    },
+    Split {
+        dim: u16,
+        value: f64,
+        left: u32,
+        right: u32,
+    },
+}
+
+/// A k-d tree over `dims`-value integer strips.
+pub(crate) struct StripTree<'a> {
+    strips: &'a [i32],
+    dims: usize,
+    /// Row-major rotation into the principal axes (largest variance first).
+    rotation: Vec<f64>,
+    /// Rotated coordinates of every strip.
+    rotated: Vec<f64>,
+    order: Vec<u32>,
+    nodes: Vec<Node>,
+}
+
+/// Squared distance of two strips (exact; at most 11 · 3 · 255² < 2²²).
+pub(crate) fn ssd(a: &[i32], b: &[i32]) -> u32 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| ((x - y) * (x - y)) as u32)
+        .sum()
+}
+
+/// Whether a cell at squared distance `bound` can no longer hold a strip that enters a list
+/// whose worst distance is `worst` (a margin far above f64 rounding keeps ties in).
+fn ruled_out(bound: f64, worst: u32) -> bool {
+    bound > f64::from(worst) * (1.0 + 1e-9) + 1e-6
+}
+
+impl<'a> StripTree<'a> {
+    /// Builds the tree over `strips` (`dims` values each).
+    pub(crate) fn new(strips: &'a [i32], dims: usize) -> StripTree<'a> {
+        let n = strips.len() / dims;
+        let mut mean = vec![0.0f64; dims];
+        for v in strips.chunks_exact(dims) {
+            mean.iter_mut()
+                .zip(v)
+                .for_each(|(m, &x)| *m += f64::from(x));
+        }
+        mean.iter_mut().for_each(|m| *m /= n.max(1) as f64);
+        let mut cov = DMatrix::<f64>::zeros(dims, dims);
+        for v in strips.chunks_exact(dims) {
+            for a in 0..dims {
+                let da = f64::from(v[a]) - mean[a];
+                for b in 0..dims {
+                    cov[(a, b)] += da * (f64::from(v[b]) - mean[b]);
+                }
+            }
+        }
+        let eigen = SymmetricEigen::new(cov);
+        let mut axes: Vec<usize> = (0..dims).collect();
+        axes.sort_by(|&a, &b| eigen.eigenvalues[b].total_cmp(&eigen.eigenvalues[a]));
+        let rotation: Vec<f64> = axes
+            .iter()
+            .flat_map(|&k| (0..dims).map(move |d| (k, d)))
+            .map(|(k, d)| eigen.eigenvectors[(d, k)])
+            .collect();
+        let mut tree = StripTree {
+            strips,
+            dims,
+            rotated: Vec::with_capacity(n * dims),
+            rotation,
+            order: (0..n as u32).collect(),
+            nodes: Vec::new(),
+        };
+        for v in strips.chunks_exact(dims) {
+            let r = tree.rotate(v);
+            tree.rotated.extend(r);
+        }
+        tree.build(0, n);
+        tree
+    }
+
+    fn rotate(&self, v: &[i32]) -> Vec<f64> {
+        self.rotation
+            .chunks_exact(self.dims)
+            .map(|axis| axis.iter().zip(v).map(|(a, &x)| a * f64::from(x)).sum())
+            .collect()
+    }
+
+    fn coordinate(&self, i: u32, dim: usize) -> f64 {
+        self.rotated[i as usize * self.dims + dim]
+    }
+
+    /// Builds the subtree over `order[start..end]` and returns its node index.
+    fn build(&mut self, start: usize, end: usize) -> u32 {
+        let id = self.nodes.len() as u32;
+        if end - start <= LEAF {
+            self.nodes.push(Node::Leaf {
+                start: start as u32,
+                end: end as u32,
+            });
+            return id;
+        }
+        // Split the widest axis at its median.
+        let dim = (0..self.dims)
+            .map(|d| {
+                let (lo, hi) = self.order[start..end].iter().fold(
+                    (f64::INFINITY, f64::NEG_INFINITY),
+                    |(lo, hi), &i| {
+                        let c = self.coordinate(i, d);
+                        (lo.min(c), hi.max(c))
+                    },
+                );
+                (hi - lo, d)
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)))
+            .expect("some axis")
+            .1;
+        let mid = (start + end) / 2;
+        let rotated = &self.rotated;
+        let dims = self.dims;
+        self.order[start..end].select_nth_unstable_by(mid - start, |&a, &b| {
+            rotated[a as usize * dims + dim]
+                .total_cmp(&rotated[b as usize * dims + dim])
+                .then(a.cmp(&b))
+        });
+        let value = self.coordinate(self.order[mid], dim);
+        self.nodes.push(Node::Leaf { start: 0, end: 0 });
+        let left = self.build(start, mid);
+        let right = self.build(mid, end);
+        self.nodes[id as usize] = Node::Split {
+            dim: dim as u16,
+            value,
+            left,
+            right,
+        };
+        id
+    }
+
+    /// The `k` strips nearest to `query`, ranked by (distance, index).
+    pub(crate) fn nearest(&self, query: &[i32], k: usize) -> Vec<(u32, u32)> {
+        let q = self.rotate(query);
+        let mut heap = BinaryHeap::with_capacity(k + 1);
+        let mut offsets = vec![0.0f64; self.dims];
+        self.visit(0, query, &q, &mut offsets, 0.0, k, &mut heap);
+        heap.into_sorted_vec()
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn visit(
+        &self,
+        node: u32,
+        query: &[i32],
+        q: &[f64],
+        offsets: &mut [f64],
+        bound: f64,
+        k: usize,
+        heap: &mut BinaryHeap<(u32, u32)>,
+    ) {
+        match self.nodes[node as usize] {
+            Node::Leaf { start, end } => {
+                for &i in &self.order[start as usize..end as usize] {
+                    let d = ssd(query, &self.strips[i as usize * self.dims..][..self.dims]);
+                    if heap.len() < k {
+                        heap.push((d, i));
+                    } else if (d, i) < *heap.peek().expect("full") {
+                        heap.pop();
+                        heap.push((d, i));
+                    }
+                }
+            }
+            Node::Split {
+                dim,
+                value,
+                left,
+                right,
+            } => {
+                let dim = dim as usize;
+                let diff = q[dim] - value;
+                let (near, far) = if diff < 0.0 {
+                    (left, right)
+                } else {
+                    (right, left)
+                };
+                self.visit(near, query, q, offsets, bound, k, heap);
+                let old = offsets[dim];
+                let far_bound = bound - old * old + diff * diff;
+                if heap.len() < k || !ruled_out(far_bound, heap.peek().expect("full").0) {
+                    offsets[dim] = diff;
+                    self.visit(far, query, q, offsets, far_bound, k, heap);
+                    offsets[dim] = old;
+                }
+            }
+        }
+    }
+}
