@@ -50,8 +50,8 @@ pub struct DeviceInfo {
     pub max_workgroup_invocations: u32,
     /// The features of [`REQUIRED_FEATURES`] the device supports.
     pub features: Vec<Feature>,
-    /// `timestampPeriod`: nanoseconds per timestamp tick (1 on lavapipe; GPUs differ, e.g.
-    /// about 41.7 on some AMD and Intel devices).
+    /// `timestampPeriod`: nanoseconds per timestamp tick (1 on lavapipe and NVIDIA; tens of
+    /// nanoseconds on many AMD and Intel GPUs).
     pub timestamp_period_ns: f32,
     /// `timestampValidBits` of the queue family lazysolid submits to (the first compute family
     /// with timestamps), 0 when none: the bits of a timestamp that count, 64 on lavapipe and
