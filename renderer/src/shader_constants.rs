@@ -6,8 +6,13 @@
 //! compiler as `#define NAME VALUE`. Only plain `u32` literals are allowed on such lines.
 
 /// Workgroup width of kernels that trace rays through `render/cwbvh.glsl`: their traversal
-/// stacks (32 entries of 8 bytes per invocation) fill lavapipe's 32 KiB of shared memory.
+/// stacks (`CWBVH_STACK_SIZE` entries of 8 bytes per invocation) fill 32 KiB of shared memory,
+/// lavapipe's `maxComputeSharedMemorySize` and the smallest of common desktop GPUs (NVIDIA
+/// 48 KiB, AMD and Intel 64 KiB). `ray_queries::cwbvh_kernel` checks it against the device.
 pub const CWBVH_WORKGROUP_SIZE: u32 = 128;
+/// Entries of each invocation's CWBVH traversal stack in shared memory (obvhs's CPU traversal
+/// uses 32).
+pub const CWBVH_STACK_SIZE: u32 = 32;
 /// Material kinds of the path tracer (`renderer::scene::MaterialKind`), as stored in the
 /// GPU material's `kind` field.
 pub const MATERIAL_LAMBERTIAN: u32 = 0;

@@ -12,8 +12,13 @@ use rand::{Rng, SeedableRng};
 /// Runs `test` on a fresh validated device, then destroys the device and asserts that the
 /// validation layer reported no error and that no GPU object outlived the test.
 pub fn with_gpu<R>(test: impl FnOnce(&Gpu) -> R) -> R {
-    let gpu = Gpu::new(&GpuOptions::for_tests())
-        .unwrap_or_else(|e| panic!("cannot create the test device: {e}"));
+    with_gpu_options(&GpuOptions::for_tests(), test)
+}
+
+/// [`with_gpu`] on a device created with `options` (validation must be required in them), for
+/// tests that pin a setting the environment would otherwise choose, e.g. the memory mode.
+pub fn with_gpu_options<R>(options: &GpuOptions, test: impl FnOnce(&Gpu) -> R) -> R {
+    let gpu = Gpu::new(options).unwrap_or_else(|e| panic!("cannot create the test device: {e}"));
     assert!(gpu.validation_enabled());
     let log = gpu.validation_log();
     let weak = gpu.downgrade();

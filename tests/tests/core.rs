@@ -2,12 +2,13 @@
 //! descriptor binding, limits, timing.
 
 use lazysolid_compute::gpu::{
-    check_features, DeviceAddress, Feature, Gpu, GpuBuffer, GpuError, Kernel, REQUIRED_FEATURES,
+    check_features, elapsed_ns, DeviceAddress, Feature, Gpu, GpuBuffer, GpuError, GpuOptions,
+    Kernel, MemoryMode, REQUIRED_FEATURES,
 };
 use lazysolid_compute::kernels;
 use lazysolid_compute::prims::push::{CopyCountPush, CopyPush};
 use lazysolid_compute::shader_constants::DEFAULT_WORKGROUP_SIZE;
-use lazysolid_tests::{random_u32, with_gpu};
+use lazysolid_tests::{random_u32, with_gpu, with_gpu_options};
 use std::sync::Arc;
 
 /// The device choice refuses a device that lacks a required feature before creating it, naming
@@ -341,6 +342,88 @@ fn timestamps_measure_elapsed_work() {
             .unwrap();
         assert_eq!(times.len(), 2);
         assert!(times[1] > times[0], "{times:?}");
+    });
+}
+
+/// Timestamps count only their valid bits and wrap there; a tick is `timestampPeriod` ns.
+#[test]
+fn timestamp_differences_wrap_at_the_valid_bits_and_scale_by_the_period() {
+    assert_eq!(elapsed_ns(100, 350, 64, 1.0), 250.0);
+    // A 36-bit counter that wrapped between the two stamps (as on some GPUs).
+    let top = (1u64 << 36) - 10;
+    assert_eq!(elapsed_ns(top, 5, 36, 1.0), 15.0);
+    // Bits above the valid ones are garbage and ignored.
+    assert_eq!(
+        elapsed_ns(0xdead_0000_0000_0007, 0x0000_0000_0000_0009, 32, 1.0),
+        2.0
+    );
+    // 41.67 ns ticks (e.g. a 24 MHz counter); no precision lost to huge raw counts.
+    let start = u64::MAX - 1000;
+    let ns = elapsed_ns(start, start + 1000, 64, 41.67);
+    assert!((ns - 41_670.0).abs() < 0.01, "{ns}");
+}
+
+/// The discrete-GPU path on any device: under `MemoryMode::DeviceLocal` every upload and
+/// readback goes through a staging buffer and a transfer (none is a mapped copy), and data
+/// survives the trip through kernels, fills and partial writes and reads.
+#[test]
+fn device_local_memory_moves_every_upload_and_readback_through_staging() {
+    let options = GpuOptions {
+        memory: Some(MemoryMode::DeviceLocal),
+        ..GpuOptions::for_tests()
+    };
+    with_gpu_options(&options, |gpu| {
+        assert_eq!(gpu.memory_mode(), MemoryMode::DeviceLocal);
+        let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
+        let n = 100_003;
+        let data = random_u32(n, 7);
+        let before = gpu.staging_copies();
+        let mut src = GpuBuffer::from_slice(gpu, "staged src", &data).unwrap();
+        assert_eq!(
+            gpu.staging_copies(),
+            before + 1,
+            "the upload was not staged"
+        );
+        let dst = GpuBuffer::<u32>::zeroed(gpu, "staged dst", n).unwrap();
+        assert_eq!(gpu.staging_copies(), before + 1, "a fill needs no staging");
+        gpu.submit(|rec| {
+            rec.dispatch(
+                &kernel,
+                kernel.groups_for(n as u64),
+                &[("Src", src.arg()), ("Dst", dst.arg())],
+                &CopyCountPush { n: n as u32 },
+            )
+        })
+        .unwrap();
+        assert_eq!(dst.read().unwrap(), data);
+        assert_eq!(dst.read_range(101, 7).unwrap(), &data[101..108]);
+        src.write(3, &[9, 8, 7]).unwrap();
+        let mut expected = data.clone();
+        expected[3..6].copy_from_slice(&[9, 8, 7]);
+        assert_eq!(src.read().unwrap(), expected);
+        assert_eq!(gpu.staging_copies(), before + 5);
+        // Sizes that are not a multiple of 4 bytes copy exactly.
+        let bytes = GpuBuffer::from_slice(gpu, "odd bytes", &[1u8, 2, 3, 4, 5]).unwrap();
+        assert_eq!(bytes.read_range(1, 3).unwrap(), vec![2, 3, 4]);
+    });
+}
+
+/// In the default mode, lavapipe's host-visible coherent heap takes no staging at all.
+#[test]
+fn auto_memory_maps_a_host_visible_heap_directly() {
+    let options = GpuOptions {
+        memory: Some(MemoryMode::Auto),
+        ..GpuOptions::for_tests()
+    };
+    with_gpu_options(&options, |gpu| {
+        let buf = GpuBuffer::from_slice(gpu, "mapped", &[1u32, 2, 3]).unwrap();
+        assert_eq!(buf.read().unwrap(), vec![1, 2, 3]);
+        if gpu.info().device_type == "cpu" {
+            assert_eq!(gpu.staging_copies(), 0);
+        } else {
+            // A GPU may give a buffer host-visible memory (resizable BAR) or not.
+            assert!([0, 2].contains(&gpu.staging_copies()));
+        }
     });
 }
 

@@ -117,6 +117,27 @@ fn device_lists_limits_and_marks_the_chosen_device() {
 }
 
 #[test]
+fn the_memory_switch_is_reported_and_an_unknown_value_is_an_error() {
+    let (ok, out, err) = run(lazysolid()
+        .arg("device")
+        .env("LAZYSOLID_MEMORY", "device-local"));
+    assert!(ok, "{err}");
+    assert!(out.contains("memory mode: device-local"), "{out}");
+    assert!(out.contains("timestamp valid bits"), "{out}");
+    let (ok, _, err) = run(lazysolid()
+        .arg("device")
+        .env("LAZYSOLID_MEMORY", "discrete"));
+    assert!(!ok);
+    assert!(
+        err.contains("LAZYSOLID_MEMORY")
+            && err.contains("discrete")
+            && err.contains("device-local"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
 fn no_vulkan_device_is_a_clear_error() {
     let (ok, _, err) = run(lazysolid()
         .arg("device")

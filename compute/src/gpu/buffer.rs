@@ -3,18 +3,22 @@
 
 use super::context::{Gpu, GpuInner};
 use super::error::{GpuError, GpuResult, VkContext};
+use super::memory::MemoryMode;
 use ash::vk;
 use bytemuck::Pod;
 use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
 use gpu_allocator::MemoryLocation;
 use std::marker::PhantomData;
+use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
 /// A buffer of `len` elements of `T`, usable as a storage buffer, through its device address,
 /// and as a transfer source and destination.
 ///
 /// Uploads and readbacks are mapped copies when the memory is host-visible and coherent (always
-/// on lavapipe, whose one heap is host memory) and go through a staging buffer otherwise.
+/// on lavapipe, whose one heap is host memory) and go through a staging buffer otherwise, or
+/// always under [`MemoryMode::DeviceLocal`](super::MemoryMode) (`LAZYSOLID_MEMORY=device-local`).
+/// The mapping never leaves this type: nothing else writes or reads a buffer's memory directly.
 pub struct GpuBuffer<T: Pod> {
     memory: Arc<BufferMemory>,
     len: usize,
@@ -258,7 +262,12 @@ impl<T: Pod> GpuBuffer<T> {
         })
     }
 
+    /// The mapping to copy through, or `None` when the copy must take the staging path: the
+    /// memory is not host-visible and coherent, or the device runs as device-local only.
     fn mapped(&self) -> Option<*mut u8> {
+        if self.memory.gpu.memory == MemoryMode::DeviceLocal {
+            return None;
+        }
         let a = self.memory.allocation.as_ref()?;
         let coherent = a
             .memory_properties()
@@ -311,6 +320,10 @@ impl<T: Pod> GpuBuffer<T> {
             .copy_from_slice(bytemuck::cast_slice(data));
         self.memory
             .gpu
+            .staging_copies
+            .fetch_add(1, Ordering::Relaxed);
+        self.memory
+            .gpu
             .submit_timed(|rec| {
                 rec.copy_raw(staging.raw, 0, self.memory.raw, byte_offset, staging.bytes);
                 Ok(())
@@ -353,6 +366,10 @@ impl<T: Pod> GpuBuffer<T> {
             Ok(())
         })?;
         dst.copy_from_slice(staging.slice_mut());
+        self.memory
+            .gpu
+            .staging_copies
+            .fetch_add(1, Ordering::Relaxed);
         Ok(out)
     }
 }

@@ -38,7 +38,8 @@ impl Gpu {
     }
 
     /// Like [`Gpu::submit`], and also returns the times of every [`Recorder::timestamp`] in
-    /// nanoseconds, in recording order.
+    /// nanoseconds after the first one (which is 0), in recording order: only differences
+    /// within one submission mean anything (see [`elapsed_ns`]).
     pub fn submit_timed<R>(
         &self,
         record: impl FnOnce(&mut Recorder<'_>) -> GpuResult<R>,
@@ -148,11 +149,36 @@ impl GpuInner {
                 )
             }
             .vk("vkGetQueryPoolResults", "timestamps")?;
-            let period = inner.info.timestamp_period_ns as f64;
-            times = raw.iter().map(|&t| t as f64 * period).collect();
+            let info = &inner.info;
+            times = raw
+                .iter()
+                .map(|&t| {
+                    elapsed_ns(
+                        raw[0],
+                        t,
+                        info.timestamp_valid_bits,
+                        info.timestamp_period_ns,
+                    )
+                })
+                .collect();
         }
         Ok((value, times))
     }
+}
+
+/// Nanoseconds from tick `start` to tick `end` of a queue whose timestamps have `valid_bits`
+/// significant bits and tick every `period_ns`. Only the low `valid_bits` bits count and the
+/// counter wraps at `2^valid_bits`, so the difference is taken in ticks, modulo that, before
+/// converting: a raw tick count converted to `f64` first would also lose precision on GPUs whose
+/// counters start far from zero.
+pub fn elapsed_ns(start: u64, end: u64, valid_bits: u32, period_ns: f32) -> f64 {
+    let mask = if valid_bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << valid_bits) - 1
+    };
+    let ticks = end.wrapping_sub(start) & mask;
+    ticks as f64 * period_ns as f64
 }
 
 struct PoolGuard<'d> {

@@ -4,11 +4,13 @@ use super::device_info::DeviceInfo;
 use super::error::{GpuError, GpuResult, VkContext};
 use super::features::{enabled, Feature, REQUIRED_FEATURES};
 use super::kernel::KernelCache;
+use super::memory::MemoryMode;
 use super::validation::{messenger_callback, ValidationLog, VALIDATION_LAYER};
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
 use std::ffi::{CStr, CString};
 use std::mem::ManuallyDrop;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, Weak};
 
 /// Environment variable naming the device (`NAME` substring or `INDEX`), like `--device`.
@@ -34,6 +36,9 @@ pub struct GpuOptions {
     pub device: Option<String>,
     /// Validation layer on or off.
     pub validation: Validation,
+    /// How buffers reach host data. `None` reads `LAZYSOLID_MEMORY` when the device is
+    /// created, so every way of creating a device honours the switch.
+    pub memory: Option<MemoryMode>,
 }
 
 impl GpuOptions {
@@ -46,7 +51,11 @@ impl GpuOptions {
             Ok("1") => Validation::Required(format!("{VALIDATION_ENV}=1 is set")),
             _ => Validation::Off,
         };
-        GpuOptions { device, validation }
+        GpuOptions {
+            device,
+            validation,
+            memory: None,
+        }
     }
 
     /// Options for tests: the environment's device choice, validation always required.
@@ -78,12 +87,23 @@ pub(crate) struct GpuInner {
     pub(crate) queue_family: u32,
     pub(crate) allocator: ManuallyDrop<Mutex<Allocator>>,
     pub(crate) info: DeviceInfo,
+    pub(crate) memory: MemoryMode,
+    /// Uploads and readbacks that went through a staging buffer.
+    pub(crate) staging_copies: AtomicU64,
     validation_log: Arc<ValidationLog>,
 }
 
 impl Gpu {
     /// Creates the device described by `options`.
+    ///
+    /// # Errors
+    /// No or no matching device, a missing feature or validation layer, an unknown
+    /// `LAZYSOLID_MEMORY` value, Vulkan and allocator failures.
     pub fn new(options: &GpuOptions) -> GpuResult<Gpu> {
+        let memory = match options.memory {
+            Some(m) => m,
+            None => MemoryMode::from_env()?,
+        };
         let entry =
             unsafe { ash::Entry::load() }.map_err(|e| GpuError::LoaderMissing(e.to_string()))?;
         let validation = match &options.validation {
@@ -166,11 +186,12 @@ impl Gpu {
                 let debug_device =
                     validation.then(|| ash::ext::debug_utils::Device::new(&instance, &device));
                 log::info!(
-                    "Vulkan device {} ({}, {}), validation {}",
+                    "Vulkan device {} ({}, {}), validation {}, memory {}",
                     info.name,
                     info.device_type,
                     info.driver,
-                    if validation { "on" } else { "off" }
+                    if validation { "on" } else { "off" },
+                    memory.name()
                 );
                 Ok(Gpu {
                     kernels: Arc::default(),
@@ -185,6 +206,8 @@ impl Gpu {
                         queue_family,
                         allocator: ManuallyDrop::new(Mutex::new(allocator)),
                         info,
+                        memory,
+                        staging_copies: AtomicU64::new(0),
                         validation_log,
                     }),
                 })
@@ -214,6 +237,17 @@ impl Gpu {
     /// The chosen device's properties and limits.
     pub fn info(&self) -> &DeviceInfo {
         &self.inner.info
+    }
+
+    /// How this device's buffers reach host data (see [`MemoryMode`]).
+    pub fn memory_mode(&self) -> MemoryMode {
+        self.inner.memory
+    }
+
+    /// How many uploads and readbacks have gone through a staging buffer so far: every one in
+    /// [`MemoryMode::DeviceLocal`], none on a host-visible heap otherwise.
+    pub fn staging_copies(&self) -> u64 {
+        self.inner.staging_copies.load(Ordering::Relaxed)
     }
 
     /// What the validation layer reported; it stays readable after the device is destroyed, when

@@ -7,6 +7,14 @@ use super::features::{
 use ash::vk;
 use std::ffi::CStr;
 
+/// The `maxComputeSharedMemorySize` every kernel is designed to fit: lavapipe's, and the
+/// smallest among common GPUs (NVIDIA offers 48 KiB, AMD and Intel 64 KiB; Vulkan guarantees
+/// only 16 KiB). Kernels check their need against the device and name the limit when over it.
+pub const DESIGN_SHARED_MEMORY: u32 = 32 * 1024;
+/// The largest workgroup any kernel is designed to use: common GPUs allow 1024 invocations,
+/// Vulkan guarantees only 128; lazysolid's kernels use 64–256.
+pub const DESIGN_WORKGROUP_INVOCATIONS: u32 = 256;
+
 /// Properties and limits of one physical device that lazysolid's kernels depend on.
 #[derive(Clone, Debug)]
 pub struct DeviceInfo {
@@ -42,8 +50,13 @@ pub struct DeviceInfo {
     pub max_workgroup_invocations: u32,
     /// The features of [`REQUIRED_FEATURES`] the device supports.
     pub features: Vec<Feature>,
-    /// `timestampPeriod` in nanoseconds.
+    /// `timestampPeriod`: nanoseconds per timestamp tick (1 on lavapipe and NVIDIA; tens of
+    /// nanoseconds on many AMD and Intel GPUs).
     pub timestamp_period_ns: f32,
+    /// `timestampValidBits` of the queue family lazysolid submits to (the first compute family
+    /// with timestamps), 0 when none: the bits of a timestamp that count, 64 on lavapipe and
+    /// 36–64 on GPUs. Differences are taken modulo `2^bits`.
+    pub timestamp_valid_bits: u32,
 }
 
 impl DeviceInfo {
@@ -116,9 +129,12 @@ impl DeviceInfo {
                 )
         });
         let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
-        let timestamps = families
+        // The same family `create_device` picks.
+        let timestamp_valid_bits = families
             .iter()
-            .any(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0);
+            .find(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE) && f.timestamp_valid_bits > 0)
+            .map_or(0, |f| f.timestamp_valid_bits);
+        let timestamps = timestamp_valid_bits > 0;
         let extensions =
             unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
         let supported = DeviceCapabilities {
@@ -178,6 +194,7 @@ impl DeviceInfo {
             max_workgroup_invocations: props.limits.max_compute_work_group_invocations,
             features: supported,
             timestamp_period_ns: props.limits.timestamp_period,
+            timestamp_valid_bits,
         }
     }
 }

@@ -84,6 +84,16 @@ pub enum GpuError {
     /// An argument is outside what an operation supports.
     #[error("{0}")]
     InvalidArgument(String),
+    /// A setting (an environment variable or option) holds a value it does not accept.
+    #[error("{setting}={value:?} is not accepted; expected one of: {expected}")]
+    BadSetting {
+        /// The variable or option, e.g. `LAZYSOLID_MEMORY`.
+        setting: String,
+        /// The value found.
+        value: String,
+        /// The accepted values, comma-separated.
+        expected: String,
+    },
 }
 
 /// Result type of the Vulkan core.

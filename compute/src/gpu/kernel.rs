@@ -52,6 +52,8 @@ pub struct KernelDef {
 /// (`layout(local_size_x_id = 0) in;`).
 pub const WORKGROUP_SIZE_ID: u32 = 0;
 
+const _: () = assert!(DEFAULT_WORKGROUP_SIZE <= super::DESIGN_WORKGROUP_INVOCATIONS);
+
 /// A compute pipeline with its layouts, shared through the device's kernel cache: get it with
 /// [`Gpu::kernel`] or [`Gpu::kernel_with`], dispatch it as often as needed.
 pub struct Kernel {

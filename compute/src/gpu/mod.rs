@@ -18,19 +18,21 @@ mod error;
 mod features;
 mod keep_alive;
 mod kernel;
+mod memory;
 mod push;
 mod records;
 mod validation;
 
 pub use address::DeviceAddress;
 pub use buffer::{BufferArg, GpuBuffer};
-pub use commands::{Recorder, MAX_TIMESTAMPS};
+pub use commands::{elapsed_ns, Recorder, MAX_TIMESTAMPS};
 pub use context::{Gpu, GpuOptions, Validation, WeakGpu, DEVICE_ENV, VALIDATION_ENV};
-pub use device_info::DeviceInfo;
+pub use device_info::{DeviceInfo, DESIGN_SHARED_MEMORY, DESIGN_WORKGROUP_INVOCATIONS};
 pub use error::{GpuError, GpuResult};
 pub use features::{check_features, Feature, REQUIRED_FEATURES};
 pub use keep_alive::KeepAlive;
 pub use kernel::{BindingDef, BindingKind, Kernel, KernelDef, WORKGROUP_SIZE_ID};
+pub use memory::{MemoryMode, MEMORY_ENV};
 pub use push::{
     align_up, check_fields, check_push_block, host_fields, push_bytes, HostField, PushBlock,
     PushFieldDef, PushRegistration, PushValue,

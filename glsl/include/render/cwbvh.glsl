@@ -29,9 +29,10 @@ layout(binding = 4, scalar) readonly buffer BvhInstances { BvhInstance bvh_insta
 // Nearest distance a node's box may start at (obvhs's EPSILON): boxes entirely closer are
 // skipped, as on the CPU.
 #define CWBVH_NODE_TMIN 0.0001
-// Entries of each invocation's traversal stack (obvhs's CPU traversal uses 32).
+// Entries of each invocation's traversal stack: CWBVH_STACK_SIZE, defined once in
+// renderer/src/shader_constants.rs.
 #ifndef CWBVH_STACK_SIZE
-#define CWBVH_STACK_SIZE 32
+#error "CWBVH_STACK_SIZE comes from renderer/src/shader_constants.rs"
 #endif
 // The stacks live in shared memory: lavapipe turns a dynamically indexed private array into a
 // ladder of selects over every entry, which made each push and pop cost as much as a node test.

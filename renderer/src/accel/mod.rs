@@ -19,7 +19,7 @@ pub use device::DeviceBvh;
 pub use gpu_types::{GpuInstance, GpuRay, GpuRayHit, GpuTriangle, GpuTriangleNormals};
 pub use mesh_bvh::MeshBvh;
 pub use normals::corner_normals;
-pub use ray_queries::{QueryKind, RayQueries};
+pub use ray_queries::{QueryKind, RayQueries, CWBVH_SHARED_BYTES};
 pub use scene_bvh::{InstanceDesc, SceneBvh};
 
 /// Build quality of every BVH of a render: obvhs's `medium_build` preset (PLOC plus

@@ -4,8 +4,8 @@
 use super::device::DeviceBvh;
 use super::gpu_types::{GpuRay, GpuRayHit};
 use crate::kernels::render::TRACE_RAYS;
-use crate::shader_constants::CWBVH_WORKGROUP_SIZE;
-use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuResult, Kernel, Recorder};
+use crate::shader_constants::{CWBVH_STACK_SIZE, CWBVH_WORKGROUP_SIZE};
+use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuError, GpuResult, Kernel, KernelDef, Recorder};
 use std::sync::Arc;
 
 lazysolid_compute::push_block! {
@@ -27,6 +27,40 @@ pub enum QueryKind {
     Any,
 }
 
+/// Bytes of shared memory a workgroup of a kernel including `render/cwbvh.glsl` needs: one
+/// stack of `uvec2` entries per invocation.
+pub const CWBVH_SHARED_BYTES: u32 = CWBVH_WORKGROUP_SIZE * CWBVH_STACK_SIZE * 8;
+const _: () = assert!(
+    CWBVH_SHARED_BYTES <= lazysolid_compute::gpu::DESIGN_SHARED_MEMORY
+        && CWBVH_WORKGROUP_SIZE <= lazysolid_compute::gpu::DESIGN_WORKGROUP_INVOCATIONS
+);
+
+/// `def`, a kernel that traces through `render/cwbvh.glsl`, at [`CWBVH_WORKGROUP_SIZE`] with the
+/// given specialization constants, once its traversal stacks are known to fit the device's
+/// shared memory: a device with less gets an error naming the limit, not a failed pipeline.
+///
+/// # Errors
+/// [`GpuError::OverLimit`] for `maxComputeSharedMemorySize`; pipeline creation failures.
+pub(crate) fn cwbvh_kernel(
+    gpu: &Gpu,
+    def: &'static KernelDef,
+    constants: &[(u32, u32)],
+) -> GpuResult<Arc<Kernel>> {
+    let limit = gpu.info().max_shared_memory;
+    if CWBVH_SHARED_BYTES > limit {
+        return Err(GpuError::OverLimit {
+            what: format!(
+                "kernel {}: traversal stacks of {CWBVH_WORKGROUP_SIZE} invocations x {CWBVH_STACK_SIZE} entries",
+                def.name
+            ),
+            requested: CWBVH_SHARED_BYTES as u64,
+            limit_name: "maxComputeSharedMemorySize",
+            limit: limit as u64,
+        });
+    }
+    gpu.kernel_with(def, CWBVH_WORKGROUP_SIZE, constants)
+}
+
 /// The ray-query kernel.
 pub struct RayQueries {
     kernel: Arc<Kernel>,
@@ -39,7 +73,7 @@ impl RayQueries {
     /// Pipeline creation failures.
     pub fn new(gpu: &Gpu) -> GpuResult<RayQueries> {
         Ok(RayQueries {
-            kernel: gpu.kernel_with(&TRACE_RAYS, CWBVH_WORKGROUP_SIZE, &[])?,
+            kernel: cwbvh_kernel(gpu, &TRACE_RAYS, &[])?,
         })
     }
 

@@ -8,7 +8,7 @@ use crate::accel::{DeviceBvh, SceneBvh};
 use crate::kernels::render::PATH_TRACE;
 use crate::output::Film;
 use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
-use crate::shader_constants::{CWBVH_WORKGROUP_SIZE, PATH_TRACE_STORE_KINDS_ID};
+use crate::shader_constants::PATH_TRACE_STORE_KINDS_ID;
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
 use bytemuck::Zeroable;
 use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
@@ -115,9 +115,9 @@ impl PathTracer {
         };
         Ok(PathTracer {
             gpu: gpu.clone(),
-            kernel: gpu.kernel_with(
+            kernel: crate::accel::ray_queries::cwbvh_kernel(
+                gpu,
                 &PATH_TRACE,
-                CWBVH_WORKGROUP_SIZE,
                 &[(PATH_TRACE_STORE_KINDS_ID, stores.kinds_mask())],
             )?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,

@@ -25,6 +25,9 @@ pub struct RunInfo {
     pub device_type: String,
     pub driver: String,
     pub vulkan_api: String,
+    /// `auto` or `device-local` (`LAZYSOLID_MEMORY`): whether uploads and readbacks were
+    /// mapped copies or went through staging, which changes what the wall times include.
+    pub memory_mode: String,
     /// When the run started: the one timestamp of the run, also in its file and folder names.
     pub date_utc: String,
     /// The project's revision the executable was built from.
@@ -117,6 +120,7 @@ impl Bench {
             device_type: d.device_type.clone(),
             driver: d.driver.clone(),
             vulkan_api: d.api_version.clone(),
+            memory_mode: gpu.memory_mode().name().to_string(),
             date_utc: start.format("%Y-%m-%dT%H:%M:%SZ").to_string(),
             revision: REVISION.to_string(),
             host_cpu: host_cpu(),

@@ -1,6 +1,8 @@
 //! `lazysolid device`: what each Vulkan device offers that lazysolid relies on.
 
-use lazysolid_compute::gpu::{DeviceInfo, Gpu, GpuOptions, REQUIRED_FEATURES};
+use lazysolid_compute::gpu::{
+    DeviceInfo, Gpu, GpuOptions, MemoryMode, MEMORY_ENV, REQUIRED_FEATURES,
+};
 
 fn mib(bytes: u64) -> String {
     if bytes == u64::MAX {
@@ -20,6 +22,8 @@ fn yes(b: bool) -> &'static str {
 
 /// Prints every device and marks the one lazysolid would use.
 pub fn run(wanted: Option<&str>) -> anyhow::Result<()> {
+    // A bad switch is an error of its own, not "no usable device".
+    let memory = MemoryMode::from_env()?;
     let devices = Gpu::list_devices()?;
     // Which device would be chosen: resolve it the way every other subcommand does, without
     // validation (listing must work where the layer is absent).
@@ -35,6 +39,14 @@ pub fn run(wanted: Option<&str>) -> anyhow::Result<()> {
     if let Err(e) = chosen {
         anyhow::bail!("no usable device: {e}");
     }
+    println!(
+        "memory mode: {} ({MEMORY_ENV}){}",
+        memory.name(),
+        match memory {
+            MemoryMode::Auto => "",
+            MemoryMode::DeviceLocal => ": every upload and readback through staging",
+        }
+    );
     Ok(())
 }
 
@@ -71,6 +83,7 @@ fn print_device(d: &DeviceInfo, chosen: bool) {
         ("maxBufferSize", mib(d.max_buffer_size)),
         ("subgroup size", d.subgroup_size.to_string()),
         ("timestamp period", format!("{} ns", d.timestamp_period_ns)),
+        ("timestamp valid bits", d.timestamp_valid_bits.to_string()),
         (
             "compute shared memory",
             format!("{} KiB", d.max_shared_memory / 1024),
