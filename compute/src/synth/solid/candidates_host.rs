@@ -22,7 +22,7 @@ use super::candidates::{
     LevelReport, SearchKey, SolidCandidates, StripMatches, MAX_CANDIDATES,
 };
 use super::roles::{image_axis, shared_axis, ROLES};
-use super::strip_tree::{ssd, StripTree};
+use super::strip_tree::{distinct_strips, ssd, StripTree};
 use super::strips::{along, sample_offset};
 use crate::synth::coords::{pack, unpack};
 use crate::synth::SynthResult;
@@ -54,10 +54,18 @@ fn search_host(
     let queries = strips(&level.roles[k.query].colours, k.query_axis, n, h, m);
     let targets = strips(&level.roles[k.target].colours, k.target_axis, n, h, m);
     let tree = StripTree::new(&targets, dims);
-    let rows: Vec<Vec<(u32, u32)>> = queries
+    // Identical query strips have the same matches: each distinct one is searched once.
+    let (distinct, members, first) = distinct_strips(&queries, dims);
+    let found: Vec<Vec<(u32, u32)>> = distinct
         .par_chunks_exact(dims)
         .map(|query| tree.nearest(query, s))
         .collect();
+    let mut rows: Vec<&[(u32, u32)]> = vec![&[]; (m * m) as usize];
+    for (u, row) in found.iter().enumerate() {
+        for &p in &members[first[u] as usize..first[u + 1] as usize] {
+            rows[p as usize] = row;
+        }
+    }
     StripMatches {
         s: s as u32,
         pixels: rows.iter().flat_map(|r| r.iter().map(|x| x.1)).collect(),

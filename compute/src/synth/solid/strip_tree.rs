@@ -9,6 +9,10 @@
 //! and a cell is skipped only when its bound exceeds the k-th distance by more than any
 //! rounding of the rotation, so the result — ranked by (distance, index) — is the brute
 //! force's, ties included.
+//!
+//! Identical strips are one point of the tree holding all their pixels (in increasing order):
+//! at the coarsest levels of a Gaussian stack most strips are the same few colours, every
+//! distance ties, and without this the search degenerates to the brute force.
 
 use nalgebra::{DMatrix, SymmetricEigen};
 use std::collections::BinaryHeap;
@@ -30,8 +34,12 @@ enum Node {
 }
 
 /// A k-d tree over `dims`-value integer strips.
-pub(crate) struct StripTree<'a> {
-    strips: &'a [i32],
+pub(crate) struct StripTree {
+    /// The distinct strips.
+    strips: Vec<i32>,
+    /// Pixels of distinct strip `u`: `members[first[u]..first[u + 1]]`, increasing.
+    members: Vec<u32>,
+    first: Vec<u32>,
     dims: usize,
     /// Row-major rotation into the principal axes (largest variance first).
     rotation: Vec<f64>,
@@ -55,9 +63,27 @@ fn ruled_out(bound: f64, worst: u32) -> bool {
     bound > f64::from(worst) * (1.0 + 1e-9) + 1e-6
 }
 
-impl<'a> StripTree<'a> {
-    /// Builds the tree over `strips` (`dims` values each).
-    pub(crate) fn new(strips: &'a [i32], dims: usize) -> StripTree<'a> {
+/// The distinct strips of `all` (`dims` values each) and, per distinct strip, its pixels in
+/// increasing order (`members[first[u]..first[u + 1]]`).
+pub(crate) fn distinct_strips(all: &[i32], dims: usize) -> (Vec<i32>, Vec<u32>, Vec<u32>) {
+    let mut order: Vec<u32> = (0..(all.len() / dims) as u32).collect();
+    let strip = |i: u32| &all[i as usize * dims..][..dims];
+    order.sort_unstable_by(|&a, &b| strip(a).cmp(strip(b)).then(a.cmp(&b)));
+    let (mut strips, mut first) = (Vec::new(), Vec::new());
+    for (k, &i) in order.iter().enumerate() {
+        if k == 0 || strip(order[k - 1]) != strip(i) {
+            first.push(k as u32);
+            strips.extend_from_slice(strip(i));
+        }
+    }
+    first.push(order.len() as u32);
+    (strips, order, first)
+}
+
+impl StripTree {
+    /// Builds the tree over `all` (`dims` values per pixel).
+    pub(crate) fn new(all: &[i32], dims: usize) -> StripTree {
+        let (strips, members, first) = distinct_strips(all, dims);
         let n = strips.len() / dims;
         let mut mean = vec![0.0f64; dims];
         for v in strips.chunks_exact(dims) {
@@ -84,7 +110,9 @@ impl<'a> StripTree<'a> {
             .map(|(k, d)| eigen.eigenvectors[(d, k)])
             .collect();
         let mut tree = StripTree {
-            strips,
+            strips: Vec::new(),
+            members,
+            first,
             dims,
             rotated: Vec::with_capacity(n * dims),
             rotation,
@@ -95,6 +123,7 @@ impl<'a> StripTree<'a> {
             let r = tree.rotate(v);
             tree.rotated.extend(r);
         }
+        tree.strips = strips;
         tree.build(0, n);
         tree
     }
@@ -178,13 +207,19 @@ impl<'a> StripTree<'a> {
     ) {
         match self.nodes[node as usize] {
             Node::Leaf { start, end } => {
-                for &i in &self.order[start as usize..end as usize] {
-                    let d = ssd(query, &self.strips[i as usize * self.dims..][..self.dims]);
-                    if heap.len() < k {
-                        heap.push((d, i));
-                    } else if (d, i) < *heap.peek().expect("full") {
-                        heap.pop();
-                        heap.push((d, i));
+                for &u in &self.order[start as usize..end as usize] {
+                    let d = ssd(query, &self.strips[u as usize * self.dims..][..self.dims]);
+                    let (a, b) = (self.first[u as usize], self.first[u as usize + 1]);
+                    for &pixel in &self.members[a as usize..b as usize] {
+                        if heap.len() < k {
+                            heap.push((d, pixel));
+                        } else if (d, pixel) < *heap.peek().expect("full") {
+                            heap.pop();
+                            heap.push((d, pixel));
+                        } else {
+                            // Later pixels of this strip rank after this one.
+                            break;
+                        }
                     }
                 }
             }
