@@ -178,7 +178,7 @@ fn synth_2d(
 ) -> anyhow::Result<([AxisQuality; 3], Vec<[u8; 3]>)> {
     let mut out = Vec::new();
     let mut image = Vec::new();
-    for r in 0..3 {
+    for (r, scorer) in scorers.iter().enumerate() {
         let e = exemplars.role(r);
         let a = analyze(e, &AnalysisParams::default())?;
         let levels = a.levels.len() as u32;
@@ -200,7 +200,7 @@ fn synth_2d(
         )?;
         let rgb = s.colours(e);
         let repetition = period_repetition(&s.window_coords(), n, n, e.width, e.height);
-        out.push(scorers[r].score(energy, e, &rgb, n, n, repetition, samples)?);
+        out.push(scorer.score(energy, e, &rgb, n, n, repetition, samples)?);
         if r == 0 {
             image = rgb;
         }

@@ -233,11 +233,11 @@ pub fn axis_quality(
     let n = synthesis.window.size[0];
     let m = exemplars.side();
     let mut out = Vec::with_capacity(3);
-    for axis in 0..3 {
+    for (axis, scorer) in scorers.iter().enumerate() {
         let (rgb, coords) = slice(synthesis, colours, axis, n / 2);
         let e = exemplars.role(axis);
         let repetition = period_repetition(&coords, n, n, m, m);
-        out.push(scorers[axis].score(energy, e, &rgb, n, n, repetition, samples)?);
+        out.push(scorer.score(energy, e, &rgb, n, n, repetition, samples)?);
     }
     Ok(out.try_into().expect("three axes"))
 }

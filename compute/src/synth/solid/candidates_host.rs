@@ -96,14 +96,14 @@ fn triples_host(
             let mut heap: BinaryHeap<(u32, u32)> = BinaryHeap::with_capacity(kept + 1);
             let d1 = &m1.distances[p * s..][..s];
             let d2 = &m2.distances[p * s..][..s];
-            for i in 0..s {
-                if heap.len() == kept && d1[i] + d2[0] > heap.peek().expect("full").0 {
+            for (i, &di) in d1.iter().enumerate() {
+                if heap.len() == kept && di + d2[0] > heap.peek().expect("full").0 {
                     break;
                 }
                 let q1 = m1.pixels[p * s + i] as usize;
                 let v1 = &s1[q1 * dims..][..dims];
-                for j in 0..s {
-                    let bound = d1[i] + d2[j];
+                for (j, &dj) in d2.iter().enumerate() {
+                    let bound = di + dj;
                     if heap.len() == kept && bound > heap.peek().expect("full").0 {
                         break;
                     }

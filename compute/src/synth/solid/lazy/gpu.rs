@@ -29,7 +29,7 @@ use crate::synth::solid::analysis::{analyze_solid, pack_rgb, SolidAnalysis};
 use crate::synth::solid::candidates::CandidateParams;
 use crate::synth::solid::candidates::SolidCandidates;
 use crate::synth::solid::candidates_cache::candidates_cached;
-use crate::synth::solid::candidates_gpu::GpuCandidates;
+use crate::synth::solid::candidates_host::CandidateBuilder;
 use crate::synth::solid::cpu::check_levels;
 use crate::synth::solid::defaults::{default_solid_jitter, default_solid_passes};
 use crate::synth::solid::gpu::GpuSolidSynthesizer;
@@ -385,7 +385,8 @@ impl GpuLazySolid {
         let analysis = analyze_solid(exemplars);
         let params = CandidateParams::default();
         let (candidates, _) = candidates_cached(exemplars, &params, cache, || {
-            GpuCandidates::new(gpu)?.compute(&analysis, &params, &mut |_| {})
+            // The same candidates on either side; natively on the host on a CPU device.
+            CandidateBuilder::Auto.compute(gpu, &analysis, &params, &mut |_| {})
         })?;
         let levels = analysis.levels.len() as u32;
         let synth = SynthParams::new(
