@@ -138,6 +138,11 @@ fn figures_are_deterministic_and_a_copy_scores_below_the_unit() {
     assert_eq!(cal.octaves(), cal.counts.len());
     // terra is 64²: its halves are too small for a third band of 64 patches.
     assert_eq!(cal.octaves(), 2, "{:?}", cal.counts);
+    // A 16² exemplar's halves (8×16) hold 20 patches: no band, no figure.
+    let tiny = ex.crop(0, 0, 16, 16);
+    let none = SwdCalibration::new(&tiny, SwdParams::default());
+    assert_eq!(none.octaves(), 0);
+    assert!(none.measure(&tiny).ratio.is_nan());
     let s = Blockiness::measure(&ex, &ex);
     assert!((s.ratio - 1.0).abs() < 1e-12);
 }

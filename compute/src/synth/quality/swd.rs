@@ -114,7 +114,7 @@ pub struct SwdReport {
     /// Mean over the bands used.
     pub mean: f64,
     /// Mean over the bands of the band's distance over its calibration unit: 1 is the
-    /// exemplar's own variability.
+    /// exemplar's own variability; NaN when the exemplar is too small for any band.
     pub ratio: f64,
 }
 
@@ -191,7 +191,13 @@ impl SwdCalibration {
             .map(|(d, u)| d / u.max(f64::MIN_POSITIVE))
             .collect();
         SwdReport {
-            ratio: mean(&ratios),
+            // No band at all (an exemplar whose halves hold under `min_patches` patches even
+            // at the finest band): no figure rather than a misleading 0.
+            ratio: if ratios.is_empty() {
+                f64::NAN
+            } else {
+                mean(&ratios)
+            },
             mean: mean(&per_octave),
             per_octave,
         }
