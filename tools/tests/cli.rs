@@ -1287,11 +1287,15 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
     let (ok, stdout, err) = solid(&[]);
     assert!(ok, "{err}");
     for needle in [
-        "candidates (GPU)",
+        // On lavapipe (a CPU device) the candidates are computed on the host.
+        "candidates (host)",
         "synthesis (GPU)",
         "peak GPU memory",
-        "slice perpendicular to z vs E_z: energy",
+        "triples: 100.0 % are candidates of their pixel",
+        "slice perpendicular to z vs E_z: SWD",
+        "blockiness",
         "period repetition",
+        "energy",
         "render (GPU)",
     ] {
         assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
@@ -1423,26 +1427,34 @@ fn bench_solid_writes_times_quality_and_figures() {
         out.path(),
         &[
             "terra 16² candidates",
+            "lazysolid gpu kernels (wall)",
+            "lazysolid host, pruned (wall)",
             "lazysolid gpu synthesis (wall)",
             "lazysolid end-to-end cold (wall)",
             "lazysolid end-to-end warm (wall)",
             "terra 16³ peak GPU MiB",
+            "keep current",
             "crossbar only",
             "extruded E_z",
             "2d synth",
         ],
     );
     let implementations = bench.column("implementation");
-    assert_eq!(implementations.len(), 4, "{implementations:?}");
+    assert_eq!(implementations.len(), 5, "{implementations:?}");
     let figures = bench
         .entries
         .iter()
         .find(|p| p.is_dir())
         .expect("a figures folder");
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
-    // Four variants, three axes each, plus the header.
-    assert_eq!(quality.lines().count(), 1 + 4 * 3, "{quality}");
-    for name in ["terra-16-slices.png", "terra-slab.png", "quality.json"] {
+    // Five variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 5 * 3, "{quality}");
+    for name in [
+        "terra-16-slices.png",
+        "terra-16-keep-current-slices.png",
+        "terra-slab.png",
+        "quality.json",
+    ] {
         assert!(figures.join(name).exists(), "{name}");
     }
     assert!(bench.stdout.contains("quality table"), "{}", bench.stdout);
