@@ -341,6 +341,16 @@ pub fn coherence_step_cpu(sets: &CandidateSets, e: usize, h: u32, m: u32) -> (Ca
             }
         })
         .collect();
+    keep_rows(sets, rows)
+}
+
+/// The sets that keep, per pixel, the slots `rows[p].0` of `sets` (in that order), and the
+/// number of pixels whose row says they fell back: what one coherence iteration returns.
+pub(crate) fn keep_rows(
+    sets: &CandidateSets,
+    rows: Vec<(Vec<usize>, bool)>,
+) -> (CandidateSets, u64) {
+    let slots = sets.slots;
     let mut out = CandidateSets {
         slots,
         triples: vec![[0; 3]; sets.triples.len()],

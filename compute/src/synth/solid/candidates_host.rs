@@ -18,8 +18,8 @@
 
 use super::analysis::{unpack_rgb, SolidAnalysis, SolidLevel};
 use super::candidates::{
-    filter_and_cut, image_key, neighbours4, others, search_key, CandidateParams, CandidateSets,
-    LevelReport, SearchKey, SolidCandidates, StripMatches, MAX_CANDIDATES,
+    filter_and_cut, image_key, keep_rows, neighbours4, others, search_key, CandidateParams,
+    CandidateSets, LevelReport, SearchKey, SolidCandidates, StripMatches, MAX_CANDIDATES,
 };
 use super::roles::{image_axis, shared_axis, ROLES};
 use super::strip_tree::{distinct_strips, ssd, StripTree};
@@ -187,22 +187,7 @@ fn coherence_step_host(sets: &CandidateSets, e: usize, h: u32, m: u32) -> (Candi
             }
         })
         .collect();
-    let mut out = CandidateSets {
-        slots,
-        triples: vec![[0; 3]; sets.triples.len()],
-        errors: vec![0; sets.errors.len()],
-        counts: vec![0; sets.counts.len()],
-    };
-    let mut fallbacks = 0;
-    for (p, (kept, fell_back)) in rows.into_iter().enumerate() {
-        fallbacks += fell_back as u64;
-        out.counts[p] = kept.len() as u32;
-        for (slot, k) in kept.into_iter().enumerate() {
-            out.triples[p * slots + slot] = sets.triples[p * slots + k];
-            out.errors[p * slots + slot] = sets.errors[p * slots + k];
-        }
-    }
-    (out, fallbacks)
+    keep_rows(sets, rows)
 }
 
 /// The candidates of every level, computed on the host with pruned searches; equal to
