@@ -210,6 +210,17 @@ pub(crate) fn others(e: usize) -> [usize; 2] {
     }
 }
 
+/// The two other roles `[f1, f2]` of role `e` and the image axes `[a1, a2]` along which their
+/// strips meet: the third pair of strips of `e`'s crossbar.
+pub(crate) fn crossbar_pair(e: usize) -> ([usize; 2], [usize; 2]) {
+    let [f1, f2] = others(e);
+    let a = shared_axis(f1, f2);
+    (
+        [f1, f2],
+        [image_axis(f1, a).unwrap(), image_axis(f2, a).unwrap()],
+    )
+}
+
 /// CPU strip search (reference of `strip_search.comp`).
 pub fn search_cpu(
     level: &SolidLevel,
@@ -250,9 +261,7 @@ pub fn triples_cpu(
     side: u32,
     params: &CandidateParams,
 ) -> CandidateSets {
-    let [f1, f2] = others(e);
-    let a = shared_axis(f1, f2);
-    let (a1, a2) = (image_axis(f1, a).unwrap(), image_axis(f2, a).unwrap());
+    let ([f1, f2], [a1, a2]) = crossbar_pair(e);
     let (c1, c2) = (&level.roles[f1].colours, &level.roles[f2].colours);
     let (n, h, m, s) = (params.strip, level.spacing, side, params.s as usize);
     let kept = params.kept();
@@ -399,6 +408,31 @@ pub(crate) fn filter_and_cut<E>(
     Ok(cut)
 }
 
+/// One level's candidate sets of the three roles: each role's crossbar ranking from its two
+/// strip searches (looked up in `memo` by the images they compare), then the coherence
+/// iterations and the cut. Shared by the CPU reference, the host builder and the GPU kernels,
+/// so that the sequence, and with it the report, is one.
+pub(crate) fn level_sets<M, E>(
+    analysis: &SolidAnalysis,
+    memo: &HashMap<SearchKey, M>,
+    params: &CandidateParams,
+    report: &mut LevelReport,
+    mut rank: impl FnMut(usize, &M, &M) -> Result<CandidateSets, E>,
+    mut step: impl FnMut(&CandidateSets, usize) -> Result<(CandidateSets, u64), E>,
+) -> Result<[CandidateSets; ROLES], E> {
+    let mut sets = Vec::with_capacity(ROLES);
+    for e in 0..ROLES {
+        let [f1, f2] = others(e);
+        let m1 = &memo[&image_key(analysis, search_key(e, f1))];
+        let m2 = &memo[&image_key(analysis, search_key(e, f2))];
+        let ranked = rank(e, m1, m2)?;
+        sets.push(filter_and_cut(ranked, params, report, |s| step(s, e))?);
+    }
+    Ok(sets
+        .try_into()
+        .unwrap_or_else(|_| unreachable!("three roles")))
+}
+
 /// The candidates of every level on the CPU (the reference of [`super::GpuCandidates`]).
 ///
 /// # Errors
@@ -413,31 +447,29 @@ pub fn candidates_cpu(
     let mut reports = Vec::new();
     for level in &analysis.levels {
         let mut memo: HashMap<SearchKey, StripMatches> = HashMap::new();
-        let mut matches = |e: usize, f: usize| {
-            let k = search_key(e, f);
-            memo.entry(image_key(analysis, k))
-                .or_insert_with(|| {
+        for e in 0..ROLES {
+            for f in others(e) {
+                let k = search_key(e, f);
+                memo.entry(image_key(analysis, k)).or_insert_with(|| {
                     search_cpu(
                         level,
                         (k.query, k.query_axis, k.target, k.target_axis),
                         m,
                         params,
                     )
-                })
-                .clone()
-        };
-        let mut report = LevelReport::default();
-        let mut sets = Vec::with_capacity(ROLES);
-        for e in 0..ROLES {
-            let [f1, f2] = others(e);
-            let (m1, m2) = (matches(e, f1), matches(e, f2));
-            let ranked = triples_cpu(level, e, &m1, &m2, m, params);
-            let cut = filter_and_cut(ranked, params, &mut report, |s| {
-                Ok::<_, SynthError>(coherence_step_cpu(s, e, level.spacing, m))
-            })?;
-            sets.push(cut);
+                });
+            }
         }
-        levels.push(sets.try_into().expect("three roles"));
+        let mut report = LevelReport::default();
+        let sets = level_sets(
+            analysis,
+            &memo,
+            params,
+            &mut report,
+            |e, m1, m2| Ok::<_, SynthError>(triples_cpu(level, e, m1, m2, m, params)),
+            |s, e| Ok(coherence_step_cpu(s, e, level.spacing, m)),
+        )?;
+        levels.push(sets);
         reports.push(report);
     }
     Ok(SolidCandidates { levels, reports })

@@ -4,11 +4,11 @@
 
 use super::analysis::{SolidAnalysis, SolidLevel};
 use super::candidates::{
-    filter_and_cut, image_key, others, search_key, CandidateParams, CandidateSets, LevelReport,
-    SearchKey, SolidCandidates,
+    crossbar_pair, image_key, level_sets, others, search_key, CandidateParams, CandidateSets,
+    LevelReport, SearchKey, SolidCandidates,
 };
 use super::loop_budget::{items_per_dispatch, loop_cost, LOOP_BUDGET};
-use super::roles::{image_axis, shared_axis, ROLES};
+use super::roles::ROLES;
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth_solid;
 use crate::synth::SynthResult;
@@ -189,18 +189,15 @@ impl GpuCandidates {
                 }
             }
             let mut report = LevelReport::default();
-            let mut sets = Vec::with_capacity(ROLES);
-            for e in 0..ROLES {
-                let [f1, f2] = others(e);
-                let m1 = &memo[&image_key(analysis, search_key(e, f1))];
-                let m2 = &memo[&image_key(analysis, search_key(e, f2))];
-                let ranked = self.rank(level, &colours, e, m1, m2, shift, params)?;
-                let cut = filter_and_cut(ranked, params, &mut report, |s| {
-                    self.coherence_step(s, e, level.spacing, shift, pixels)
-                })?;
-                sets.push(cut);
-            }
-            levels.push(sets.try_into().expect("three roles"));
+            let sets = level_sets(
+                analysis,
+                &memo,
+                params,
+                &mut report,
+                |e, m1, m2| self.rank(level, &colours, e, m1, m2, shift, params),
+                |s, e| self.coherence_step(s, e, level.spacing, shift, pixels),
+            )?;
+            levels.push(sets);
             reports.push(report);
             on_level(l as u32);
         }
@@ -265,8 +262,7 @@ impl GpuCandidates {
         let errors = GpuBuffer::<u32>::new(&self.gpu, "solid crossbar errors", pixels * kept)?;
         let keys = GpuBuffer::<u32>::new(&self.gpu, "solid crossbar keys", pixels * kept)?;
         let counts = GpuBuffer::<u32>::new(&self.gpu, "solid candidate counts", pixels)?;
-        let [f1, f2] = others(e);
-        let a = shared_axis(f1, f2);
+        let ([f1, f2], [a1, a2]) = crossbar_pair(e);
         let mut push = TriplesPush {
             colours1: colours[f1].address(),
             colours2: colours[f2].address(),
@@ -279,8 +275,8 @@ impl GpuCandidates {
             keys: keys.address(),
             counts: counts.address(),
             shift,
-            axis1: image_axis(f1, a).unwrap() as u32,
-            axis2: image_axis(f2, a).unwrap() as u32,
+            axis1: a1 as u32,
+            axis2: a2 as u32,
             strip: params.strip,
             spacing: level.spacing,
             s: params.s,

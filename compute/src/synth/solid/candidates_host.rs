@@ -18,10 +18,11 @@
 
 use super::analysis::{unpack_rgb, SolidAnalysis, SolidLevel};
 use super::candidates::{
-    filter_and_cut, image_key, keep_rows, neighbours4, others, search_key, CandidateParams,
-    CandidateSets, LevelReport, SearchKey, SolidCandidates, StripMatches, MAX_CANDIDATES,
+    crossbar_pair, image_key, keep_rows, level_sets, neighbours4, others, search_key,
+    CandidateParams, CandidateSets, LevelReport, SearchKey, SolidCandidates, StripMatches,
+    MAX_CANDIDATES,
 };
-use super::roles::{image_axis, shared_axis, ROLES};
+use super::roles::ROLES;
 use super::strip_tree::{distinct_strips, ssd, StripTree};
 use super::strips::{along, sample_offset};
 use crate::synth::coords::{pack, unpack};
@@ -82,9 +83,7 @@ fn triples_host(
     side: u32,
     params: &CandidateParams,
 ) -> CandidateSets {
-    let [f1, f2] = others(e);
-    let a = shared_axis(f1, f2);
-    let (a1, a2) = (image_axis(f1, a).unwrap(), image_axis(f2, a).unwrap());
+    let ([f1, f2], [a1, a2]) = crossbar_pair(e);
     let (n, h, m, s) = (params.strip, level.spacing, side, params.s as usize);
     let dims = 3 * n as usize;
     let s1 = strips(&level.roles[f1].colours, a1, n, h, m);
@@ -214,18 +213,17 @@ pub fn candidates_host(
             }
         }
         let mut report = LevelReport::default();
-        let mut sets = Vec::with_capacity(ROLES);
-        for e in 0..ROLES {
-            let [f1, f2] = others(e);
-            let m1 = &memo[&image_key(analysis, search_key(e, f1))];
-            let m2 = &memo[&image_key(analysis, search_key(e, f2))];
-            let ranked = triples_host(level, e, m1, m2, m, params);
-            let cut = filter_and_cut(ranked, params, &mut report, |s| {
-                Ok::<_, crate::synth::SynthError>(coherence_step_host(s, e, level.spacing, m))
-            })?;
-            sets.push(cut);
-        }
-        levels.push(sets.try_into().expect("three roles"));
+        let sets = level_sets(
+            analysis,
+            &memo,
+            params,
+            &mut report,
+            |e, m1, m2| {
+                Ok::<_, crate::synth::SynthError>(triples_host(level, e, m1, m2, m, params))
+            },
+            |s, e| Ok(coherence_step_host(s, e, level.spacing, m)),
+        )?;
+        levels.push(sets);
         reports.push(report);
         on_level(l as u32);
     }
