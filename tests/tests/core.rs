@@ -193,15 +193,7 @@ fn descriptor_bound_copy_kernel() {
             let data = random_u32(n, n as u64);
             let src = GpuBuffer::from_slice(gpu, "src", &data).unwrap();
             let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", n).unwrap();
-            gpu.submit(|rec| {
-                rec.dispatch(
-                    &kernel,
-                    kernel.groups_for(n as u64),
-                    &[("Src", src.arg()), ("Dst", dst.arg())],
-                    &CopyCountPush { n: n as u32 },
-                )
-            })
-            .unwrap();
+            copy_words(gpu, &kernel, &src, &dst, n);
             assert_eq!(dst.read().unwrap(), data, "n = {n}");
         }
     });
@@ -386,15 +378,7 @@ fn device_local_memory_moves_every_upload_and_readback_through_staging() {
         );
         let dst = GpuBuffer::<u32>::zeroed(gpu, "staged dst", n).unwrap();
         assert_eq!(gpu.staging_copies(), before + 1, "a fill needs no staging");
-        gpu.submit(|rec| {
-            rec.dispatch(
-                &kernel,
-                kernel.groups_for(n as u64),
-                &[("Src", src.arg()), ("Dst", dst.arg())],
-                &CopyCountPush { n: n as u32 },
-            )
-        })
-        .unwrap();
+        copy_words(gpu, &kernel, &src, &dst, n);
         assert_eq!(dst.read().unwrap(), data);
         assert_eq!(dst.read_range(101, 7).unwrap(), &data[101..108]);
         src.write(3, &[9, 8, 7]).unwrap();
@@ -464,4 +448,17 @@ fn the_validation_layer_reports_a_provoked_error() {
         "{:?}",
         log.messages()
     );
+}
+
+/// Copies the first `n` words of `src` to `dst` with the `COPY_WORDS` kernel.
+fn copy_words(gpu: &Gpu, kernel: &Kernel, src: &GpuBuffer<u32>, dst: &GpuBuffer<u32>, n: usize) {
+    gpu.submit(|rec| {
+        rec.dispatch(
+            kernel,
+            kernel.groups_for(n as u64),
+            &[("Src", src.arg()), ("Dst", dst.arg())],
+            &CopyCountPush { n: n as u32 },
+        )
+    })
+    .unwrap();
 }
