@@ -9,9 +9,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 meshes=(armadillo.off bunny00.off ChineseDragon-10kv.off elephant.off cube.off)
 # Stone, brick, wood, cloth, leather and paper, 64² to 128²; granite1 (100², grey) is the
-# fine-grained stone on which the synthesizer's period repetition is checked.
+# fine-grained stone on which the synthesizer's period repetition is checked. The second line
+# holds stones of other sizes and channel counts, the "any photo as exemplar" cases (fit.rs).
 patterns=(Stone/brick.pat Stone/terra.pat Wood/walnut.pat Wood/parque1.pat Fabric/burlap.pat
-  Animal/leather.pat Paper/crinklepaper.pat Stone/pink_marble.pat Stone/granite1.pat)
+  Animal/leather.pat Paper/crinklepaper.pat Stone/pink_marble.pat Stone/granite1.pat
+  Stone/slate.pat Stone/Craters.pat Stone/stone33.pat Stone/cracked.pat Stone/ground1.pat
+  Stone/marble1.pat)
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

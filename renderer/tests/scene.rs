@@ -1014,6 +1014,9 @@ fn volume_textures_read_their_file_through_a_store() {
 #[test]
 fn synthesized_textures_name_their_exemplar_and_store() {
     let (dir, scene) = scene_dir(&[("bad.png", "not a png")]);
+    image::RgbImage::new(8, 8)
+        .save(dir.path().join("tiny.png"))
+        .unwrap();
     let texture = |fields: &str| {
         edit(
             15,
@@ -1062,6 +1065,28 @@ fn synthesized_textures_name_their_exemplar_and_store() {
         &texture("exemplar = \"leather\""),
         15,
         "material \"white\".texture.store: missing: a synthesized texture is read through a store",
+    );
+    // An image of any size is fitted by `lazysolid solid`'s rule, which the render reports.
+    let s = Scene::parse(
+        &texture("exemplar = \"ground1\", resolution = 64, store = \"octree\""),
+        &scene,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let spec = s.materials[0].texture.as_ref().unwrap();
+    assert_eq!(
+        spec.synthesized.as_ref().unwrap().fit.to_string(),
+        "ground1.pat 100x100 RGB → Lanczos3 resample 128x128"
+    );
+    let e = Scene::parse(
+        &texture("exemplar = \"tiny.png\", resolution = 64, store = \"octree\""),
+        &scene,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains(":15: material \"white\".texture.exemplar: ")
+            && e.contains("tiny.png: the image is 8x8; solid synthesis needs at least 16"),
+        "{e}"
     );
     expect(
         &texture("exemplar = \"leather\", resolution = 64, store = \"kd_tree\""),

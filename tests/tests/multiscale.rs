@@ -131,6 +131,7 @@ fn parse(text: &str) -> Result<ExemplarGraph, GraphError> {
         let side = match value {
             "big" => 128,
             "small" => 64,
+            "huge" => 300,
             _ => return Err(format!("no image {value:?}")),
         };
         Exemplar::from_rgb(
@@ -186,6 +187,14 @@ fn graph_files_parse_and_bad_ones_get_their_errors() {
     let e = err(&good.replace("\"small\"", "\"nothing\""));
     assert!(
         e.starts_with("g.toml:7: exemplar \"b\".image: no image"),
+        "{e}"
+    );
+    // An image the 2D synthesizer takes but the multiscale atlas cannot (8-bit positions).
+    let e = err(&good.replace("\"small\"", "\"huge\""));
+    assert!(
+        e.starts_with(
+            "g.toml:7: exemplar \"b\".image: huge is 300x300; multiscale exemplars are at most 256"
+        ),
         "{e}"
     );
     // A duplicate name, a missing field, an unknown field, a syntax error.

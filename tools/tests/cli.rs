@@ -622,7 +622,7 @@ fn synth_names_a_bad_exemplar_and_writes_nothing() {
     let (ok, _, err) = run(lazysolid().arg("synth").arg(&tiny).arg("-o").arg(&out));
     assert!(!ok);
     assert!(
-        err.contains("tiny.png") && err.contains("16..=256"),
+        err.contains("tiny.png") && err.contains("8x8") && err.contains("at least 16"),
         "{err}"
     );
     assert!(!err.contains("panicked"), "{err}");
@@ -1334,28 +1334,47 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
 fn solid_names_each_bad_input_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let good = terra_square(dir.path(), 16);
-    let big = terra_square(dir.path(), 32);
-    let odd = dir.path().join("odd.png");
-    image::RgbImage::new(24, 24).save(&odd).unwrap();
+    // Any image from 16 pixels a side up is fitted (tools/tests/cli_photos.rs); what is left
+    // to refuse: smaller images, images past the decode limit, a crop that does not fit, an
+    // exemplar side that is no power of two in 16..=256.
     let tiny = dir.path().join("tiny.png");
     image::RgbImage::new(8, 8).save(&tiny).unwrap();
     let huge = dir.path().join("huge.png");
-    image::RgbImage::new(256, 256).save(&huge).unwrap();
+    image::RgbImage::new(9000, 16).save(&huge).unwrap();
     let corrupt = dir.path().join("corrupt.png");
     std::fs::write(&corrupt, b"not a PNG at all").unwrap();
     let out = dir.path().join("out.nrrd");
     let path = |p: &std::path::Path| p.to_str().unwrap().to_owned();
-    let cases: [(Vec<String>, &[&str]); 11] = [
+    let cases: [(Vec<String>, &[&str]); 13] = [
         (
-            vec!["--ey".into(), path(&big)],
-            &["--ey", "terra32.png", "same side"],
+            vec!["--ey".into(), path(&tiny)],
+            &["tiny.png", "8x8", "at least 16"],
         ),
         (
-            vec!["--ex".into(), path(&odd)],
-            &["odd.png", "power-of-two"],
+            vec!["--ex".into(), path(&huge)],
+            &["huge.png", "9000x16", "8192"],
         ),
-        (vec!["--ex".into(), path(&tiny)], &["tiny.png", "16..=256"]),
-        (vec!["--ez".into(), path(&huge)], &["huge.png", "16..=128"]),
+        (
+            vec![
+                "--fit".into(),
+                "crop".into(),
+                "--exemplar-side".into(),
+                "32".into(),
+            ],
+            &["terra16.png", "--fit crop", "32x32"],
+        ),
+        (
+            vec!["--exemplar-side".into(), "24".into()],
+            &["--exemplar-side 24", "power of two"],
+        ),
+        (
+            vec!["--exemplar-side".into(), "512".into()],
+            &["--exemplar-side 512", "16..=256"],
+        ),
+        (
+            vec!["--fit".into(), "stretch".into()],
+            &["'stretch'", "auto, crop, resample"],
+        ),
         (
             vec!["--ez".into(), "/nonexistent/e.png".into()],
             &["/nonexistent/e.png", "cannot read"],
@@ -1401,7 +1420,7 @@ fn solid_names_each_bad_input_and_writes_nothing() {
     assert!(!ok && err.contains(".nrrd"), "{err}");
     assert!(!png_out.exists());
     // Nothing but the inputs in the folder.
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 6);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 4);
 }
 
 /// `bench solid` end to end at the smallest size: the candidate row, the synthesis row, the
@@ -1437,6 +1456,8 @@ fn bench_solid_writes_times_quality_and_figures() {
             "crossbar only",
             "extruded E_z",
             "2d synth",
+            // The 64² pattern fitted to the 16² measured (--fit auto).
+            "terra: exemplar fit: terra.pat 64x64 RGB → Lanczos3 resample 16x16",
         ],
     );
     let implementations = bench.column("implementation");
@@ -1446,6 +1467,13 @@ fn bench_solid_writes_times_quality_and_figures() {
         .iter()
         .find(|p| p.is_dir())
         .expect("a figures folder");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(figures.join("quality.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        json[0]["exemplars"][0],
+        "terra.pat 64x64 RGB → Lanczos3 resample 16x16"
+    );
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
     // Five variants, three axes each, plus the header.
     assert_eq!(quality.lines().count(), 1 + 5 * 3, "{quality}");

@@ -1,5 +1,5 @@
 //! Exemplar coordinates as the synthesizer stores them: one `u32` per pixel, x in the low and
-//! y in the high 16 bits (exemplars are at most 256 pixels wide, see `exemplar.rs`).
+//! y in the high 16 bits (exemplars are at most 512 pixels wide, see `exemplar.rs`).
 
 /// Packs exemplar coordinate (`x`, `y`).
 pub fn pack(x: u32, y: u32) -> u32 {

@@ -44,7 +44,7 @@ pub enum SynthError {
         channels: u32,
     },
     /// The exemplar is too small for the synthesis pyramid or too large for the analysis.
-    #[error("{path}: the exemplar is {width}x{height}; both sides must lie in {min}..={max} pixels (the pyramid needs at least {min}, the brute-force analysis allows at most {max})")]
+    #[error("{path}: the exemplar is {width}x{height}; both sides must lie in {min}..={max} pixels (the pyramid needs at least {min}, the analysis allows at most {max}; the commands fit larger images to that, see docs/synthesis.md)")]
     Size {
         /// The exemplar file (or its name when built in memory).
         path: PathBuf,
@@ -56,6 +56,19 @@ pub enum SynthError {
         min: u32,
         /// Largest side allowed.
         max: u32,
+    },
+    /// An image cannot be turned into the exemplar a synthesizer needs (`fit.rs`): too small,
+    /// too large to read, or outside what the chosen handling can do.
+    #[error("{path}: the image is {width}x{height}; {limit}")]
+    Fit {
+        /// The image file (or its name when built in memory).
+        path: PathBuf,
+        /// Width found.
+        width: u32,
+        /// Height found.
+        height: u32,
+        /// What the handling needs, and why.
+        limit: String,
     },
     /// A synthesis or analysis parameter is out of range.
     #[error("synthesis parameter `{name}` is {value}; {limit}")]

@@ -1,17 +1,19 @@
-//! The exemplar: an 8-bit RGB image read from PNG, JPEG or a GIMP `.pat` pattern, checked
-//! against the sizes the pyramid and the analysis support.
+//! The exemplar: an 8-bit RGB image in the sizes the pyramid and the analysis support. Images
+//! of other sizes become exemplars through `fit.rs`, which says what it did.
 
+use super::decode::DecodedImage;
 use super::error::{SynthError, SynthResult};
-use super::pat::decode_pattern;
 use std::path::{Path, PathBuf};
 
 /// Smallest exemplar side: the pyramid needs at least 5 levels (`floor(log2(16)) + 1`) for
 /// jitter at several scales to mean anything.
 pub const MIN_EXEMPLAR_SIDE: u32 = 16;
 
-/// Largest exemplar side: the k-coherence analysis is a brute-force search, quadratic in the
-/// pixel count (see `coherence.rs`); 256² keeps it to seconds.
-pub const MAX_EXEMPLAR_SIDE: u32 = 256;
+/// Largest exemplar side: the k-coherence analysis compares every pixel with a pool of at
+/// most 4096 (see `coherence.rs`), so it grows with the pixel count; at 512² it took 45 s on
+/// two cores shared with other work, 8 s at 256² (docs/synthesis.md). Larger images are
+/// resampled to this by `fit.rs`.
+pub const MAX_EXEMPLAR_SIDE: u32 = 512;
 
 /// An RGB exemplar. Colours are what the output shows; synthesis itself works on coordinates
 /// into this image.
@@ -28,48 +30,17 @@ pub struct Exemplar {
 }
 
 impl Exemplar {
-    /// Reads `path`: `.pat` files with the GIMP pattern decoder, anything else with the
-    /// `image` crate (PNG, JPEG). Grey is replicated to RGB and alpha is dropped.
+    /// Reads `path` as it is (`DecodedImage::read`: PNG, JPEG or GIMP pattern; grey replicated
+    /// to RGB, alpha dropped), without fitting it: for images known to be in range, such as
+    /// the asset patterns. Commands that take any image use `fit::load_plane` or
+    /// `fit::load_solid` instead.
     ///
     /// # Errors
     /// The file cannot be read or decoded, has an unsupported channel count, or its size is
     /// outside [`MIN_EXEMPLAR_SIDE`]..=[`MAX_EXEMPLAR_SIDE`].
     pub fn load(path: &Path) -> SynthResult<Exemplar> {
-        let bytes = std::fs::read(path).map_err(|source| SynthError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        let is_pat = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("pat"));
-        if is_pat {
-            let pattern = decode_pattern(path, &bytes)?;
-            let c = pattern.channels as usize;
-            let rgb = pattern
-                .pixels
-                .chunks_exact(c)
-                .map(|p| match c {
-                    1 | 2 => [p[0]; 3],
-                    _ => [p[0], p[1], p[2]],
-                })
-                .collect();
-            return Self::from_rgb(path, pattern.width, pattern.height, rgb);
-        }
-        let image = image::load_from_memory(&bytes).map_err(|e| SynthError::Decode {
-            path: path.to_owned(),
-            reason: e.to_string(),
-        })?;
-        let channels = image.color().channel_count() as u32;
-        if !(1..=4).contains(&channels) {
-            return Err(SynthError::Channels {
-                path: path.to_owned(),
-                channels,
-            });
-        }
-        let rgb8 = image.to_rgb8();
-        let (w, h) = rgb8.dimensions();
-        let rgb = rgb8.pixels().map(|p| p.0).collect();
-        Self::from_rgb(path, w, h, rgb)
+        let image = DecodedImage::read(path)?;
+        Self::from_rgb(path, image.width, image.height, image.rgb)
     }
 
     /// Wraps pixels already in memory; `source` names them in messages.

@@ -2,7 +2,9 @@
 //! the appearance vectors of Lefebvre & Hoppe 2006): the 2D core that lazy solid synthesis
 //! extends to 3D.
 //!
-//! Pipeline: [`Exemplar`] → [`analyze`] (CPU preprocessing: Gaussian stack, 8D quantized
+//! Pipeline: an image ([`DecodedImage`], any size) → [`fit_plane`] / [`fit_solid`] (crop or
+//! resample as each synthesizer needs, with an [`ExemplarFit`] saying what was done) →
+//! [`Exemplar`] → [`analyze`] (CPU preprocessing: Gaussian stack, 8D quantized
 //! appearance vectors, k-coherence sets) → per pyramid level upsampling, jitter and correction
 //! of exemplar coordinates, on the GPU ([`GpuSynthesizer`]) or on the CPU reference
 //! ([`synthesize_cpu`]), which agree exactly. Any window of the unbounded output plane can be
@@ -16,9 +18,11 @@ pub mod cache;
 mod coherence;
 mod coords;
 mod cpu;
+mod decode;
 pub(crate) mod energy;
 mod error;
 mod exemplar;
+mod fit;
 pub(crate) mod gpu;
 mod jitter;
 pub mod multiscale;
@@ -29,6 +33,7 @@ mod period;
 mod plan;
 pub mod quality;
 mod repetition;
+mod resample;
 pub mod solid;
 mod stack;
 mod synthesis;
@@ -46,11 +51,16 @@ pub use cache::{CacheOutcome, DiskCache};
 pub use coherence::MAX_POOL;
 pub use coords::{pack, unpack};
 pub use cpu::{correct_subpass, synthesize_cpu, upsample_jitter};
+pub use decode::{ChannelLayout, DecodedImage, MAX_DECODE_SIDE};
 pub use energy::{
     energy_cpu, energy_positions, histogram_distance, EnergyKernel, EnergyReport, ENERGY_RADIUS,
 };
 pub use error::{SynthError, SynthResult};
 pub use exemplar::{Exemplar, MAX_EXEMPLAR_SIDE, MIN_EXEMPLAR_SIDE};
+pub use fit::{
+    fit_plane, fit_solid, load_plane, load_solid, plan_plane, plan_solid, CropRect, ExemplarFit,
+    FitMode, FitPlan, FittedExemplar,
+};
 pub use gpu::{GpuSynthesizer, LevelTimes};
 pub use jitter::{hash4, jitter};
 pub use neighbourhood::{
@@ -66,4 +76,5 @@ pub use pat::{decode_pattern, Pattern};
 pub use period::{period_reach, spans_period, PERIOD_TOLERANCE};
 pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};
 pub use repetition::{period_repetition, REPETITION_TOLERANCE};
+pub use resample::{resample_lanczos3, Border};
 pub use synthesis::{check_window, LevelCoords, Synthesis, MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};

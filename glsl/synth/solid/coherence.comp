@@ -26,7 +26,8 @@ layout(push_constant, scalar) uniform Push {
     uint first_pixel;      // pixel of workgroup 0
 } pc;
 
-// Open addressing, linear probing; a packed coordinate is below 2^23, so all ones is empty.
+// Open addressing, linear probing; a packed coordinate is below 2^24 (sides up to 256), so all
+// ones is empty.
 const uint TABLE = 1024u;
 const uint EMPTY = 0xffffffffu;
 shared uint table[2][TABLE];

@@ -27,7 +27,7 @@ use lazysolid_compute::store::{
 use lazysolid_compute::synth::cache::DiskCache;
 use lazysolid_compute::synth::solid::lazy::GpuLazySolid;
 use lazysolid_compute::synth::solid::SolidExemplars;
-use lazysolid_compute::synth::{Exemplar, SynthError};
+use lazysolid_compute::synth::{load_solid, ExemplarFit, FitMode, SynthError};
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -118,6 +118,8 @@ pub struct BakedStoreInfo {
     pub bytes: u64,
     /// Voxelization and fill time (with the synthesis, for a synthesized texture).
     pub build_time: Duration,
+    /// For a synthesized texture: how its image became the exemplar.
+    pub exemplar: Option<ExemplarFit>,
     /// For a synthesized texture: what its lazy synthesis did.
     pub synthesis: Option<SynthesisInfo>,
     /// For the texture of cut or fractured pieces: what adding their cap faces did.
@@ -209,7 +211,7 @@ struct Baker<'a> {
 /// The lazy synthesis state of exemplar `spec` at resolution `r`, with the solid defaults and
 /// the candidates through the user's cache.
 fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, SynthError> {
-    let image = Exemplar::load(&spec.exemplar)?;
+    let image = load_solid(&spec.exemplar, FitMode::Auto, None)?.exemplar;
     let exemplars = SolidExemplars::new(image, [None, None, None])?;
     let cache = DiskCache::user().ok();
     GpuLazySolid::with_defaults(gpu, &exemplars, spec.seed, r, cache.as_ref())
@@ -526,6 +528,11 @@ impl SceneStores {
                 texels,
                 bytes,
                 build_time: start.elapsed(),
+                exemplar: material
+                    .texture
+                    .as_ref()
+                    .and_then(|t| t.synthesized.as_ref())
+                    .map(|s| s.fit.clone()),
                 synthesis,
                 cut,
             });

@@ -13,6 +13,7 @@ use super::{
     StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
 };
 use glam::Vec3;
+use lazysolid_compute::synth::{load_solid, FitMode};
 use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
@@ -557,10 +558,10 @@ fn synthesized_texture(
     let file = crate::assets::exemplar(exemplar.get_ref(), base)
         .map_err(|problem| doc.invalid(exemplar.span(), field.clone(), problem))?;
     must_exist(doc, exemplar.span().start, field.clone(), &file)?;
-    let image = lazysolid_compute::synth::Exemplar::load(&file)
+    // The rule `lazysolid solid` applies by default; the store's synthesis fits the same way.
+    let fitted = load_solid(&file, FitMode::Auto, None)
         .map_err(|e| doc.invalid(exemplar.span(), field.clone(), e.to_string()))?;
-    lazysolid_compute::synth::solid::SolidExemplars::new(image.clone(), [None, None, None])
-        .map_err(|e| doc.invalid(exemplar.span(), field, e.to_string()))?;
+    let image = &fitted.exemplar;
     let (w, h) = (image.width, image.height);
     let mean = Vec3::from_array(mean_linear((0..w * h).map(|i| image.at(i % w, i / w))));
     let seed = match &raw.seed {
@@ -575,6 +576,7 @@ fn synthesized_texture(
         volume: None,
         synthesized: Some(SynthesizedSpec {
             exemplar: file,
+            fit: fitted.fit,
             seed,
         }),
         store,

@@ -237,6 +237,9 @@ pub struct SolidTexture {
 pub struct SynthesizedSpec {
     /// The exemplar image (GIMP pattern, PNG or JPEG).
     pub exemplar: std::path::PathBuf,
+    /// How the image becomes the solid exemplar (`lazysolid solid --fit auto`'s rule), decided
+    /// when the scene is read and reported with the render.
+    pub fit: lazysolid_compute::synth::ExemplarFit,
     /// Seed of the synthesis's jitter.
     pub seed: u32,
 }

@@ -22,7 +22,7 @@ use lazysolid_compute::store::{
 use lazysolid_compute::synth::cache::DiskCache;
 use lazysolid_compute::synth::solid::lazy::{GpuLazySolid, LazyReport};
 use lazysolid_compute::synth::solid::{voxel_colour, SolidExemplars};
-use lazysolid_compute::synth::Exemplar;
+use lazysolid_compute::synth::{load_solid, FitMode};
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
 use std::cell::RefCell;
@@ -66,12 +66,14 @@ pub struct SolidExemplarArg {
 }
 
 impl SolidExemplarArg {
-    /// Loads the exemplar as the three roles of a solid texture.
+    /// Loads the exemplar as the three roles of a solid texture, fitted by the rule of
+    /// `lazysolid solid --fit auto`, and prints how.
     pub fn load(&self) -> anyhow::Result<SolidExemplars> {
         let path = assets::exemplar("--exemplar", &self.exemplar, self.exemplar_dir.as_deref())?;
-        let exemplar = Exemplar::load(&path)
+        let fitted = load_solid(&path, FitMode::Auto, None)
             .with_context(|| format!("loading --exemplar {}", path.display()))?;
-        Ok(SolidExemplars::new(exemplar, [None, None, None])?)
+        println!("exemplar fit: {}", fitted.fit);
+        Ok(SolidExemplars::new(fitted.exemplar, [None, None, None])?)
     }
 }
 

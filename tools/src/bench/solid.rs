@@ -1,6 +1,10 @@
 //! `lazysolid bench solid`: solid synthesis timed and scored per axis against its exemplars,
 //! beside the 2D synthesizer's output of the same exemplar and two ablations.
 //!
+//! Every exemplar is fitted to the side measured by `--fit` (`lazysolid solid`'s rule, so a
+//! 144² or 100² pattern is measured at 128), and the handling is printed and recorded in
+//! `quality.json`.
+//!
 //! Timed rows (wall time on the host): the candidate precompute per exemplar side
 //! (`--candidate-sides`, default 64 and 128) and the synthesis of a cube per `--sizes`
 //! (default 64 and 128: the GPU synthesis alone, the candidates read from the cache), and per
@@ -24,6 +28,7 @@
 use super::harness::{time_cpu, Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::assets;
+use crate::cli::fit_mode::Fit;
 use crate::cli::solid::{
     axis_quality, oblique, role_scorers, slice, synthesize_cube, AxisQuality, CubeRequest,
     ImageScorer,
@@ -39,8 +44,8 @@ use lazysolid_compute::synth::solid::{
     SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
-    analyze, default_jitter, default_passes, pack, period_repetition, AnalysisParams, EnergyKernel,
-    Exemplar, GpuSynthesizer, Region, SynthParams,
+    analyze, default_jitter, default_passes, load_solid, pack, period_repetition, AnalysisParams,
+    EnergyKernel, Exemplar, ExemplarFit, FittedExemplar, GpuSynthesizer, Region, SynthParams,
 };
 use serde::Serialize;
 
@@ -56,7 +61,8 @@ pub struct SolidArgs {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Exemplars playing all three roles: GIMP pattern names in --exemplar-dir (NAME.pat) or
-    /// paths; each is cropped to its top-left square of the side measured.
+    /// paths; each is fitted to the side measured by --fit (until 2026-12-03: the top-left
+    /// square of that side).
     #[arg(
         long,
         value_delimiter = ',',
@@ -76,6 +82,10 @@ pub struct SolidArgs {
     /// Exemplar side of the synthesis and quality cases.
     #[arg(long, default_value_t = 64)]
     pub side: u32,
+    /// How each exemplar is fitted to the side measured: auto cuts the centre square when
+    /// that loses at most a quarter of the side and resamples otherwise, as `lazysolid solid`.
+    #[arg(long, value_enum, default_value_t = Fit::Auto)]
+    pub fit: Fit,
     /// Cube sides whose synthesis is timed; the first is scored.
     #[arg(long, value_delimiter = ',', default_value = "64,128")]
     pub sizes: Vec<u32>,
@@ -103,40 +113,41 @@ pub struct SolidArgs {
 #[derive(Serialize)]
 struct QualityRow {
     case: String,
+    /// How each exemplar of the case was fitted to the side (`ExemplarFit`'s line).
+    exemplars: Vec<String>,
     variant: String,
     axes: [AxisQuality; 3],
     /// The solid variants' triple consistency.
     consistency: Option<TripleConsistency>,
 }
 
-/// The top-left `side`² of an exemplar.
-fn load_square(args: &SolidArgs, name: &str, side: u32) -> anyhow::Result<Exemplar> {
+/// An exemplar fitted to `side`² by `--fit` (the rule of `lazysolid solid`).
+fn load_fitted(args: &SolidArgs, name: &str, side: u32) -> anyhow::Result<FittedExemplar> {
     let path = assets::exemplar("--exemplars", name, args.exemplar_dir.as_deref())?;
-    let e = Exemplar::load(&path).with_context(|| format!("loading {}", path.display()))?;
-    ensure!(
-        e.width >= side && e.height >= side,
-        "{}: {}x{} is smaller than the {side}² measured",
-        path.display(),
-        e.width,
-        e.height
-    );
-    let rgb = (0..side)
-        .flat_map(|y| (0..side).map(move |x| (x, y)))
-        .map(|(x, y)| e.at(x, y))
-        .collect();
-    Ok(Exemplar::from_rgb(path, side, side, rgb)?)
+    load_solid(&path, args.fit.into(), Some(side))
+        .with_context(|| format!("loading {}", path.display()))
 }
 
-/// A case's exemplars: one name for all roles, or three joined by `+`.
-fn exemplars_of(args: &SolidArgs, case: &str, side: u32) -> anyhow::Result<SolidExemplars> {
+/// A case's exemplars (one name for all roles, or three joined by `+`) and how each was fitted.
+fn exemplars_of(
+    args: &SolidArgs,
+    case: &str,
+    side: u32,
+) -> anyhow::Result<(SolidExemplars, Vec<ExemplarFit>)> {
     let names: Vec<&str> = case.split('+').collect();
-    let main = load_square(args, names[0], side)?;
     if names.len() == 1 {
-        return Ok(SolidExemplars::new(main, [None, None, None])?);
+        let main = load_fitted(args, names[0], side)?;
+        return Ok((
+            SolidExemplars::new(main.exemplar, [None, None, None])?,
+            vec![main.fit],
+        ));
     }
-    let roles = [0, 1, 2].map(|r| load_square(args, names[r], side).map(Some));
-    let [a, b, c] = roles;
-    Ok(SolidExemplars::new(main, [a?, b?, c?])?)
+    let [a, b, c] = [0, 1, 2].map(|r| load_fitted(args, names[r], side));
+    let (a, b, c) = (a?, b?, c?);
+    let fits = vec![a.fit, b.fit, c.fit];
+    let roles = [Some(a.exemplar.clone()), Some(b.exemplar), Some(c.exemplar)];
+    // All three roles given: the main image (the first again) is dropped.
+    Ok((SolidExemplars::new(a.exemplar, roles)?, fits))
 }
 
 /// The `extruded` ablation: `E_z` at (x, y) everywhere along z, with the triples that say so.
@@ -278,10 +289,11 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let cache = DiskCache::new(cache_dir.path());
     let mut quality = Vec::new();
     let mut peak = Vec::new();
+    let mut fit_lines: Vec<(String, Vec<String>)> = Vec::new();
 
     for case in cases {
         for &side in candidate_sides {
-            let exemplars = exemplars_of(args, case, side)?;
+            let (exemplars, _) = exemplars_of(args, case, side)?;
             let analysis = analyze_solid(&exemplars);
             // Both builders, side by side; the host's pruned searches must give the kernels'
             // candidates bit for bit.
@@ -321,7 +333,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 "{case} {side}²: the host's candidates differ from the GPU's"
             );
         }
-        let exemplars = exemplars_of(args, case, args.side)?;
+        let (exemplars, fits) = exemplars_of(args, case, args.side)?;
+        let fits: Vec<String> = fits.iter().map(ToString::to_string).collect();
+        fit_lines.push((case.clone(), fits.clone()));
         let key = candidates_key(&exemplars, &CandidateParams::default());
         for (i, &n) in sizes.iter().enumerate() {
             let request = CubeRequest {
@@ -392,6 +406,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             let mut push = |variant: &str, axes, consistency| {
                 quality.push(QualityRow {
                     case: case.clone(),
+                    exemplars: fits.clone(),
                     variant: variant.into(),
                     axes,
                     consistency,
@@ -455,6 +470,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         }
     }
 
+    for (case, fits) in &fit_lines {
+        println!("{case}: exemplar fit: {}", fits.join("; "));
+    }
     println!(
         "{:<28} {:<14} {}  {:>6} {:>6}",
         "case",

@@ -7,6 +7,7 @@ pub mod components;
 pub mod device;
 pub mod diff;
 pub mod exit_status;
+pub mod fit_mode;
 pub mod fracture;
 pub mod multiscale;
 pub mod output;

@@ -282,6 +282,9 @@ fn report_stores(tracer: &PathTracer) {
             b.bytes as f64 / 1e6,
             b.build_time.as_secs_f64()
         );
+        if let Some(fit) = &b.exemplar {
+            eprintln!("  exemplar fit: {fit}");
+        }
         if let Some(s) = b.synthesis {
             eprintln!(
                 "  synthesized lazily: {} voxel versions over all levels, {} voxels at the \

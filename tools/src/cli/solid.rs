@@ -6,6 +6,7 @@
 
 use super::candidate_builder::Candidates;
 use super::components::components;
+use super::fit_mode::Fit;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
 use super::GlobalArgs;
@@ -19,10 +20,11 @@ use lazysolid_compute::synth::solid::{
     analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
     solid_jitter_or_default, solid_passes_or_default, triple_consistency, CandidateBuilder,
     CandidateParams, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency,
-    VolumeBox, DEFAULT_S, DEFAULT_STRIP, ROLE_NAMES,
+    VolumeBox, DEFAULT_S, DEFAULT_STRIP, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
-    histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar, SynthParams,
+    histogram_distance, load_solid, period_repetition, EnergyKernel, EnergyReport, Exemplar,
+    ExemplarFit, FitMode, SynthParams,
 };
 use lazysolid_renderer::output::{Operator, ToneMap};
 use std::io::Write;
@@ -36,7 +38,8 @@ pub const SOLID_SIZES: [u32; 3] = [64, 128, 256];
 #[derive(Args)]
 pub struct SolidArgs {
     /// The exemplar playing every role not given by --ex/--ey/--ez: PNG, JPEG or GIMP
-    /// pattern, square with a power-of-two side of 16 to 128 pixels.
+    /// pattern, grey or colour, any size from 16 pixels a side; made square with a power-of-two
+    /// side of 16 to 256 as --fit says (the line `exemplar fit:` tells what was done).
     pub exemplar: PathBuf,
     /// Exemplar of the slices perpendicular to x (image u = y, v = z).
     #[arg(long)]
@@ -47,6 +50,15 @@ pub struct SolidArgs {
     /// Exemplar of the slices perpendicular to z (image u = x, v = y).
     #[arg(long)]
     pub ez: Option<PathBuf>,
+    /// How each image becomes a square exemplar with a power-of-two side: auto cuts the
+    /// centre square of the largest power of two when that loses at most a quarter of the
+    /// side and resamples to the nearest power of two otherwise (docs/solid.md).
+    #[arg(long, value_enum, default_value_t = Fit::Auto)]
+    pub fit: Fit,
+    /// Fit the exemplars to this side (a power of two, 16 to 256) instead of the one --fit
+    /// picks: smaller is faster (the candidates grow with the fourth power of the side).
+    #[arg(long, value_name = "N")]
+    pub exemplar_side: Option<u32>,
     /// Side of the cube to synthesize: 64, 128 or 256 voxels.
     #[arg(long, default_value_t = 64)]
     pub size: u32,
@@ -101,19 +113,32 @@ fn sibling(output: &Path, suffix: &str) -> PathBuf {
     output.with_file_name(format!("{stem}.{suffix}.png"))
 }
 
-/// Loads the exemplars of the roles.
+/// Loads and fits the exemplars of the roles: `main` by `mode` (to `side` when given), the
+/// role images to the side `main` got, since every role shares an axis with the others.
+/// Returns the exemplars and how each image in use was fitted, in the order of
+/// `SolidExemplars::images`.
 pub fn load_exemplars(
     main: &Path,
-    ex: Option<&Path>,
-    ey: Option<&Path>,
-    ez: Option<&Path>,
-) -> anyhow::Result<SolidExemplars> {
-    let main = Exemplar::load(main)?;
-    let load = |p: Option<&Path>| p.map(Exemplar::load).transpose();
-    Ok(SolidExemplars::new(
-        main,
-        [load(ex)?, load(ey)?, load(ez)?],
-    )?)
+    roles: [Option<&Path>; 3],
+    mode: FitMode,
+    side: Option<u32>,
+) -> anyhow::Result<(SolidExemplars, Vec<ExemplarFit>)> {
+    let main = load_solid(main, mode, side)?;
+    let side = main.exemplar.width;
+    let mut fits = vec![main.fit];
+    let mut given = [None, None, None];
+    for (slot, path) in given.iter_mut().zip(roles) {
+        if let Some(path) = path {
+            let f = load_solid(path, mode, Some(side))?;
+            fits.push(f.fit);
+            *slot = Some(f.exemplar);
+        }
+    }
+    // The main image is unused when all three roles are given (SolidExemplars drops it).
+    if fits.len() == 4 {
+        fits.remove(0);
+    }
+    Ok((SolidExemplars::new(main.exemplar, given)?, fits))
 }
 
 /// An axis-aligned slice of a synthesized cube of side `n`: perpendicular to world `axis` at
@@ -243,12 +268,22 @@ pub fn axis_quality(
 }
 
 /// Encodes an RGB cube of side `n` as NRRD (raw bytes, x fastest), the format ParaView, 3D
-/// Slicer and ImageJ open.
-pub fn nrrd(colours: &[[u8; 3]], n: u32) -> Vec<u8> {
+/// Slicer and ImageJ open, with `notes` as comment lines of its header (kept ASCII, as
+/// readers expect of a header: `→` is written `->`).
+pub fn nrrd(colours: &[[u8; 3]], n: u32, notes: &[String]) -> Vec<u8> {
     let mut out = Vec::with_capacity(colours.len() * 3 + 200);
+    let _ = write!(out, "NRRD0004\n# lazysolid solid texture\n");
+    for note in notes {
+        let ascii: String = note
+            .replace('→', "->")
+            .chars()
+            .map(|c| if c.is_ascii() && c != '\n' { c } else { '?' })
+            .collect();
+        let _ = writeln!(out, "# {ascii}");
+    }
     let _ = write!(
         out,
-        "NRRD0004\n# lazysolid solid texture\ntype: uint8\ndimension: 4\nsizes: 3 {n} {n} {n}\nkinds: RGB-color domain domain domain\nspacings: NaN 1 1 1\nencoding: raw\n\n"
+        "type: uint8\ndimension: 4\nsizes: 3 {n} {n} {n}\nkinds: RGB-color domain domain domain\nspacings: NaN 1 1 1\nencoding: raw\n\n"
     );
     out.extend(colours.iter().flatten());
     out
@@ -440,11 +475,17 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             args.offset[0], args.offset[1], args.offset[2]
         )
     })?;
-    let exemplars = load_exemplars(
+    if let Some(side) = args.exemplar_side {
+        ensure!(
+            side.is_power_of_two() && (MIN_SOLID_SIDE..=MAX_SOLID_SIDE).contains(&side),
+            "--exemplar-side {side}: must be a power of two in {MIN_SOLID_SIDE}..={MAX_SOLID_SIDE}"
+        );
+    }
+    let (exemplars, fits) = load_exemplars(
         &args.exemplar,
-        args.ex.as_deref(),
-        args.ey.as_deref(),
-        args.ez.as_deref(),
+        [args.ex.as_deref(), args.ey.as_deref(), args.ez.as_deref()],
+        args.fit.into(),
+        args.exemplar_side,
     )?;
     let candidate_params = CandidateParams {
         strip: args.strip,
@@ -485,7 +526,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.energy_samples,
     )?;
 
-    let volume = nrrd(&run.colours, n);
+    let notes: Vec<String> = fits.iter().map(|f| format!("exemplar fit: {f}")).collect();
+    let volume = nrrd(&run.colours, n, &notes);
     let render = if args.no_render {
         None
     } else {
@@ -534,6 +576,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             .collect::<Vec<_>>()
             .join(", ")
     );
+    for fit in &fits {
+        println!("exemplar fit: {fit}");
+    }
     println!(
         "cube {n}^3 at ({}, {}, {}), seed {}, strip {}, S {}",
         args.offset[0], args.offset[1], args.offset[2], args.seed, args.strip, args.s

@@ -9,9 +9,10 @@ use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::synth::{
-    analyze_cached, histogram_distance, jitter_or_default, passes_or_default, period_repetition,
-    unpack, AnalysisParams, DiskCache, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer,
-    Region, SynthParams, DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY,
+    analyze_cached, histogram_distance, jitter_or_default, load_plane, passes_or_default,
+    period_repetition, unpack, AnalysisParams, Border, DiskCache, EnergyKernel, EnergyReport,
+    FittedExemplar, GpuSynthesizer, Region, SynthParams, DEFAULT_COHERENCE_K,
+    DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -19,8 +20,9 @@ use std::time::Instant;
 /// What to synthesize and where to write it.
 #[derive(Args)]
 pub struct SynthArgs {
-    /// The exemplar, 16² to 256² pixels: a name in the assets' exemplars (leather, brick, ...)
-    /// or a path to a PNG, JPEG or GIMP pattern (.pat).
+    /// The exemplar: a name in the assets' exemplars (leather, brick, ...) or a path to a PNG,
+    /// JPEG or GIMP pattern (.pat), grey or colour; any size from 16 pixels a side, used as it
+    /// is up to 512 and resampled to fit 512 above (the line `exemplar fit:` says which).
     #[arg(value_name = "NAME|PATH")]
     pub exemplar: String,
     /// Output size WxH in pixels (N for NxN).
@@ -50,7 +52,8 @@ pub struct SynthArgs {
     /// Smallest distance in pixels between members of a similarity set.
     #[arg(long, default_value_t = DEFAULT_COHERENCE_SPREAD)]
     pub spread: u32,
-    /// The exemplar does not tile: clamp at its borders instead of wrapping.
+    /// The exemplar does not tile: clamp at its borders instead of wrapping (a resample of an
+    /// image over 512 pixels clamps too).
     #[arg(long)]
     pub clamp: bool,
     /// Neither read nor write the on-disk cache of exemplar analyses (kept in
@@ -108,7 +111,12 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     check_writable("-o", &args.output)?;
     check_writable("-o", &coords_path(&args.output))?;
     let exemplar_path = assets::exemplar("EXEMPLAR", &args.exemplar, None)?;
-    let exemplar = Exemplar::load(&exemplar_path)?;
+    let border = if args.clamp {
+        Border::Clamp
+    } else {
+        Border::Wrap
+    };
+    let FittedExemplar { exemplar, fit } = load_plane(&exemplar_path, border)?;
     let cache = if args.no_cache {
         None
     } else {
@@ -180,6 +188,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         levels,
         args.k
     );
+    println!("exemplar fit: {fit}");
     println!(
         "window {}x{} at ({}, {}), seed {}, passes {:?}",
         w, h, args.offset.0, args.offset.1, args.seed, params.passes

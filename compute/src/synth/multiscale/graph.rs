@@ -34,6 +34,12 @@ use toml::Spanned;
 /// GPU's lookup table from (exemplar, level) to analysed level has 16 slots per exemplar).
 pub const MAX_GRAPH_EXEMPLARS: usize = 16;
 
+/// Largest exemplar side of a graph, below the 2D synthesizer's: the GPU atlas packs a
+/// position and an exemplar's size in 8 bits per axis (`atlas.rs`). Larger images are refused
+/// rather than resampled: the edges state scales in each exemplar's own texels, which a
+/// resample would silently change.
+pub const MAX_MULTISCALE_SIDE: u32 = 256;
+
 /// `r_max = L − R_MAX_MARGIN`: edges need `r < r_max` (P:74, "r_max = L − 3 provided good
 /// results"), so that source and destination stacks overlap over enough scales.
 pub const R_MAX_MARGIN: u32 = 3;
@@ -308,13 +314,24 @@ impl ExemplarGraph {
         let mut exemplars = Vec::new();
         for e in &raw.exemplar {
             let e = e.get_ref();
-            let exemplar = load(e.image.get_ref()).map_err(|problem| {
-                doc.invalid(
+            let field = || format!("exemplar {:?}.image", e.name.get_ref());
+            let exemplar = load(e.image.get_ref())
+                .map_err(|problem| doc.invalid(&e.image.span(), field(), problem))?;
+            if exemplar.width.max(exemplar.height) > MAX_MULTISCALE_SIDE {
+                return Err(doc.invalid(
                     &e.image.span(),
-                    format!("exemplar {:?}.image", e.name.get_ref()),
-                    problem,
-                )
-            })?;
+                    field(),
+                    format!(
+                        "{} is {}x{}; multiscale exemplars are at most {MAX_MULTISCALE_SIDE} \
+                         pixels a side (the atlas packs positions in 8 bits; resampling would \
+                         change the scales the edges state, so scale it down yourself and \
+                         adjust r)",
+                        exemplar.source.display(),
+                        exemplar.width,
+                        exemplar.height
+                    ),
+                ));
+            }
             exemplars.push(exemplar);
         }
         let finest: Vec<u32> = exemplars.iter().map(Exemplar::finest_level).collect();

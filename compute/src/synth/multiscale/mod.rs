@@ -26,6 +26,7 @@ pub use cpu::{
 };
 pub use gpu::{CorrectionVariant, MultiscaleGpu};
 pub use graph::{
-    ExemplarGraph, GraphEdge, GraphError, Topology, MAX_GRAPH_EXEMPLARS, R_MAX_MARGIN,
+    ExemplarGraph, GraphEdge, GraphError, Topology, MAX_GRAPH_EXEMPLARS, MAX_MULTISCALE_SIDE,
+    R_MAX_MARGIN,
 };
 pub use superexemplar::{StackLevel, Superexemplar};

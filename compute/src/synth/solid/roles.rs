@@ -30,10 +30,11 @@ pub const ROLE_AXES: [[usize; 2]; ROLES] = [[1, 2], [0, 2], [0, 1]];
 /// Smallest exemplar side of solid synthesis (as in 2D: at least 5 pyramid levels).
 pub const MIN_SOLID_SIDE: u32 = 16;
 
-/// Largest exemplar side: the candidate search compares every strip with every strip, so its
-/// time grows with the fourth power of the side (128²: 16384 × 16384 strip pairs per search
-/// and level).
-pub const MAX_SOLID_SIDE: u32 = 128;
+/// Largest exemplar side: the candidate search compares strips of every pixel with strips of
+/// every other, so its time grows with the fourth power of the side (256²: 65536 × 65536
+/// strip pairs per search and level, 16 times 128²'s). Larger images are resampled to this
+/// by `fit.rs`.
+pub const MAX_SOLID_SIDE: u32 = 256;
 
 /// The world-space offset `d` seen in the image plane of `role`: its `(u, v)` components.
 pub fn project(role: usize, d: [i32; 3]) -> [i32; 2] {
@@ -131,7 +132,7 @@ fn check_side(e: &Exemplar) -> SynthResult<()> {
             name: "solid exemplar size",
             value: format!("{} is {}x{}", e.source.display(), e.width, e.height),
             limit: format!(
-                "solid synthesis needs square exemplars with a power-of-two side in {MIN_SOLID_SIDE}..={MAX_SOLID_SIDE} (the pyramid levels halve the side exactly; the brute-force candidate search grows with the fourth power of the side)"
+                "solid synthesis needs square exemplars with a power-of-two side in {MIN_SOLID_SIDE}..={MAX_SOLID_SIDE} (the pyramid levels halve the side exactly; the candidate search grows with the fourth power of the side); `lazysolid solid` fits any image to that (--fit)"
             ),
         });
     }

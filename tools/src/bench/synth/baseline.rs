@@ -47,7 +47,7 @@ pub fn synthesize(
 
 /// The pixels and the coordinate map of a `size`² output of [`synthesize`] (untimed).
 pub fn output(generated: GeneratedImage, exemplar: &Exemplar, size: u32) -> anyhow::Result<Output> {
-    const _: () = assert!(MAX_EXEMPLAR_SIDE <= 256, "positions are stored in 8 bits");
+    const _: () = assert!(MAX_EXEMPLAR_SIDE <= 4096, "positions are stored in 12 bits");
     let transform = generated.get_coordinate_transform();
     let out = generated.into_image().to_rgb8();
     anyhow::ensure!(
@@ -56,9 +56,10 @@ pub fn output(generated: GeneratedImage, exemplar: &Exemplar, size: u32) -> anyh
         out.dimensions()
     );
     // Applying the transform to an image that holds each pixel's own position recovers the
-    // source position of every output pixel (exemplars are at most 256 pixels a side).
+    // source position of every output pixel: the low 8 bits of x and y in red and green, their
+    // high 4 bits in blue (exemplars are at most 512 pixels a side).
     let positions = RgbaImage::from_fn(exemplar.width, exemplar.height, |x, y| {
-        Rgba([x as u8, y as u8, 0, 255])
+        Rgba([x as u8, y as u8, ((x >> 8) | (y >> 8) << 4) as u8, 255])
     });
     let map = transform
         .apply([DynamicImage::ImageRgba8(positions)])
@@ -67,7 +68,10 @@ pub fn output(generated: GeneratedImage, exemplar: &Exemplar, size: u32) -> anyh
         rgb: out.pixels().map(|p| p.0).collect(),
         coords: map
             .pixels()
-            .map(|p| pack(u32::from(p.0[0]), u32::from(p.0[1])))
+            .map(|p| {
+                let [r, g, b, _] = p.0.map(u32::from);
+                pack(r | (b & 15) << 8, g | (b >> 4) << 8)
+            })
             .collect(),
     })
 }

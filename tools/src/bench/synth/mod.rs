@@ -29,10 +29,10 @@ use clap::Args;
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::quality::ExemplarFigures;
 use lazysolid_compute::synth::{
-    analysis_key, analyze, analyze_cached, jitter_or_default, passes_or_default, AnalysisParams,
-    CacheOutcome, DiskCache, EnergyKernel, Exemplar, ExemplarAnalysis, GpuSynthesizer, LevelTimes,
-    Region, SynthParams, ANALYSIS_CACHE_KIND, DEFAULT_COARSE_JITTER, DEFAULT_FINEST_PASSES,
-    DEFAULT_PASSES,
+    analysis_key, analyze, analyze_cached, jitter_or_default, load_plane, passes_or_default,
+    AnalysisParams, Border, CacheOutcome, DiskCache, EnergyKernel, Exemplar, ExemplarAnalysis,
+    GpuSynthesizer, LevelTimes, Region, SynthParams, ANALYSIS_CACHE_KIND, DEFAULT_COARSE_JITTER,
+    DEFAULT_FINEST_PASSES, DEFAULT_PASSES,
 };
 use quality::SeedScores;
 use std::path::PathBuf;
@@ -43,7 +43,7 @@ pub struct SynthArgs {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Exemplars: names of GIMP patterns (NAME.pat in --exemplar-dir), or paths to PNG, JPEG
-    /// or .pat files.
+    /// or .pat files of any size from 16 pixels a side (resampled above 512, as `synth` does).
     #[arg(
         long,
         value_name = "NAME|PATH",
@@ -191,14 +191,17 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         .iter()
         .map(|n| {
             let path = assets::exemplar("--exemplars", n, args.exemplar_dir.as_deref())?;
-            Exemplar::load(&path)
-                .with_context(|| {
-                    format!(
-                        "loading exemplar {} (scripts/fetch-assets.sh fetches the GIMP patterns)",
-                        path.display()
-                    )
-                })
-                .map(|e| (display_name(&path), e))
+            let fitted = load_plane(&path, Border::Wrap).with_context(|| {
+                format!(
+                    "loading exemplar {} (scripts/fetch-assets.sh fetches the GIMP patterns)",
+                    path.display()
+                )
+            })?;
+            // As `lazysolid synth`: any size, resampled above 512, and said so.
+            if !fitted.fit.is_native() {
+                println!("exemplar fit: {}", fitted.fit);
+            }
+            Ok((display_name(&path), fitted.exemplar))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     let gpu = global.gpu()?;
