@@ -261,7 +261,9 @@ fn sliced_distance(a: &[f32], b: &[f32], directions: &[Vec<f32>]) -> f64 {
         out.sort_unstable_by(f32::total_cmp);
         out
     };
-    let total: f64 = directions
+    // Per-direction terms are computed in parallel but summed in direction order: a parallel
+    // float sum's grouping follows the thread pool, so its last bits would vary by machine.
+    let per_direction: Vec<f64> = directions
         .par_iter()
         .map(|d| {
             let (pa, pb) = (project(a, d), project(b, d));
@@ -271,6 +273,7 @@ fn sliced_distance(a: &[f32], b: &[f32], directions: &[Vec<f32>]) -> f64 {
                 .sum::<f64>()
                 / n as f64
         })
-        .sum();
+        .collect();
+    let total: f64 = per_direction.iter().sum();
     (total / directions.len() as f64).sqrt()
 }
