@@ -45,8 +45,9 @@ use lazysolid_compute::synth::solid::{
     SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
-    analyze, default_jitter, default_passes, load_solid, pack, period_repetition, AnalysisParams,
-    EnergyKernel, Exemplar, ExemplarFit, FittedExemplar, GpuSynthesizer, Region, SynthParams,
+    analyze, default_jitter, default_passes, load_solid, pack, period_repetition, unpack,
+    AnalysisParams, EnergyKernel, Exemplar, ExemplarFit, FittedExemplar, GpuSynthesizer, Region,
+    SynthParams,
 };
 use serde::Serialize;
 
@@ -430,6 +431,44 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             push(
                 "solid",
                 q(&run.synthesis, &run.colours)?,
+                Some(run.consistency),
+            );
+            // The colour rule's share of the gap: each axis's slice coloured by its own role's
+            // exemplar alone (a diagnostic, not a volume: the three slices disagree where the
+            // voxel does), and the per-channel mean of the three.
+            let triples = run.synthesis.window_triples();
+            let mut own = Vec::with_capacity(3);
+            for r in 0..3 {
+                let colours: Vec<[u8; 3]> = triples
+                    .iter()
+                    .map(|t| {
+                        let (x, y) = unpack(t[r]);
+                        run.exemplars.role(r).at(x, y)
+                    })
+                    .collect();
+                own.push(q(&run.synthesis, &colours)?[r]);
+            }
+            push(
+                "own role",
+                own.try_into().expect("three axes"),
+                Some(run.consistency),
+            );
+            let mean: Vec<[u8; 3]> = triples
+                .iter()
+                .map(|t| {
+                    let c: [[u8; 3]; 3] = std::array::from_fn(|r| {
+                        let (x, y) = unpack(t[r]);
+                        run.exemplars.role(r).at(x, y)
+                    });
+                    std::array::from_fn(|ch| {
+                        ((u32::from(c[0][ch]) + u32::from(c[1][ch]) + u32::from(c[2][ch]) + 1) / 3)
+                            as u8
+                    })
+                })
+                .collect();
+            push(
+                "mean colour",
+                q(&run.synthesis, &mean)?,
                 Some(run.consistency),
             );
             let ablation = |candidate_params: &CandidateParams, keep_current: bool| {

@@ -408,29 +408,55 @@ pub(crate) fn filter_and_cut<E>(
     Ok(cut)
 }
 
-/// One level's candidate sets of the three roles: each role's crossbar ranking from its two
-/// strip searches (looked up in `memo` by the images they compare), then the coherence
-/// iterations and the cut. Shared by the CPU reference, the host builder and the GPU kernels,
-/// so that the sequence, and with it the report, is one.
-pub(crate) fn level_sets<M, E>(
+/// The candidates of every level: per level, each distinct strip search once (searches that
+/// compare the same two images share one result), then per role the crossbar ranking of its
+/// two searches, the coherence iterations and the cut, with `on_level` called after each
+/// level. Shared by the CPU reference, the host builder and the GPU kernels, so that the
+/// sequence, and with it the report, is one; each supplies `prepare` (its per-level state,
+/// e.g. the level's colours on the device), `search`, `rank` and `step`.
+pub(crate) fn build_levels<S, M, E: From<SynthError>>(
     analysis: &SolidAnalysis,
-    memo: &HashMap<SearchKey, M>,
     params: &CandidateParams,
-    report: &mut LevelReport,
-    mut rank: impl FnMut(usize, &M, &M) -> Result<CandidateSets, E>,
-    mut step: impl FnMut(&CandidateSets, usize) -> Result<(CandidateSets, u64), E>,
-) -> Result<[CandidateSets; ROLES], E> {
-    let mut sets = Vec::with_capacity(ROLES);
-    for e in 0..ROLES {
-        let [f1, f2] = others(e);
-        let m1 = &memo[&image_key(analysis, search_key(e, f1))];
-        let m2 = &memo[&image_key(analysis, search_key(e, f2))];
-        let ranked = rank(e, m1, m2)?;
-        sets.push(filter_and_cut(ranked, params, report, |s| step(s, e))?);
+    on_level: &mut dyn FnMut(u32),
+    mut prepare: impl FnMut(&SolidLevel) -> Result<S, E>,
+    mut search: impl FnMut(&S, &SolidLevel, SearchKey) -> Result<M, E>,
+    mut rank: impl FnMut(&S, &SolidLevel, usize, &M, &M) -> Result<CandidateSets, E>,
+    mut step: impl FnMut(&S, &SolidLevel, &CandidateSets, usize) -> Result<(CandidateSets, u64), E>,
+) -> Result<SolidCandidates, E> {
+    params.check()?;
+    let mut levels = Vec::with_capacity(analysis.levels.len());
+    let mut reports = Vec::with_capacity(analysis.levels.len());
+    for (l, level) in analysis.levels.iter().enumerate() {
+        let state = prepare(level)?;
+        let mut memo: HashMap<SearchKey, M> = HashMap::new();
+        for e in 0..ROLES {
+            for f in others(e) {
+                let k = search_key(e, f);
+                let id = image_key(analysis, k);
+                if let std::collections::hash_map::Entry::Vacant(slot) = memo.entry(id) {
+                    slot.insert(search(&state, level, k)?);
+                }
+            }
+        }
+        let mut report = LevelReport::default();
+        let mut sets = Vec::with_capacity(ROLES);
+        for e in 0..ROLES {
+            let [f1, f2] = others(e);
+            let m1 = &memo[&image_key(analysis, search_key(e, f1))];
+            let m2 = &memo[&image_key(analysis, search_key(e, f2))];
+            let ranked = rank(&state, level, e, m1, m2)?;
+            sets.push(filter_and_cut(ranked, params, &mut report, |s| {
+                step(&state, level, s, e)
+            })?);
+        }
+        levels.push(
+            sets.try_into()
+                .unwrap_or_else(|_| unreachable!("three roles")),
+        );
+        reports.push(report);
+        on_level(l as u32);
     }
-    Ok(sets
-        .try_into()
-        .unwrap_or_else(|_| unreachable!("three roles")))
+    Ok(SolidCandidates { levels, reports })
 }
 
 /// The candidates of every level on the CPU (the reference of [`super::GpuCandidates`]).
@@ -441,36 +467,21 @@ pub fn candidates_cpu(
     analysis: &SolidAnalysis,
     params: &CandidateParams,
 ) -> SynthResult<SolidCandidates> {
-    params.check()?;
     let m = analysis.side;
-    let mut levels = Vec::new();
-    let mut reports = Vec::new();
-    for level in &analysis.levels {
-        let mut memo: HashMap<SearchKey, StripMatches> = HashMap::new();
-        for e in 0..ROLES {
-            for f in others(e) {
-                let k = search_key(e, f);
-                memo.entry(image_key(analysis, k)).or_insert_with(|| {
-                    search_cpu(
-                        level,
-                        (k.query, k.query_axis, k.target, k.target_axis),
-                        m,
-                        params,
-                    )
-                });
-            }
-        }
-        let mut report = LevelReport::default();
-        let sets = level_sets(
-            analysis,
-            &memo,
-            params,
-            &mut report,
-            |e, m1, m2| Ok::<_, SynthError>(triples_cpu(level, e, m1, m2, m, params)),
-            |s, e| Ok(coherence_step_cpu(s, e, level.spacing, m)),
-        )?;
-        levels.push(sets);
-        reports.push(report);
-    }
-    Ok(SolidCandidates { levels, reports })
+    build_levels(
+        analysis,
+        params,
+        &mut |_| {},
+        |_| Ok::<_, SynthError>(()),
+        |_, level, k| {
+            Ok(search_cpu(
+                level,
+                (k.query, k.query_axis, k.target, k.target_axis),
+                m,
+                params,
+            ))
+        },
+        |_, level, e, m1, m2| Ok(triples_cpu(level, e, m1, m2, m, params)),
+        |_, level, s, e| Ok(coherence_step_cpu(s, e, level.spacing, m)),
+    )
 }

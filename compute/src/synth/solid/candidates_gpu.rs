@@ -4,15 +4,13 @@
 
 use super::analysis::{SolidAnalysis, SolidLevel};
 use super::candidates::{
-    crossbar_pair, image_key, level_sets, others, search_key, CandidateParams, CandidateSets,
-    LevelReport, SearchKey, SolidCandidates,
+    build_levels, crossbar_pair, others, CandidateParams, CandidateSets, SearchKey, SolidCandidates,
 };
 use super::loop_budget::{items_per_dispatch, loop_cost, LOOP_BUDGET};
 use super::roles::ROLES;
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, Kernel};
 use crate::kernels::synth_solid;
-use crate::synth::SynthResult;
-use std::collections::HashMap;
+use crate::synth::{SynthError, SynthResult};
 use std::sync::Arc;
 
 crate::push_block! {
@@ -160,48 +158,29 @@ impl GpuCandidates {
         params: &CandidateParams,
         on_level: &mut dyn FnMut(u32),
     ) -> SynthResult<SolidCandidates> {
-        params.check()?;
         let m = analysis.side;
         let shift = m.ilog2();
         let pixels = (m * m) as usize;
-        let mut levels = Vec::new();
-        let mut reports = Vec::new();
-        for (l, level) in analysis.levels.iter().enumerate() {
-            let colours: Vec<GpuBuffer<u32>> = (0..ROLES)
-                .map(|r| {
-                    GpuBuffer::from_slice(
-                        &self.gpu,
-                        format!("solid colours level {l} role {r}"),
-                        &level.roles[r].colours,
-                    )
-                })
-                .collect::<Result<_, _>>()?;
-            let mut memo: HashMap<SearchKey, Matches> = HashMap::new();
-            for e in 0..ROLES {
-                for f in others(e) {
-                    let k = search_key(e, f);
-                    let id = image_key(analysis, k);
-                    if memo.contains_key(&id) {
-                        continue;
-                    }
-                    let found = self.search(level, &colours, k, shift, params)?;
-                    memo.insert(id, found);
-                }
-            }
-            let mut report = LevelReport::default();
-            let sets = level_sets(
-                analysis,
-                &memo,
-                params,
-                &mut report,
-                |e, m1, m2| self.rank(level, &colours, e, m1, m2, shift, params),
-                |s, e| self.coherence_step(s, e, level.spacing, shift, pixels),
-            )?;
-            levels.push(sets);
-            reports.push(report);
-            on_level(l as u32);
-        }
-        Ok(SolidCandidates { levels, reports })
+        build_levels(
+            analysis,
+            params,
+            on_level,
+            |level| {
+                (0..ROLES)
+                    .map(|r| {
+                        GpuBuffer::from_slice(
+                            &self.gpu,
+                            format!("solid colours spacing {} role {r}", level.spacing),
+                            &level.roles[r].colours,
+                        )
+                    })
+                    .collect::<Result<Vec<GpuBuffer<u32>>, _>>()
+                    .map_err(SynthError::from)
+            },
+            |colours, level, k| self.search(level, colours, k, shift, params),
+            |colours, level, e, m1, m2| self.rank(level, colours, e, m1, m2, shift, params),
+            |_, level, s, e| self.coherence_step(s, e, level.spacing, shift, pixels),
+        )
     }
 
     fn search(

@@ -25,17 +25,15 @@
 
 use super::analysis::{unpack_rgb, SolidAnalysis, SolidLevel};
 use super::candidates::{
-    crossbar_pair, image_key, keep_rows, level_sets, neighbours4, others, search_key,
-    CandidateParams, CandidateSets, LevelReport, SearchKey, SolidCandidates, StripMatches,
-    MAX_CANDIDATES,
+    build_levels, crossbar_pair, keep_rows, neighbours4, others, CandidateParams, CandidateSets,
+    SearchKey, SolidCandidates, StripMatches, MAX_CANDIDATES,
 };
-use super::roles::ROLES;
 use super::strip_tree::{distinct_strips, padded, padded_len, ssd, StripTree};
 use super::strips::{along, sample_offset};
 use crate::synth::coords::{pack, unpack};
 use crate::synth::SynthResult;
 use rayon::prelude::*;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::BinaryHeap;
 
 /// Every pixel's strip along `axis` of an image's level colours: `n` RGB samples spaced by
 /// `h`, as `3n` integers.
@@ -295,35 +293,16 @@ pub fn candidates_host(
     params: &CandidateParams,
     on_level: &mut dyn FnMut(u32),
 ) -> SynthResult<SolidCandidates> {
-    params.check()?;
     let m = analysis.side;
-    let mut levels = Vec::new();
-    let mut reports = Vec::new();
-    for (l, level) in analysis.levels.iter().enumerate() {
-        let mut memo: HashMap<SearchKey, StripMatches> = HashMap::new();
-        for e in 0..ROLES {
-            for f in others(e) {
-                let k = search_key(e, f);
-                memo.entry(image_key(analysis, k))
-                    .or_insert_with(|| search_host(level, k, m, params));
-            }
-        }
-        let mut report = LevelReport::default();
-        let sets = level_sets(
-            analysis,
-            &memo,
-            params,
-            &mut report,
-            |e, m1, m2| {
-                Ok::<_, crate::synth::SynthError>(triples_host(level, e, m1, m2, m, params))
-            },
-            |s, e| Ok(coherence_step_host(s, e, level.spacing, m)),
-        )?;
-        levels.push(sets);
-        reports.push(report);
-        on_level(l as u32);
-    }
-    Ok(SolidCandidates { levels, reports })
+    build_levels(
+        analysis,
+        params,
+        on_level,
+        |_| Ok::<_, crate::synth::SynthError>(()),
+        |_, level, k| Ok(search_host(level, k, m, params)),
+        |_, level, e, m1, m2| Ok(triples_host(level, e, m1, m2, m, params)),
+        |_, level, s, e| Ok(coherence_step_host(s, e, level.spacing, m)),
+    )
 }
 
 /// Where the candidates are computed; both sides give the same candidates, bit for bit.
