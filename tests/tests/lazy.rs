@@ -14,9 +14,9 @@ use lazysolid_compute::synth::solid::lazy::{
     dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MAX_LAZY_COORD,
 };
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cpu, default_solid_jitter, default_solid_passes, pack_rgb,
-    synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, SolidAnalysis, SolidCandidates,
-    SolidExemplars, SolidSynthesis, VolumeBox,
+    analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
+    pack_rgb, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, SolidAnalysis,
+    SolidCandidates, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_BALANCE,
 };
 use lazysolid_compute::synth::{SynthError, SynthParams};
 use lazysolid_compute::voxel::Voxelizer;
@@ -27,7 +27,7 @@ use std::sync::OnceLock;
 
 type Case = (SolidExemplars, SolidAnalysis, SolidCandidates, SynthParams);
 
-/// A 16² leather crop in every role, the solid defaults, seed 5.
+/// A 16² leather crop in every role, the solid defaults (the usage balance included), seed 5.
 fn case() -> &'static Case {
     static CELL: OnceLock<Case> = OnceLock::new();
     CELL.get_or_init(|| {
@@ -37,7 +37,10 @@ fn case() -> &'static Case {
         )
         .unwrap();
         let analysis = analyze_solid(&exemplars);
-        let candidates = candidates_cpu(&analysis, &CandidateParams::default()).unwrap();
+        let mut candidates = candidates_cpu(&analysis, &CandidateParams::default()).unwrap();
+        // With the default usage balance, as scenes synthesize: its penalties must reach
+        // every synthesizer alike.
+        balance_usage(&analysis, &mut candidates, DEFAULT_BALANCE, &mut |_| {}).unwrap();
         let levels = analysis.levels.len() as u32;
         let params = SynthParams::new(
             levels,

@@ -4,11 +4,11 @@
 
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
-    analyze_solid, candidates_cached, candidates_cpu, candidates_host, candidates_key,
-    decode_candidates, encode_candidates, plan_boxes, synthesize_solid_cpu, triple_consistency,
-    voxel_colour, CandidateParams, GpuCandidates, GpuSolidSynthesizer, SolidAnalysis,
-    SolidCandidates, SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND, LOOP_BUDGET, MAX_CANDIDATES,
-    ROLE_AXES,
+    analyze_solid, balance_usage, candidates_cached, candidates_cpu, candidates_host,
+    candidates_key, decode_candidates, encode_candidates, plan_boxes, synthesize_solid_cpu,
+    triple_consistency, voxel_colour, CandidateParams, GpuCandidates, GpuSolidSynthesizer,
+    SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND,
+    DEFAULT_BALANCE, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
 use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, with_gpu};
@@ -108,7 +108,7 @@ fn host_candidates_equal_the_reference() {
         CandidateParams {
             s: 8,
             strip: 3,
-            coherence: true,
+            ..CandidateParams::default()
         },
         CandidateParams {
             coherence: false,
@@ -149,7 +149,11 @@ fn boxed(origin: [i32; 3], size: [u32; 3]) -> VolumeBox {
 fn synthesis_gpu_equals_cpu_on_every_level() {
     // The three-image case: every role reads its own image (the shared case reads one image
     // through the same code, and is synthesized by `overlapping_boxes_agree`).
-    for (name, (_, analysis, candidates)) in [("three", three())] {
+    for (name, (_, analysis, unbalanced)) in [("three", three())] {
+        // With the default usage balance: its penalties are part of every distance.
+        let mut balanced = unbalanced.clone();
+        balance_usage(analysis, &mut balanced, DEFAULT_BALANCE, &mut |_| {}).unwrap();
+        let candidates = &balanced;
         let levels = analysis.levels.len() as u32;
         // One pass at every other level, from the finest down, none in between: each pass pads
         // the level's box by up to 5, 3 and 2 voxels a side along x, y and z, which the CPU
@@ -444,6 +448,85 @@ fn candidates_round_trip_through_the_disk_cache() {
     // A payload for another side is refused by the decoder, not handed on.
     let encoded = encode_candidates(candidates);
     assert_eq!(&decode_candidates(&encoded, 16).unwrap(), candidates);
+    // The usage balance's penalties travel with the candidates, and its strength is keyed.
+    let mut balanced = candidates.clone();
+    balance_usage(&three().1, &mut balanced, DEFAULT_BALANCE, &mut |_| {}).unwrap();
+    assert_eq!(balanced.balance.len(), candidates.levels.len());
+    let round = decode_candidates(&encode_candidates(&balanced), 16).unwrap();
+    assert_eq!(round, balanced);
+    let weaker = CandidateParams {
+        balance: 1,
+        ..params
+    };
+    assert_ne!(key, candidates_key(exemplars, &weaker));
     let err = decode_candidates(&encoded, 32).unwrap_err().to_string();
     assert!(err.contains("levels"), "{err}");
+}
+
+/// The usage balance (`balance.rs`): the same penalties on every run, non-zero where the
+/// correction over-uses pixels, and a volume that uses its exemplar more evenly and keeps more
+/// of its contrast than without (on a 32² walnut crop, the 10 % most used pixels' share of
+/// the finest level's voxels and the luminance spread of what they show).
+#[test]
+fn usage_balance_evens_out_what_the_volume_uses() {
+    let exemplars =
+        SolidExemplars::new(crop("walnut.pat", 24, 40, 32), [None, None, None]).unwrap();
+    let analysis = analyze_solid(&exemplars);
+    let plain = candidates_cpu(&analysis, &CandidateParams::default()).unwrap();
+    let mut balanced = plain.clone();
+    balance_usage(&analysis, &mut balanced, DEFAULT_BALANCE, &mut |_| {}).unwrap();
+    let mut again = plain.clone();
+    balance_usage(&analysis, &mut again, DEFAULT_BALANCE, &mut |_| {}).unwrap();
+    assert_eq!(balanced, again, "the pilot is deterministic");
+    let finest = balanced.balance.last().unwrap();
+    assert!(finest.iter().all(|role| role.iter().any(|&p| p > 0)));
+    let mut off = plain.clone();
+    balance_usage(&analysis, &mut off, 0, &mut |_| {}).unwrap();
+    assert!(off.balance.is_empty());
+
+    let m = analysis.side;
+    let levels = analysis.levels.len() as u32;
+    let params = SynthParams::new(
+        levels,
+        3,
+        &lazysolid_compute::synth::solid::default_solid_passes(levels),
+        &lazysolid_compute::synth::solid::default_solid_jitter(levels),
+    )
+    .unwrap();
+    let window = boxed([0, 0, 0], [24, 24, 24]);
+    let lum = |c: [u8; 3]| 0.299 * c[0] as f64 + 0.587 * c[1] as f64 + 0.114 * c[2] as f64;
+    let ex = exemplars.role(2);
+    let ex_std = {
+        let l: Vec<f64> = (0..m * m).map(|i| lum(ex.at(i % m, i / m))).collect();
+        let mean = l.iter().sum::<f64>() / l.len() as f64;
+        (l.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / l.len() as f64).sqrt()
+    };
+    let figures = |candidates: &SolidCandidates| {
+        let s = synthesize_solid_cpu(&analysis, candidates, &params, window).unwrap();
+        let triples = s.window_triples();
+        let mut count = vec![0u64; (m * m) as usize];
+        for t in &triples {
+            let (x, y) = unpack(t[2]);
+            count[(y * m + x) as usize] += 1;
+        }
+        count.sort_unstable_by(|a, b| b.cmp(a));
+        let top = count[..count.len() / 10].iter().sum::<u64>() as f64 / triples.len() as f64;
+        let l: Vec<f64> = triples
+            .iter()
+            .map(|&t| lum(voxel_colour(&exemplars, t)))
+            .collect();
+        let mean = l.iter().sum::<f64>() / l.len() as f64;
+        let std = (l.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / l.len() as f64).sqrt();
+        (top, std)
+    };
+    let (top_plain, std_plain) = figures(&plain);
+    let (top_balanced, std_balanced) = figures(&balanced);
+    println!(
+        "top 10% share {top_plain:.3} -> {top_balanced:.3}, luminance std {std_plain:.2} -> {std_balanced:.2} (exemplar {ex_std:.2})"
+    );
+    assert!(top_balanced < top_plain, "{top_balanced} vs {top_plain}");
+    assert!(
+        (std_balanced - ex_std).abs() < (std_plain - ex_std).abs(),
+        "{std_balanced} vs {std_plain}, exemplar {ex_std}"
+    );
 }

@@ -1345,7 +1345,7 @@ fn solid_names_each_bad_input_and_writes_nothing() {
     std::fs::write(&corrupt, b"not a PNG at all").unwrap();
     let out = dir.path().join("out.nrrd");
     let path = |p: &std::path::Path| p.to_str().unwrap().to_owned();
-    let cases: [(Vec<String>, &[&str]); 13] = [
+    let cases: [(Vec<String>, &[&str]); 14] = [
         (
             vec!["--ey".into(), path(&tiny)],
             &["tiny.png", "8x8", "at least 16"],
@@ -1397,6 +1397,10 @@ fn solid_names_each_bad_input_and_writes_nothing() {
         ),
         (vec!["--strip".into(), "4".into()], &["strip", "odd"]),
         (vec!["--s".into(), "80".into()], &["`s`", "1..=65"]),
+        (
+            vec!["--balance".into(), "65".into()],
+            &["`balance`", "0..=64"],
+        ),
     ];
     for (extra, needles) in cases {
         let (ok, _, err) = run(lazysolid()

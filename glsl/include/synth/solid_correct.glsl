@@ -1,8 +1,8 @@
 // The per-voxel decision of a solid correction subpass, shared by the dense kernel
 // (synth/solid/correct.comp) and the lazy one (synth/solid/lazy_correct.comp): among the
 // voxel's current triple and the candidates gathered in each role's plane, the triple whose
-// three exemplar neighbourhoods best match the three planes through the voxel (see
-// correct.comp). CPU reference: correct_voxel in compute/src/synth/solid/cpu.rs.
+// three exemplar neighbourhoods, each with its coordinate's usage penalty (balance.rs), best
+// match the three planes through the voxel (see correct.comp). CPU reference: correct_voxel in compute/src/synth/solid/cpu.rs.
 #ifndef LAZYSOLID_SOLID_CORRECT_GLSL
 #define LAZYSOLID_SOLID_CORRECT_GLSL
 
@@ -13,6 +13,7 @@ uint64_t appearance[3];
 uint64_t records[3];
 uint64_t candidates[3];
 uint64_t counts[3];
+uint64_t penalties[3];
 uint solid_side;
 
 uint word_distance(ivec4 s, uint w) {
@@ -30,7 +31,8 @@ uint role_distance(uint r, uint c) {
     uint e = 2u * (u.y * solid_side + u.x);
     uvec4 lo = UVec4Ptr(records[r]).v[e];
     uvec4 hi = UVec4Ptr(records[r]).v[e + 1u];
-    return word_distance(sums[r][0], lo.x) + word_distance(sums[r][1], lo.y)
+    return U32Ptr(penalties[r]).v[e >> 1u]
+        + word_distance(sums[r][0], lo.x) + word_distance(sums[r][1], lo.y)
         + word_distance(sums[r][2], lo.z) + word_distance(sums[r][3], lo.w)
         + word_distance(sums[r][4], hi.x) + word_distance(sums[r][5], hi.y)
         + word_distance(sums[r][6], hi.z) + word_distance(sums[r][7], hi.w);
@@ -56,7 +58,7 @@ bool better(uint d, uint rank, uvec3 t, uint bd, uint br, uvec3 bt) {
 
 // The corrected triple of the voxel whose 3x3x3 neighbourhood (x fastest, 13 the centre) is
 // `around`; only the 19 voxels of the three planes through the centre are read. `table` holds
-// the level's 12 buffer addresses (see correct.comp). The current triple competes only as one
+// the level's 15 buffer addresses (see correct.comp). The current triple competes only as one
 // of the gathered candidates unless `keep_current` is set (the rule before 2026-12-03, kept as
 // an ablation): a merely translated triple has a near-zero distance inside its block and would
 // otherwise win although its three exemplar colours disagree.
@@ -67,6 +69,7 @@ uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, u
         records[r] = U64Ptr(table).v[3u + r];
         candidates[r] = U64Ptr(table).v[6u + r];
         counts[r] = U64Ptr(table).v[9u + r];
+        penalties[r] = U64Ptr(table).v[12u + r];
     }
     int s = int(spacing);
     // Per role, the synthesized neighbourhood of the plane through the voxel: per diagonal

@@ -5,7 +5,7 @@
 // through the voxel perpendicular to the role's axis: its coordinate in that role shifted back
 // by its offset in the plane), the one whose three exemplar neighbourhoods best match the
 // three planes through the voxel (per plane the 2D synthesizer's 4-diagonal, 3-prediction
-// appearance sums, integer SSD). The current triple competes only when gathered (unless
+// appearance sums, integer SSD, plus the coordinate's usage penalty). The current triple competes only when gathered (unless
 // keep_current). Ties keep the current triple, then go to the smallest triple.
 // Each distinct shifted-back pixel of a role is evaluated once (a repeat gives the same
 // candidates, so it cannot change the choice), and a candidate's distance stops once its
@@ -15,10 +15,10 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t triples;          // 3 packed coordinates per voxel, updated in place
-    // 12 addresses (push constants hold only 128 bytes on lavapipe), per role r:
+    // 15 addresses (push constants hold only 128 bytes on lavapipe), per role r:
     // [r] appearance, 2 words (8 x i8) per exemplar pixel; [3 + r] 4-diagonal records, 8 words
     // per pixel; [6 + r] SOLID_MAX_CANDIDATES x 3 packed coordinates per pixel; [9 + r] valid
-    // candidates per pixel.
+    // candidates per pixel; [12 + r] usage penalty per pixel (compute/src/synth/solid/balance.rs).
     uint64_t table;
     ivec3 origin;
     uvec3 size;

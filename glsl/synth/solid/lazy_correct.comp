@@ -11,7 +11,7 @@
 
 layout(push_constant, scalar) uniform Push {
     uint64_t levels;
-    uint64_t table;    // the level's 12 analysis and candidate addresses (see correct.comp)
+    uint64_t table;    // the level's 15 analysis, candidate and penalty addresses (see correct.comp)
     uint64_t keys;     // stage-tagged: the last stage each voxel is needed at
     uint64_t slots;
     uint64_t errors;   // out: counts missing neighbours (must stay 0)

@@ -18,6 +18,11 @@
 //! repetition (`synth::quality`) — and, for the solid variants, how consistent the triples are
 //! (`TripleConsistency`), for
 //! - `solid`: the defaults;
+//! - `own role`, `mean colour`: the defaults' triples, each axis's slice coloured by its own
+//!   role's exemplar alone (a diagnostic, not a volume) or by the mean of the three instead of
+//!   the median;
+//! - `no balance`: candidates without the usage balance (`balance.rs`; the rule before
+//!   2026-12-03);
 //! - `keep current`: the correction's current triple competes even when it is none of the
 //!   gathered candidates (the rule before 2026-12-03);
 //! - `crossbar only`: candidates without the coherence filter (each pixel's 12 smallest
@@ -497,6 +502,18 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q(&crossbar.synthesis, &crossbar.colours)?,
                 Some(crossbar.consistency),
             );
+            let unbalanced = ablation(
+                &CandidateParams {
+                    balance: 0,
+                    ..CandidateParams::default()
+                },
+                false,
+            )?;
+            push(
+                "no balance",
+                q(&unbalanced.synthesis, &unbalanced.colours)?,
+                Some(unbalanced.consistency),
+            );
             let (ex, ex_colours) = extruded(&exemplars, n);
             push("extruded E_z", q(&ex, &ex_colours)?, None);
             let (two_d, image) = synth_2d(
@@ -510,7 +527,11 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             )?;
             push("2d synth", two_d, None);
             let name = case.replace('+', "-");
-            for (variant, s) in [("", &run), ("-keep-current", &keep)] {
+            for (variant, s) in [
+                ("", &run),
+                ("-keep-current", &keep),
+                ("-no-balance", &unbalanced),
+            ] {
                 let (w, h, rgb) = figure(exemplars.role(0), &image, &s.synthesis, &s.colours);
                 write_png(
                     &dir.join(format!("{name}-{n}{variant}-slices.png")),

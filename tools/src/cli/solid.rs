@@ -20,7 +20,8 @@ use lazysolid_compute::synth::solid::{
     analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
     solid_jitter_or_default, solid_passes_or_default, triple_consistency, CandidateBuilder,
     CandidateParams, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency,
-    VolumeBox, DEFAULT_S, DEFAULT_STRIP, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLE_NAMES,
+    VolumeBox, DEFAULT_BALANCE, DEFAULT_S, DEFAULT_STRIP, MAX_SOLID_SIDE, MIN_SOLID_SIDE,
+    ROLE_NAMES,
 };
 use lazysolid_compute::synth::{
     histogram_distance, load_solid, period_repetition, EnergyKernel, EnergyReport, Exemplar,
@@ -90,6 +91,11 @@ pub struct SolidArgs {
     /// Strips kept per other exemplar before the crossbar ranking (the thesis' S).
     #[arg(long, default_value_t = DEFAULT_S)]
     pub s: u32,
+    /// Strength of the usage balance, 0 to 64 (0: off): a pilot synthesis measures which
+    /// exemplar pixels the correction over-uses and penalizes them, so the volume keeps the
+    /// exemplar's dark spots, outlines and cracks (docs/solid.md)
+    #[arg(long, default_value_t = DEFAULT_BALANCE)]
+    pub balance: u32,
     /// Most pixels of each slice the neighbourhood energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -409,7 +415,9 @@ pub fn synthesize_cube(
     .with_keep_current(keep_current);
     let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };
     let start = Instant::now();
-    let b = show(bar(levels as u64, "candidates"));
+    // The sets, then the usage balance's pilot, one step per level each.
+    let steps = levels * if candidate_params.balance > 0 { 2 } else { 1 };
+    let b = show(bar(steps as u64, "candidates"));
     let (candidates, cached) = candidates_cached(&exemplars, candidate_params, cache, || {
         builder.compute(gpu, &analysis, candidate_params, &mut |_| b.inc(1))
     })?;
@@ -491,6 +499,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         strip: args.strip,
         s: args.s,
         coherence: true,
+        balance: args.balance,
     };
     candidate_params.check()?;
     let gpu = global.gpu()?;

@@ -56,6 +56,11 @@ pub struct CandidateParams {
     /// Whether the coherence filter runs; without it each pixel keeps its
     /// [`MAX_CANDIDATES`] smallest crossbar errors (the "crossbar only" ablation).
     pub coherence: bool,
+    /// Strength of the usage balance (`balance.rs`) that [`CandidateBuilder`] adds to the
+    /// candidates; 0: none (the builders' own sets, as before 2026-12-03).
+    ///
+    /// [`CandidateBuilder`]: super::CandidateBuilder
+    pub balance: u32,
 }
 
 impl Default for CandidateParams {
@@ -64,6 +69,7 @@ impl Default for CandidateParams {
             strip: DEFAULT_STRIP,
             s: DEFAULT_S,
             coherence: true,
+            balance: super::balance::DEFAULT_BALANCE,
         }
     }
 }
@@ -86,6 +92,13 @@ impl CandidateParams {
                 name: "s",
                 value: self.s.to_string(),
                 limit: format!("must lie in 1..={MAX_S}"),
+            });
+        }
+        if self.balance > super::balance::MAX_BALANCE {
+            return Err(SynthError::Parameter {
+                name: "balance",
+                value: self.balance.to_string(),
+                limit: format!("must lie in 0..={}", super::balance::MAX_BALANCE),
             });
         }
         Ok(())
@@ -168,6 +181,16 @@ pub struct SolidCandidates {
     pub levels: Vec<[CandidateSets; ROLES]>,
     /// Per level, what the coherence filter did.
     pub reports: Vec<LevelReport>,
+    /// Per level and role, the usage penalty of every exemplar pixel (`balance.rs`), added
+    /// to that role's neighbourhood distance; empty: none.
+    pub balance: Vec<[Vec<u32>; ROLES]>,
+}
+
+impl SolidCandidates {
+    /// The usage penalty of `pixel` in `role` at `level` (0 without a balance).
+    pub fn penalty(&self, level: usize, role: usize, pixel: usize) -> u32 {
+        self.balance.get(level).map_or(0, |b| b[role][pixel])
+    }
 }
 
 /// One strip search: query role, its image axis, target role, its image axis. Two searches
@@ -456,7 +479,11 @@ pub(crate) fn build_levels<S, M, E: From<SynthError>>(
         reports.push(report);
         on_level(l as u32);
     }
-    Ok(SolidCandidates { levels, reports })
+    Ok(SolidCandidates {
+        levels,
+        reports,
+        balance: Vec::new(),
+    })
 }
 
 /// The candidates of every level on the CPU (the reference of [`super::GpuCandidates`]).

@@ -7,6 +7,7 @@
 //! but is cheap to include), the candidate parameters and the constants of the candidate code;
 //! the payload holds per level each role's sets and the level's coherence report.
 
+use super::balance::MAX_PENALTY;
 use super::candidates::{
     CandidateParams, CandidateSets, LevelReport, SolidCandidates, KEPT, MAX_CANDIDATES,
     MAX_COHERENCE_ITERATIONS,
@@ -22,8 +23,9 @@ use crate::synth::error::SynthResult;
 pub const CANDIDATES_CACHE_KIND: &str = "solid-candidates";
 
 /// Version of the candidate construction and its payload: bumped whenever the strips, the
-/// crossbar ranking, the coherence filter or the encoding change.
-pub const CANDIDATES_FORMAT_VERSION: u32 = 1;
+/// crossbar ranking, the coherence filter, the usage balance or the encoding change (2: the
+/// balance's penalties after the levels).
+pub const CANDIDATES_FORMAT_VERSION: u32 = 2;
 
 /// The cache key of the candidates of `exemplars` with `params`.
 pub fn candidates_key(exemplars: &SolidExemplars, params: &CandidateParams) -> CacheKey {
@@ -40,6 +42,10 @@ pub fn candidates_key(exemplars: &SolidExemplars, params: &CandidateParams) -> C
     b.u32("strip", params.strip)
         .u32("s", params.s)
         .bool("coherence", params.coherence)
+        .u32("balance", params.balance)
+        .u32("pilot side", super::balance::PILOT_SIDE)
+        .u32("pilot seed", super::balance::PILOT_SEED)
+        .u32("pilot rule", super::balance::PILOT_RULE)
         .u32("kept", KEPT as u32)
         .u32("max candidates", MAX_CANDIDATES as u32)
         .u32("max iterations", MAX_COHERENCE_ITERATIONS)
@@ -62,6 +68,12 @@ pub fn encode_candidates(candidates: &SolidCandidates) -> Vec<u8> {
         w.u64(report.fallbacks);
         w.u64(report.cut);
         w.u64(report.candidates);
+    }
+    w.u32(candidates.balance.len() as u32);
+    for level in &candidates.balance {
+        for role in level {
+            w.slice(role);
+        }
     }
     w.into_bytes()
 }
@@ -126,8 +138,32 @@ pub fn decode_candidates(bytes: &[u8], side: u32) -> Result<SolidCandidates, Cac
             candidates: r.u64()?,
         });
     }
+    let balanced = r.u32()?;
+    if balanced != 0 && balanced != count {
+        return Err(bad(format!(
+            "penalties of {balanced} levels, the candidates have {count}"
+        )));
+    }
+    let mut balance = Vec::with_capacity(balanced as usize);
+    for l in 0..balanced {
+        let mut roles = Vec::with_capacity(ROLES);
+        for role in 0..ROLES {
+            let penalties: Vec<u32> = r.slice(pixels)?;
+            if let Some(p) = penalties.iter().find(|&&p| p > MAX_PENALTY) {
+                return Err(bad(format!(
+                    "level {l} role {role}: penalty {p} above {MAX_PENALTY}"
+                )));
+            }
+            roles.push(penalties);
+        }
+        balance.push(roles.try_into().expect("three roles"));
+    }
     r.finish()?;
-    Ok(SolidCandidates { levels, reports })
+    Ok(SolidCandidates {
+        levels,
+        reports,
+        balance,
+    })
 }
 
 /// `compute()`'s candidates of `exemplars` with `params`, through `cache` (`None`: always

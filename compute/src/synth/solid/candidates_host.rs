@@ -337,7 +337,9 @@ impl CandidateBuilder {
         }
     }
 
-    /// The candidates of every level, on the side this choice resolves to on `gpu`.
+    /// The candidates of every level, on the side this choice resolves to on `gpu`, with
+    /// the usage balance of `params.balance` (`balance.rs`, a CPU pilot after the sets);
+    /// `on_level` is called after each level of the sets, then of the pilot.
     ///
     /// # Errors
     /// Parameters out of range; device errors of the kernels.
@@ -348,11 +350,13 @@ impl CandidateBuilder {
         params: &CandidateParams,
         on_level: &mut dyn FnMut(u32),
     ) -> SynthResult<SolidCandidates> {
-        match self.resolve(gpu) {
+        let mut candidates = match self.resolve(gpu) {
             CandidateBuilder::Gpu => {
                 super::GpuCandidates::new(gpu)?.compute(analysis, params, on_level)
             }
             _ => candidates_host(analysis, params, on_level),
-        }
+        }?;
+        super::balance::balance_usage(analysis, &mut candidates, params.balance, on_level)?;
+        Ok(candidates)
     }
 }

@@ -11,7 +11,8 @@
 //! synthesizer's k-coherence, once per plane), the one
 //! minimizing the sum over the three planes through the voxel of the 2D synthesizer's
 //! 4-diagonal appearance distance — plane ⊥ x compares the `E_x` coordinates of the voxels in
-//! that plane with the candidate's `E_x` neighbourhood, and so on. The current triple competes
+//! that plane with the candidate's `E_x` neighbourhood, and so on — plus each coordinate's
+//! usage penalty (`balance.rs`). The current triple competes
 //! only as one of the gathered candidates (unless [`SynthParams::keep_current`]). Ties keep
 //! the current triple, then go to the smallest triple.
 
@@ -112,9 +113,11 @@ pub(crate) fn plane_neighbourhoods(
     })
 }
 
-/// Distance of candidate `t` to the synthesized plane neighbourhoods.
+/// Distance of candidate `t` to the synthesized plane neighbourhoods, each role's usage
+/// penalty included (`balance.rs`).
 pub(crate) fn triple_distance(
     analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
     level: u32,
     planes: &[[i32; NEIGHBOURHOOD_DIMS]; ROLES],
     t: [u32; 3],
@@ -124,12 +127,43 @@ pub(crate) fn triple_distance(
     (0..ROLES)
         .map(|r| {
             let (x, y) = unpack(t[r]);
-            neighbourhood_distance(
-                &planes[r],
-                &lv.roles[r].neighbourhoods[(y * m + x) as usize],
-            )
+            let pixel = (y * m + x) as usize;
+            neighbourhood_distance(&planes[r], &lv.roles[r].neighbourhoods[pixel])
+                + candidates.penalty(level as usize, r, pixel)
         })
         .sum()
+}
+
+/// Mean distance of the final triples of a level's computed box (voxels whose 3×3×3
+/// neighbourhood lies inside it), in integer arithmetic: what the usage balance scales its
+/// penalties by.
+pub(crate) fn mean_final_distance(
+    analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
+    level: u32,
+    computed: &LevelTriples,
+) -> u64 {
+    let region = computed.region;
+    let (sum, n) = (0..region.voxels())
+        .into_par_iter()
+        .map(|i| {
+            let p = region.position(i);
+            let inside = (0..3).all(|a| {
+                p[a] > region.origin[a] && p[a] < region.origin[a] + region.size[a] as i32 - 1
+            });
+            if !inside {
+                return (0u64, 0u64);
+            }
+            let around: [[u32; 3]; 27] = std::array::from_fn(|k| {
+                let d = offset27(k);
+                computed.triples[region.index([p[0] + d[0], p[1] + d[1], p[2] + d[2]])]
+            });
+            let planes = plane_neighbourhoods(analysis, level, &around);
+            let d = triple_distance(analysis, candidates, level, &planes, around[13]);
+            (u64::from(d), 1)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    sum / n.max(1)
 }
 
 /// Offsets of the 3×3 voxels of role `r`'s plane through a voxel (the role's normal
@@ -204,7 +238,7 @@ pub fn correct_voxel(
     // empty, so the current triple stays only when it is gathered and wins.
     let mut best = if keep_current {
         (
-            triple_distance(analysis, level, &planes, current),
+            triple_distance(analysis, candidates, level, &planes, current),
             0u32,
             current,
         )
@@ -226,7 +260,7 @@ pub fn correct_voxel(
         bases.dedup();
         for base in bases {
             for &c in role_sets.of(base as usize) {
-                let dist = triple_distance(analysis, level, &planes, c);
+                let dist = triple_distance(analysis, candidates, level, &planes, c);
                 best = best.min((dist, (c != current) as u32, c));
             }
         }

@@ -53,9 +53,11 @@ struct GpuRole {
     records: GpuBuffer<u32>,
     candidates: GpuBuffer<[u32; 3]>,
     counts: GpuBuffer<u32>,
+    /// Usage penalty per pixel (zeros without a balance).
+    penalties: GpuBuffer<u32>,
 }
 
-/// One level on the GPU: its spacing, its roles, and the table of the roles' 12 buffer
+/// One level on the GPU: its spacing, its roles, and the table of the roles' 15 buffer
 /// addresses the correction reads (lavapipe's push constants hold only 128 bytes).
 struct GpuLevel {
     spacing: u32,
@@ -100,6 +102,14 @@ impl GpuSolidSynthesizer {
                     )?,
                     candidates: GpuBuffer::from_slice(gpu, name("candidates"), &set.triples)?,
                     counts: GpuBuffer::from_slice(gpu, name("candidate counts"), &set.counts)?,
+                    penalties: match candidates.balance.get(l) {
+                        Some(b) => GpuBuffer::from_slice(gpu, name("usage penalties"), &b[r])?,
+                        None => GpuBuffer::zeroed(
+                            gpu,
+                            name("usage penalties"),
+                            (analysis.side * analysis.side) as usize,
+                        )?,
+                    },
                 });
             }
             let roles: [GpuRole; ROLES] = roles
@@ -110,6 +120,7 @@ impl GpuSolidSynthesizer {
                 .chain((0..ROLES).map(|r| roles[r].records.address().raw()))
                 .chain((0..ROLES).map(|r| roles[r].candidates.address().raw()))
                 .chain((0..ROLES).map(|r| roles[r].counts.address().raw()))
+                .chain((0..ROLES).map(|r| roles[r].penalties.address().raw()))
                 .collect();
             levels.push(GpuLevel {
                 spacing: lv.spacing,

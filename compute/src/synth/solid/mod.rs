@@ -5,6 +5,7 @@
 //! the unbounded volume, each on the GPU with an exact CPU reference. See `docs/solid.md`.
 
 mod analysis;
+mod balance;
 mod candidates;
 mod candidates_cache;
 pub(crate) mod candidates_gpu;
@@ -24,6 +25,9 @@ mod strips;
 mod volume;
 
 pub use analysis::{analyze_solid, pack_rgb, unpack_rgb, RoleLevel, SolidAnalysis, SolidLevel};
+pub use balance::{
+    balance_usage, DEFAULT_BALANCE, MAX_BALANCE, MAX_PENALTY, PILOT_ORIGIN, PILOT_SEED, PILOT_SIDE,
+};
 pub use candidates::{
     candidates_cpu, coherence_step_cpu, search_cpu, triples_cpu, unit_step, CandidateParams,
     CandidateSets, LevelReport, SolidCandidates, StripMatches, DEFAULT_S, KEPT, MAX_CANDIDATES,
