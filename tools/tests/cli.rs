@@ -1456,8 +1456,11 @@ fn bench_solid_writes_times_quality_and_figures() {
             "lazysolid end-to-end cold (wall)",
             "lazysolid end-to-end warm (wall)",
             "terra 16³ peak GPU MiB",
+            "own role",
+            "mean colour",
             "keep current",
             "crossbar only",
+            "no balance",
             "extruded E_z",
             "2d synth",
             // The 64² pattern fitted to the 16² measured (--fit auto).
@@ -1479,11 +1482,12 @@ fn bench_solid_writes_times_quality_and_figures() {
         "terra.pat 64x64 RGB → Lanczos3 resample 16x16"
     );
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
-    // Five variants, three axes each, plus the header.
-    assert_eq!(quality.lines().count(), 1 + 5 * 3, "{quality}");
+    // Eight variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 8 * 3, "{quality}");
     for name in [
         "terra-16-slices.png",
         "terra-16-keep-current-slices.png",
+        "terra-16-no-balance-slices.png",
         "terra-slab.png",
         "quality.json",
     ] {
