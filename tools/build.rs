@@ -22,7 +22,10 @@ fn git(dir: &Path, args: &[&str]) -> Option<String> {
 }
 
 fn main() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // Read at run time: a build script binary reused from another checkout's target folder
+    // must still ask the checkout being built.
+    let manifest_dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
+    let dir = Path::new(&manifest_dir);
     println!("cargo:rerun-if-env-changed=LAZYSOLID_REVISION");
     let revision = match std::env::var("LAZYSOLID_REVISION") {
         Ok(r) if !r.trim().is_empty() => r.trim().to_string(),
