@@ -165,12 +165,17 @@ pub fn balance_usage(
     };
     for l in 0..levels {
         // The pyramid down to level l, which the synthesizer then treats as its finest.
-        let mut a = analysis.clone();
-        a.levels.truncate(l + 1);
-        let mut c = candidates.clone();
-        c.levels.truncate(l + 1);
-        c.reports.truncate(l + 1);
-        c.balance.truncate(l + 1);
+        // Only the levels kept are copied (at 256² a level's candidates are tens of MB).
+        let a = SolidAnalysis {
+            side: analysis.side,
+            role_image: analysis.role_image,
+            levels: analysis.levels[..=l].to_vec(),
+        };
+        let c = SolidCandidates {
+            levels: candidates.levels[..=l].to_vec(),
+            reports: candidates.reports[..=l].to_vec(),
+            balance: candidates.balance[..=l].to_vec(),
+        };
         let params = SynthParams::new(l as u32 + 1, PILOT_SEED, &passes[..=l], &jitter[..=l])?;
         let pilot = synthesize_solid_cpu(&a, &c, &params, window)?;
         let finest = pilot.levels.last().expect("a finest level");
