@@ -459,6 +459,10 @@ fn candidates_round_trip_through_the_disk_cache() {
         ..params
     };
     assert_ne!(key, candidates_key(exemplars, &weaker));
+    // So is the feature channel's weight, which changes the appearance space.
+    let featureless = exemplars.clone().with_feature_weight(0).unwrap();
+    assert_ne!(key, candidates_key(&featureless, &params));
+    assert!(exemplars.clone().with_feature_weight(401).is_err());
     let err = decode_candidates(&encoded, 32).unwrap_err().to_string();
     assert!(err.contains("levels"), "{err}");
 }

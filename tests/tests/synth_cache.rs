@@ -65,10 +65,17 @@ fn changed_parameters_or_pixels_miss() {
     let base = AnalysisParams::default();
     let mut changed_pixel = exemplar.clone();
     changed_pixel.rgb[617][1] ^= 1;
-    let cases: [(&Exemplar, AnalysisParams); 5] = [
+    let cases: [(&Exemplar, AnalysisParams); 6] = [
         (exemplar, base),
         (exemplar, AnalysisParams { spread: 8, ..base }),
         (exemplar, AnalysisParams { k: 3, ..base }),
+        (
+            exemplar,
+            AnalysisParams {
+                feature_weight: 0,
+                ..base
+            },
+        ),
         (
             exemplar,
             AnalysisParams {

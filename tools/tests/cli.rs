@@ -1297,6 +1297,8 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         "period repetition",
         "energy",
         "render (GPU)",
+        "feature channel of ",
+        "% of the pixels, distance clamped at 4 px, deviation ",
     ] {
         assert!(stdout.contains(needle), "missing {needle:?} in:\n{stdout}");
     }
@@ -1311,6 +1313,8 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         ("oblique", 64),
         ("slab", 9 * 16 + 8 * 2),
         ("render", 400),
+        // Exemplar | mask | distance.
+        ("features", 3 * 16 + 2 * 4),
     ] {
         let image = image::open(out_dir.join(format!("terra.{name}.png"))).unwrap();
         assert_eq!(image.width(), width, "{name}");
@@ -1320,8 +1324,8 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
     let text = std::fs::read_to_string(&scene).unwrap();
     assert!(text.contains("path = \"terra.nrrd\""), "{text}");
     lazysolid_renderer::scene::Scene::load(&scene).unwrap();
-    // The volume, six pictures and the scene; no temporary file is left behind.
-    assert_eq!(std::fs::read_dir(&out_dir).unwrap().count(), 8);
+    // The volume, seven pictures and the scene; no temporary file is left behind.
+    assert_eq!(std::fs::read_dir(&out_dir).unwrap().count(), 9);
     assert!(stdout.contains("cache miss"), "{stdout}");
     // A second run reads the candidates back and writes the same volume.
     let (ok, stdout, err) = solid(&["--no-render"]);
@@ -1345,7 +1349,7 @@ fn solid_names_each_bad_input_and_writes_nothing() {
     std::fs::write(&corrupt, b"not a PNG at all").unwrap();
     let out = dir.path().join("out.nrrd");
     let path = |p: &std::path::Path| p.to_str().unwrap().to_owned();
-    let cases: [(Vec<String>, &[&str]); 14] = [
+    let cases: [(Vec<String>, &[&str]); 15] = [
         (
             vec!["--ey".into(), path(&tiny)],
             &["tiny.png", "8x8", "at least 16"],
@@ -1401,6 +1405,10 @@ fn solid_names_each_bad_input_and_writes_nothing() {
             vec!["--balance".into(), "65".into()],
             &["`balance`", "0..=64"],
         ),
+        (
+            vec!["--feature-weight".into(), "401".into()],
+            &["--feature-weight", "401", "0..=400"],
+        ),
     ];
     for (extra, needles) in cases {
         let (ok, _, err) = run(lazysolid()
@@ -1429,7 +1437,7 @@ fn solid_names_each_bad_input_and_writes_nothing() {
 
 /// `bench solid` end to end at the smallest size: the candidate row, the synthesis row, the
 /// cold and warm end-to-end rows (each checks what the candidate cache did), the peak memory,
-/// the quality table with its four variants and the figures.
+/// the quality table with its variants and the figures.
 #[test]
 fn bench_solid_writes_times_quality_and_figures() {
     let out = tempfile::tempdir().unwrap();
@@ -1461,6 +1469,7 @@ fn bench_solid_writes_times_quality_and_figures() {
             "keep current",
             "crossbar only",
             "no balance",
+            "no feature",
             "extruded E_z",
             "2d synth",
             // The 64² pattern fitted to the 16² measured (--fit auto).
@@ -1482,12 +1491,13 @@ fn bench_solid_writes_times_quality_and_figures() {
         "terra.pat 64x64 RGB → Lanczos3 resample 16x16"
     );
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
-    // Eight variants, three axes each, plus the header.
-    assert_eq!(quality.lines().count(), 1 + 8 * 3, "{quality}");
+    // Nine variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 9 * 3, "{quality}");
     for name in [
         "terra-16-slices.png",
         "terra-16-keep-current-slices.png",
         "terra-16-no-balance-slices.png",
+        "terra-16-no-feature-slices.png",
         "terra-slab.png",
         "quality.json",
     ] {

@@ -3,12 +3,13 @@
 //! level. Its output is integers only, so the synthesizers that consume it (GPU and CPU) agree
 //! exactly.
 
-use super::appearance::{appearance, APPEARANCE_DIMS};
+use super::appearance::{shared_appearance, Appearance, APPEARANCE_DIMS};
 use super::coherence::coherence_sets;
 use super::error::{SynthError, SynthResult};
 use super::exemplar::Exemplar;
+use super::feature::{feature_map, DEFAULT_FEATURE_WEIGHT, MAX_FEATURE_WEIGHT};
 use super::neighbourhood::{exemplar_neighbourhoods, NEIGHBOURHOOD_DIMS};
-use super::stack::gaussian_stack;
+use super::stack::{gaussian_stack, scalar_stack};
 
 /// Largest k of the similarity sets (9k candidates per pixel and correction).
 pub const MAX_COHERENCE_K: u32 = 8;
@@ -35,6 +36,10 @@ pub struct AnalysisParams {
     pub spread: u32,
     /// Whether the exemplar tiles (borders wrap) or is clamped at its edges.
     pub toroidal: bool,
+    /// Weight of the feature-distance channel in the appearance space, in percent of the
+    /// colour's standard deviation (`synth/feature.rs`; 0: colour only). The multiscale
+    /// analysis, whose exemplars are related by colour offsets, ignores it.
+    pub feature_weight: u32,
 }
 
 impl AnalysisParams {
@@ -57,6 +62,15 @@ impl AnalysisParams {
                 limit: format!("must be at most {MAX_COHERENCE_SPREAD}"),
             });
         }
+        if self.feature_weight > MAX_FEATURE_WEIGHT {
+            return Err(SynthError::Parameter {
+                name: "--feature-weight",
+                value: self.feature_weight.to_string(),
+                limit: format!(
+                    "0..={MAX_FEATURE_WEIGHT} (percent of the colour's standard deviation; past that the colour is drowned)"
+                ),
+            });
+        }
         Ok(())
     }
 }
@@ -67,6 +81,7 @@ impl Default for AnalysisParams {
             k: DEFAULT_COHERENCE_K,
             spread: DEFAULT_COHERENCE_SPREAD,
             toroidal: true,
+            feature_weight: DEFAULT_FEATURE_WEIGHT,
         }
     }
 }
@@ -116,12 +131,36 @@ pub fn analyze(exemplar: &Exemplar, params: &AnalysisParams) -> SynthResult<Exem
     let (w, h) = (exemplar.width, exemplar.height);
     let finest = exemplar.finest_level();
     let stack = gaussian_stack(exemplar, params.toroidal);
+    // The feature channel, found on the exemplar and blurred down the stack with the colours.
+    // None when off or when the exemplar is speckle (the analysis is then colour only).
+    let map = feature_map(
+        &stack[finest as usize],
+        w,
+        h,
+        params.toroidal,
+        params.feature_weight,
+    );
+    let features = map
+        .active()
+        .then(|| scalar_stack(&map.channel, w, h, finest, params.toroidal));
     let levels = stack
         .iter()
         .enumerate()
         .map(|(l, colours)| {
             let spacing = 1u32 << (finest - l as u32);
-            let a = appearance(colours, w, h, spacing, params.toroidal);
+            let feature = features.as_ref().map(|f| [f[l].as_slice()]);
+            let (mut vectors, residual_variance) = shared_appearance(
+                &[colours],
+                feature.as_ref().map(|f| f.as_slice()),
+                w,
+                h,
+                spacing,
+                params.toroidal,
+            );
+            let a = Appearance {
+                vectors: vectors.pop().expect("one image in, one out"),
+                residual_variance,
+            };
             let coherence = coherence_sets(&a.vectors, w, h, params.k, params.spread);
             LevelAnalysis {
                 spacing,

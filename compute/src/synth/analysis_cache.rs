@@ -33,6 +33,8 @@ pub fn analysis_key(exemplar: &Exemplar, params: &AnalysisParams) -> CacheKey {
         .u32("k", params.k)
         .u32("spread", params.spread)
         .bool("toroidal", params.toroidal)
+        .u32("feature weight", params.feature_weight)
+        .u32("feature rule", super::feature::FEATURE_RULE)
         .u32("appearance dims", APPEARANCE_DIMS as u32)
         .f64("quantization", APPEARANCE_QUANT_MAX)
         .u32("coherence pool", MAX_POOL as u32)

@@ -33,21 +33,15 @@ pub struct Appearance {
     pub residual_variance: f64,
 }
 
-/// Computes the appearance of `level` (`w`×`h` RGB in 0..=255) sampled every `spacing` pixels.
-pub fn appearance(level: &[[f32; 3]], w: u32, h: u32, spacing: u32, toroidal: bool) -> Appearance {
-    let (mut vectors, residual_variance) = shared_appearance(&[level], w, h, spacing, toroidal);
-    Appearance {
-        vectors: vectors.pop().expect("one image in, one out"),
-        residual_variance,
-    }
-}
-
 /// The appearance of several images of the same size in **one** PCA space: the basis and the
 /// quantization scale come from the neighbourhoods of all images pooled, so a distance
 /// between vectors of different images (or sums over several of them) compares like with
-/// like. Returns one vector list per image and the residual variance of the pooled data.
+/// like. `features`, when given, holds one feature channel per image (`synth/feature.rs`),
+/// appended to every sample before the analysis. Returns one vector list per image and the
+/// residual variance of the pooled data.
 pub(crate) fn shared_appearance(
     levels: &[&[[f32; 3]]],
+    features: Option<&[&[f32]]>,
     w: u32,
     h: u32,
     spacing: u32,
@@ -55,8 +49,10 @@ pub(crate) fn shared_appearance(
 ) -> (Vec<Vec<[i8; APPEARANCE_DIMS]>>, f64) {
     let sized: Vec<SizedLevel> = levels
         .iter()
-        .map(|&pixels| SizedLevel {
+        .enumerate()
+        .map(|(i, &pixels)| SizedLevel {
             pixels,
+            feature: features.map(|f| f[i]),
             width: w,
             height: h,
             spacing,
@@ -71,6 +67,9 @@ pub(crate) fn shared_appearance(
 pub(crate) struct SizedLevel<'a> {
     /// Row-major RGB in 0..=255.
     pub pixels: &'a [[f32; 3]],
+    /// An optional fourth channel per pixel (the feature distance), same layout; either every
+    /// image of a pooled space has one or none has.
+    pub feature: Option<&'a [f32]>,
     /// Width.
     pub width: u32,
     /// Height.
@@ -100,11 +99,17 @@ pub(crate) struct SharedAppearance {
 }
 
 /// [`shared_appearance`] over images of different sizes and spacings (the multiscale
-/// synthesizer's per-depth space); for one image it computes exactly what
-/// [`appearance`] does.
+/// synthesizer's per-depth space); for images of one size and spacing it computes exactly
+/// what [`shared_appearance`] does.
 pub(crate) fn sized_appearance(levels: &[SizedLevel], toroidal: bool) -> SharedAppearance {
     let side = (2 * RADIUS + 1) as usize;
-    let dims = side * side * 3;
+    let with_feature = levels.first().is_some_and(|l| l.feature.is_some());
+    assert!(
+        levels.iter().all(|l| l.feature.is_some() == with_feature),
+        "every image of a pooled appearance space has a feature channel or none has"
+    );
+    let channels = if with_feature { 4 } else { 3 };
+    let dims = side * side * channels;
     let starts: Vec<usize> = levels
         .iter()
         .scan(0usize, |acc, l| {
@@ -135,6 +140,10 @@ pub(crate) fn sized_appearance(levels: &[SizedLevel], toroidal: bool) -> SharedA
                         let s = level.pixels[sy * w as usize + sx];
                         for c in s {
                             row[j] = weight * c as f64;
+                            j += 1;
+                        }
+                        if let Some(feature) = level.feature {
+                            row[j] = weight * f64::from(feature[sy * w as usize + sx]);
                             j += 1;
                         }
                     }
@@ -200,7 +209,7 @@ pub(crate) fn sized_appearance(levels: &[SizedLevel], toroidal: bool) -> SharedA
                 for dx in -RADIUS..=RADIUS {
                     let weight =
                         (-((dx * dx + dy * dy) as f64) / (2.0 * WEIGHT_SIGMA * WEIGHT_SIGMA)).exp();
-                    m += weight * basis[(j * 3 + c, d)];
+                    m += weight * basis[(j * channels + c, d)];
                     j += 1;
                 }
             }

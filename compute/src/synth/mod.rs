@@ -22,6 +22,7 @@ mod decode;
 pub(crate) mod energy;
 mod error;
 mod exemplar;
+pub mod feature;
 mod fit;
 pub(crate) mod gpu;
 mod jitter;

@@ -69,3 +69,22 @@ pub fn gaussian_stack(exemplar: &Exemplar, toroidal: bool) -> Vec<Vec<[f32; 3]>>
         })
         .collect()
 }
+
+/// Levels `0..=finest` (coarsest first) of the Gaussian stack of a scalar `w`×`h` channel
+/// (the feature distance), blurred exactly as [`gaussian_stack`] blurs the colours.
+pub fn scalar_stack(channel: &[f32], w: u32, h: u32, finest: u32, toroidal: bool) -> Vec<Vec<f32>> {
+    let base: Vec<[f32; 3]> = channel.iter().map(|&v| [v, 0.0, 0.0]).collect();
+    (0..=finest)
+        .map(|level| {
+            if level == finest {
+                return channel.to_vec();
+            }
+            let sigma = (1u32 << (finest - level)) as f32 / 2.0;
+            let rows = blur_pass(&base, w, h, sigma, true, toroidal);
+            blur_pass(&rows, w, h, sigma, false, toroidal)
+                .into_iter()
+                .map(|p| p[0])
+                .collect()
+        })
+        .collect()
+}

@@ -23,6 +23,8 @@
 //!   the median;
 //! - `no balance`: candidates without the usage balance (`balance.rs`; the rule before
 //!   2026-12-03);
+//! - `no feature`: the appearance space of colour alone, without the feature-distance
+//!   channel (`synth/feature.rs`; the rule before 2026-12-03, second session);
 //! - `keep current`: the correction's current triple competes even when it is none of the
 //!   gathered candidates (the rule before 2026-12-03);
 //! - `crossbar only`: candidates without the coherence filter (each pixel's 12 smallest
@@ -514,6 +516,17 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q(&unbalanced.synthesis, &unbalanced.colours)?,
                 Some(unbalanced.consistency),
             );
+            let featureless = synthesize_cube(
+                &gpu,
+                exemplars.clone().with_feature_weight(0)?,
+                &request,
+                Some(&cache),
+            )?;
+            push(
+                "no feature",
+                q(&featureless.synthesis, &featureless.colours)?,
+                Some(featureless.consistency),
+            );
             let (ex, ex_colours) = extruded(&exemplars, n);
             push("extruded E_z", q(&ex, &ex_colours)?, None);
             let (two_d, image) = synth_2d(
@@ -531,6 +544,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 ("", &run),
                 ("-keep-current", &keep),
                 ("-no-balance", &unbalanced),
+                ("-no-feature", &featureless),
             ] {
                 let (w, h, rgb) = figure(exemplars.role(0), &image, &s.synthesis, &s.colours);
                 write_png(

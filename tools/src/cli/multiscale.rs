@@ -134,6 +134,8 @@ impl GraphOptions {
                 k: self.k,
                 spread: self.spread,
                 toroidal: true,
+                // Ignored: the multiscale appearance space is colour only.
+                feature_weight: 0,
             },
         )?;
         Ok(Analysed {

@@ -15,6 +15,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
+use lazysolid_compute::synth::feature::{feature_map, DEFAULT_FEATURE_WEIGHT};
 use lazysolid_compute::synth::quality::ExemplarFigures;
 use lazysolid_compute::synth::solid::{
     analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
@@ -96,6 +97,11 @@ pub struct SolidArgs {
     /// exemplar's dark spots, outlines and cracks (docs/solid.md)
     #[arg(long, default_value_t = DEFAULT_BALANCE)]
     pub balance: u32,
+    /// Weight of the feature-distance channel in the appearance space, in percent of the
+    /// colour's standard deviation, 0 to 400 (0: colour only): a signed distance to the
+    /// exemplar's cracks, veins or outlines, found automatically (docs/solid.md)
+    #[arg(long, default_value_t = DEFAULT_FEATURE_WEIGHT)]
+    pub feature_weight: u32,
     /// Most pixels of each slice the neighbourhood energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -104,13 +110,46 @@ pub struct SolidArgs {
     #[arg(long, value_enum, default_value_t = Candidates::Auto)]
     pub candidates: Candidates,
     /// The NRRD volume to write; slices and the candidate slab go next to it as
-    /// NAME.x.png, NAME.y.png, NAME.z.png, NAME.oblique.png and NAME.slab.png.
+    /// NAME.x.png, NAME.y.png, NAME.z.png, NAME.oblique.png, NAME.slab.png and (with the
+    /// feature channel on) NAME.features.png: each exemplar, its feature mask and distance.
     #[arg(short, long)]
     pub output: PathBuf,
 }
 
 fn parse_offset3(s: &str) -> Result<[i32; 3], String> {
     components(s, " (e.g. -64,0,128)", "a whole number")
+}
+
+/// What the feature channel found in each distinct image: one line per image and a picture
+/// of all of them stacked (none at weight 0).
+struct FeatureReport {
+    lines: Vec<String>,
+    picture: Option<(u32, u32, Vec<[u8; 3]>)>,
+}
+
+fn feature_pictures(exemplars: &SolidExemplars) -> FeatureReport {
+    if exemplars.feature_weight == 0 {
+        return FeatureReport {
+            lines: vec!["feature channel: off (--feature-weight 0)".into()],
+            picture: None,
+        };
+    }
+    let mut lines = Vec::new();
+    let (mut width, mut height, mut pixels) = (0, 0, Vec::new());
+    for image in &exemplars.images {
+        let m = image.width;
+        let colours: Vec<[f32; 3]> = image.rgb.iter().map(|p| p.map(f32::from)).collect();
+        let map = feature_map(&colours, m, m, true, exemplars.feature_weight);
+        lines.push(map.describe(&image.source, exemplars.feature_weight));
+        let (w, h, picture) = map.picture(&image.rgb, m, m);
+        width = w;
+        height += h;
+        pixels.extend(picture);
+    }
+    FeatureReport {
+        lines,
+        picture: Some((width, height, pixels)),
+    }
 }
 
 /// `out.nrrd` → `out.SUFFIX.png`.
@@ -495,6 +534,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.fit.into(),
         args.exemplar_side,
     )?;
+    let exemplars = exemplars.with_feature_weight(args.feature_weight)?;
     let candidate_params = CandidateParams {
         strip: args.strip,
         s: args.s,
@@ -572,6 +612,10 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     )?;
     let (sw, sh, slab) = &run.slab;
     write_png(&sibling(&args.output, "slab"), *sw, *sh, slab)?;
+    let features = feature_pictures(&run.exemplars);
+    if let Some((w, h, picture)) = &features.picture {
+        write_png(&sibling(&args.output, "features"), *w, *h, picture)?;
+    }
 
     let m = run.exemplars.side();
     println!(
@@ -587,6 +631,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     for fit in &fits {
         println!("exemplar fit: {fit}");
+    }
+    for line in &features.lines {
+        println!("{line}");
     }
     println!(
         "cube {n}^3 at ({}, {}, {}), seed {}, strip {}, S {}",

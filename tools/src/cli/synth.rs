@@ -56,6 +56,11 @@ pub struct SynthArgs {
     /// image over 512 pixels clamps too).
     #[arg(long)]
     pub clamp: bool,
+    /// Weight of the feature-distance channel in the appearance space, in percent of the
+    /// colour's standard deviation, 0 to 400 (0: colour only): a signed distance to the
+    /// exemplar's cracks, veins or outlines, found automatically (docs/synthesis.md)
+    #[arg(long, default_value_t = lazysolid_compute::synth::feature::DEFAULT_FEATURE_WEIGHT)]
+    pub feature_weight: u32,
     /// Neither read nor write the on-disk cache of exemplar analyses (kept in
     /// LAZYSOLID_CACHE_DIR, else in the user's cache folder, e.g. ~/.cache/lazysolid).
     #[arg(long)]
@@ -127,6 +132,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         k: args.k,
         spread: args.spread,
         toroidal: !args.clamp,
+        feature_weight: args.feature_weight,
     };
     let (analysis, cached) = analyze_cached(&exemplar, &analysis_params, cache.as_ref())?;
     let analysis_s = start.elapsed().as_secs_f64();
@@ -179,6 +185,12 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let report = EnergyReport::from_minima(&minima);
     let energy_s = start.elapsed().as_secs_f64();
     let histogram = histogram_distance(&exemplar.rgb, &colours);
+    let figures = lazysolid_compute::synth::quality::ExemplarFigures::new(
+        &exemplar.rgb,
+        exemplar.width,
+        exemplar.height,
+    )
+    .measure(&colours, w, h);
 
     println!(
         "exemplar {} ({}x{}, {} levels, k = {})",
@@ -189,6 +201,20 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.k
     );
     println!("exemplar fit: {fit}");
+    if analysis_params.feature_weight > 0 {
+        let colours: Vec<[f32; 3]> = exemplar.rgb.iter().map(|p| p.map(f32::from)).collect();
+        let map = lazysolid_compute::synth::feature::feature_map(
+            &colours,
+            exemplar.width,
+            exemplar.height,
+            analysis_params.toroidal,
+            analysis_params.feature_weight,
+        );
+        println!(
+            "{}",
+            map.describe(&exemplar.source, analysis_params.feature_weight)
+        );
+    }
     println!(
         "window {}x{} at ({}, {}), seed {}, passes {:?}",
         w, h, args.offset.0, args.offset.1, args.seed, params.passes
@@ -209,6 +235,10 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         report.mean, report.per_value, report.samples
     );
     println!("colour histogram distance {histogram:.4}");
+    println!(
+        "SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}",
+        figures.swd.mean, figures.swd.ratio, figures.blockiness.ratio
+    );
     println!(
         "period repetition {repetition:.3} (share of pixels one exemplar period apart that copy \
          the same exemplar pixel; the plain tiling is 1)"

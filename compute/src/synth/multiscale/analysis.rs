@@ -223,6 +223,7 @@ fn analyze_set(
             let (pixels, width, height, spacing) = image(s);
             SizedLevel {
                 pixels,
+                feature: None,
                 width,
                 height,
                 spacing,

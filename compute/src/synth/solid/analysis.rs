@@ -5,8 +5,20 @@
 
 use super::roles::{SolidExemplars, ROLES};
 use crate::synth::appearance::{shared_appearance, APPEARANCE_DIMS};
+use crate::synth::feature::feature_map;
 use crate::synth::neighbourhood::{exemplar_neighbourhoods, NEIGHBOURHOOD_DIMS};
-use crate::synth::stack::gaussian_stack;
+use crate::synth::stack::{gaussian_stack, scalar_stack};
+
+/// The Gaussian stack of a per-pixel channel of `exemplar`'s size.
+fn feature_stack(exemplar: &crate::synth::Exemplar, channel: &[f32]) -> Vec<Vec<f32>> {
+    scalar_stack(
+        channel,
+        exemplar.width,
+        exemplar.height,
+        exemplar.finest_level(),
+        true,
+    )
+}
 
 /// One level of one role.
 #[derive(Clone, Debug)]
@@ -61,12 +73,39 @@ pub fn analyze_solid(exemplars: &SolidExemplars) -> SolidAnalysis {
         .iter()
         .map(|e| gaussian_stack(e, true))
         .collect();
+    // The feature channel of every image, found on the exemplar and blurred with the colours
+    // down the stack (the stack of a grey image: the channel in all three components).
+    // None when off or when every image is speckle; an image without structures among
+    // images with them has a zero channel.
+    let maps: Vec<_> = stacks
+        .iter()
+        .map(|stack| {
+            feature_map(
+                &stack[finest as usize],
+                side,
+                side,
+                true,
+                exemplars.feature_weight,
+            )
+        })
+        .collect();
+    let feature_stacks: Option<Vec<Vec<Vec<f32>>>> = maps.iter().any(|m| m.active()).then(|| {
+        exemplars
+            .images
+            .iter()
+            .zip(&maps)
+            .map(|(e, map)| feature_stack(e, &map.channel))
+            .collect()
+    });
     let levels = (0..=finest as usize)
         .map(|l| {
             let spacing = 1u32 << (finest - l as u32);
             let images: Vec<&[[f32; 3]]> = stacks.iter().map(|s| s[l].as_slice()).collect();
+            let features: Option<Vec<&[f32]>> = feature_stacks
+                .as_ref()
+                .map(|f| f.iter().map(|s| s[l].as_slice()).collect());
             let (appearance, residual_variance) =
-                shared_appearance(&images, side, side, spacing, true);
+                shared_appearance(&images, features.as_deref(), side, side, spacing, true);
             let per_image: Vec<RoleLevel> = images
                 .iter()
                 .zip(appearance)

@@ -39,7 +39,9 @@ pub fn candidates_key(exemplars: &SolidExemplars, params: &CandidateParams) -> C
             .u32("height", image.height)
             .bytes("rgb", image.rgb.as_flattened());
     }
-    b.u32("strip", params.strip)
+    b.u32("feature weight", exemplars.feature_weight)
+        .u32("feature rule", crate::synth::feature::FEATURE_RULE)
+        .u32("strip", params.strip)
         .u32("s", params.s)
         .bool("coherence", params.coherence)
         .u32("balance", params.balance)

@@ -15,6 +15,7 @@
 //! neighbourhoods intersect): `E_x`/`E_y` share z (both along v), `E_x`/`E_z` share y (u of
 //! `E_x`, v of `E_z`), `E_y`/`E_z` share x (both along u).
 
+use crate::synth::feature::{DEFAULT_FEATURE_WEIGHT, MAX_FEATURE_WEIGHT};
 use crate::synth::{Exemplar, SynthError, SynthResult};
 
 /// Number of roles (and of world axes).
@@ -61,6 +62,9 @@ pub struct SolidExemplars {
     pub images: Vec<Exemplar>,
     /// Index into `images` of each role's image.
     pub role_image: [usize; ROLES],
+    /// Weight of the feature-distance channel in the appearance space, in percent of the
+    /// colour's standard deviation (`synth/feature.rs`; 0: colour only).
+    pub feature_weight: u32,
 }
 
 impl SolidExemplars {
@@ -104,7 +108,30 @@ impl SolidExemplars {
             images.remove(0);
             role_image.iter_mut().for_each(|i| *i -= 1);
         }
-        Ok(SolidExemplars { images, role_image })
+        Ok(SolidExemplars {
+            images,
+            role_image,
+            feature_weight: DEFAULT_FEATURE_WEIGHT,
+        })
+    }
+
+    /// The same exemplars with the feature-distance channel at `percent` % of the colour's
+    /// standard deviation.
+    ///
+    /// # Errors
+    /// [`SynthError::Parameter`] past [`MAX_FEATURE_WEIGHT`].
+    pub fn with_feature_weight(mut self, percent: u32) -> SynthResult<SolidExemplars> {
+        if percent > MAX_FEATURE_WEIGHT {
+            return Err(SynthError::Parameter {
+                name: "--feature-weight",
+                value: percent.to_string(),
+                limit: format!(
+                    "0..={MAX_FEATURE_WEIGHT} (percent of the colour's standard deviation; past that the colour is drowned)"
+                ),
+            });
+        }
+        self.feature_weight = percent;
+        Ok(self)
     }
 
     /// Side of every exemplar.
