@@ -30,7 +30,7 @@
 //! but lost most of the gain on cracked (1.22 / 1.45 / 1.54) and stone33 (2.41 / 2.58 / 3.26). The synthesized output is colour only; the channel
 //! only shapes which neighbourhoods count as alike.
 
-use super::stack::border;
+use super::stack::gaussian_blur;
 
 /// Default feature weight, in percent of the colour's standard deviation.
 pub const DEFAULT_FEATURE_WEIGHT: u32 = 100;
@@ -79,34 +79,13 @@ fn luminance(c: [f32; 3]) -> f32 {
     0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]
 }
 
-/// One separable Gaussian blur of a scalar image (wrapping or clamping at the borders).
+/// A Gaussian blur of a scalar image (wrapping or clamping at the borders), the stack's.
 fn blur(src: &[f32], w: u32, h: u32, sigma: f32, toroidal: bool) -> Vec<f32> {
-    let radius = (3.0 * sigma).ceil() as i64;
-    let weights: Vec<f32> = (-radius..=radius)
-        .map(|d| (-((d * d) as f32) / (2.0 * sigma * sigma)).exp())
-        .collect();
-    let total: f32 = weights.iter().sum();
-    let pass = |src: &[f32], horizontal: bool| -> Vec<f32> {
-        let mut out = vec![0.0f32; src.len()];
-        for y in 0..h as i64 {
-            for x in 0..w as i64 {
-                let mut acc = 0.0f32;
-                for (j, wgt) in weights.iter().enumerate() {
-                    let d = j as i64 - radius;
-                    let (sx, sy) = if horizontal {
-                        (border(x + d, w, toroidal), y as usize)
-                    } else {
-                        (x as usize, border(y + d, h, toroidal))
-                    };
-                    acc += wgt * src[sy * w as usize + sx];
-                }
-                out[y as usize * w as usize + x as usize] = acc / total;
-            }
-        }
-        out
-    };
-    let rows = pass(src, true);
-    pass(&rows, false)
+    let packed: Vec<[f32; 3]> = src.iter().map(|&v| [v, 0.0, 0.0]).collect();
+    gaussian_blur(&packed, w, h, sigma, toroidal)
+        .into_iter()
+        .map(|p| p[0])
+        .collect()
 }
 
 /// Otsu's threshold of `values`: the cut that maximizes the between-class variance; `None`

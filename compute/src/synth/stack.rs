@@ -53,38 +53,54 @@ fn blur_pass(
     out
 }
 
+/// A separable Gaussian blur of standard deviation `sigma` (pixels), rows then columns.
+pub(crate) fn gaussian_blur(
+    src: &[[f32; 3]],
+    w: u32,
+    h: u32,
+    sigma: f32,
+    toroidal: bool,
+) -> Vec<[f32; 3]> {
+    let rows = blur_pass(src, w, h, sigma, true, toroidal);
+    blur_pass(&rows, w, h, sigma, false, toroidal)
+}
+
+/// Levels `0..=finest` of the stack of `base`: level `l` blurred with σ = 2^(finest−l)/2.
+fn stack_of(
+    base: Vec<[f32; 3]>,
+    w: u32,
+    h: u32,
+    finest: u32,
+    toroidal: bool,
+) -> Vec<Vec<[f32; 3]>> {
+    let mut levels: Vec<Vec<[f32; 3]>> = (0..finest)
+        .map(|level| {
+            let sigma = (1u32 << (finest - level)) as f32 / 2.0;
+            gaussian_blur(&base, w, h, sigma, toroidal)
+        })
+        .collect();
+    levels.push(base);
+    levels
+}
+
 /// Levels `0..=L` (coarsest first) of the exemplar's Gaussian stack, colours in 0..=255.
 pub fn gaussian_stack(exemplar: &Exemplar, toroidal: bool) -> Vec<Vec<[f32; 3]>> {
-    let finest = exemplar.finest_level();
-    let (w, h) = (exemplar.width, exemplar.height);
     let base: Vec<[f32; 3]> = exemplar.rgb.iter().map(|p| p.map(f32::from)).collect();
-    (0..=finest)
-        .map(|level| {
-            if level == finest {
-                return base.clone();
-            }
-            let sigma = (1u32 << (finest - level)) as f32 / 2.0;
-            let rows = blur_pass(&base, w, h, sigma, true, toroidal);
-            blur_pass(&rows, w, h, sigma, false, toroidal)
-        })
-        .collect()
+    stack_of(
+        base,
+        exemplar.width,
+        exemplar.height,
+        exemplar.finest_level(),
+        toroidal,
+    )
 }
 
 /// Levels `0..=finest` (coarsest first) of the Gaussian stack of a scalar `w`×`h` channel
 /// (the feature distance), blurred exactly as [`gaussian_stack`] blurs the colours.
 pub fn scalar_stack(channel: &[f32], w: u32, h: u32, finest: u32, toroidal: bool) -> Vec<Vec<f32>> {
     let base: Vec<[f32; 3]> = channel.iter().map(|&v| [v, 0.0, 0.0]).collect();
-    (0..=finest)
-        .map(|level| {
-            if level == finest {
-                return channel.to_vec();
-            }
-            let sigma = (1u32 << (finest - level)) as f32 / 2.0;
-            let rows = blur_pass(&base, w, h, sigma, true, toroidal);
-            blur_pass(&rows, w, h, sigma, false, toroidal)
-                .into_iter()
-                .map(|p| p[0])
-                .collect()
-        })
+    stack_of(base, w, h, finest, toroidal)
+        .into_iter()
+        .map(|level| level.into_iter().map(|p| p[0]).collect())
         .collect()
 }
