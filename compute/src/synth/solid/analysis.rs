@@ -9,17 +9,6 @@ use crate::synth::feature::feature_map;
 use crate::synth::neighbourhood::{exemplar_neighbourhoods, NEIGHBOURHOOD_DIMS};
 use crate::synth::stack::{gaussian_stack, scalar_stack};
 
-/// The Gaussian stack of a per-pixel channel of `exemplar`'s size.
-fn feature_stack(exemplar: &crate::synth::Exemplar, channel: &[f32]) -> Vec<Vec<f32>> {
-    scalar_stack(
-        channel,
-        exemplar.width,
-        exemplar.height,
-        exemplar.finest_level(),
-        true,
-    )
-}
-
 /// One level of one role.
 #[derive(Clone, Debug)]
 pub struct RoleLevel {
@@ -74,7 +63,7 @@ pub fn analyze_solid(exemplars: &SolidExemplars) -> SolidAnalysis {
         .map(|e| gaussian_stack(e, true))
         .collect();
     // The feature channel of every image, found on the exemplar and blurred with the colours
-    // down the stack (the stack of a grey image: the channel in all three components).
+    // down the stack.
     // None when off or when every image is speckle; an image without structures among
     // images with them has a zero channel.
     let maps: Vec<_> = stacks
@@ -90,11 +79,8 @@ pub fn analyze_solid(exemplars: &SolidExemplars) -> SolidAnalysis {
         })
         .collect();
     let feature_stacks: Option<Vec<Vec<Vec<f32>>>> = maps.iter().any(|m| m.active()).then(|| {
-        exemplars
-            .images
-            .iter()
-            .zip(&maps)
-            .map(|(e, map)| feature_stack(e, &map.channel))
+        maps.iter()
+            .map(|map| scalar_stack(&map.channel, side, side, finest, true))
             .collect()
     });
     let levels = (0..=finest as usize)
