@@ -119,14 +119,23 @@ uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, u
                 n_unique++;
             }
         }
+        // The two other roles, in increasing order.
+        uint o1 = r == 0u ? 1u : 0u;
+        uint o2 = r == 2u ? 1u : 2u;
         for (uint k = 0u; k < n_unique; k++) {
             uint base = unique[k];
+            // Every candidate of pixel `base` in role r has `base` as its role-r coordinate:
+            // that share of the distance once per set, and the whole set skipped when it
+            // alone is above the best (the shares are never negative; as in correct_voxel).
+            uint own = role_distance(r, synth_pack(uvec2(base % solid_side, base / solid_side)));
+            if (own > best_d) continue;
             uint cnt = U32Ptr(counts[r]).v[base];
             for (uint c = 0u; c < cnt; c++) {
                 uint slot = (base * SOLID_MAX_CANDIDATES + c) * 3u;
                 uvec3 t = uvec3(U32Ptr(candidates[r]).v[slot], U32Ptr(candidates[r]).v[slot + 1u],
                                 U32Ptr(candidates[r]).v[slot + 2u]);
-                uint dist = distance_of(t, best_d);
+                uint dist = own + role_distance(o1, t[o1]);
+                if (dist <= best_d) dist += role_distance(o2, t[o2]);
                 uint rank = t == current ? 0u : 1u;
                 if (better(dist, rank, t, best_d, best_r, best_t)) {
                     best_d = dist;

@@ -23,7 +23,7 @@ use super::plan::{plan_levels, Subpass, VolumeBox};
 use super::roles::{project, ROLES, ROLE_AXES};
 use super::volume::{check_box, LevelTriples, SolidSynthesis};
 use crate::synth::appearance::APPEARANCE_DIMS;
-use crate::synth::coords::unpack;
+use crate::synth::coords::{pack, unpack};
 use crate::synth::neighbourhood::{
     neighbourhood_distance, shifted, synthesized_neighbourhood, NEIGHBOURHOOD_DIMS,
 };
@@ -94,7 +94,7 @@ pub(crate) fn plane_neighbourhoods(
     analysis: &SolidAnalysis,
     level: u32,
     around: &[[u32; 3]; 27],
-) -> [[i32; NEIGHBOURHOOD_DIMS]; ROLES] {
+) -> [[i16; NEIGHBOURHOOD_DIMS]; ROLES] {
     let lv = &analysis.levels[level as usize];
     let m = analysis.side;
     std::array::from_fn(|r| {
@@ -119,19 +119,31 @@ pub(crate) fn triple_distance(
     analysis: &SolidAnalysis,
     candidates: &SolidCandidates,
     level: u32,
-    planes: &[[i32; NEIGHBOURHOOD_DIMS]; ROLES],
+    planes: &[[i16; NEIGHBOURHOOD_DIMS]; ROLES],
     t: [u32; 3],
 ) -> u32 {
-    let lv = &analysis.levels[level as usize];
-    let m = analysis.side;
     (0..ROLES)
-        .map(|r| {
-            let (x, y) = unpack(t[r]);
-            let pixel = (y * m + x) as usize;
-            neighbourhood_distance(&planes[r], &lv.roles[r].neighbourhoods[pixel])
-                + candidates.penalty(level as usize, r, pixel)
-        })
+        .map(|r| role_distance(analysis, candidates, level, planes, r, t[r]))
         .sum()
+}
+
+/// Role `r`'s share of [`triple_distance`]: coordinate `c`'s neighbourhood against the plane
+/// perpendicular to the role's axis, plus its usage penalty.
+fn role_distance(
+    analysis: &SolidAnalysis,
+    candidates: &SolidCandidates,
+    level: u32,
+    planes: &[[i16; NEIGHBOURHOOD_DIMS]; ROLES],
+    r: usize,
+    c: u32,
+) -> u32 {
+    let m = analysis.side;
+    let (x, y) = unpack(c);
+    let pixel = (y * m + x) as usize;
+    neighbourhood_distance(
+        &planes[r],
+        &analysis.levels[level as usize].roles[r].neighbourhoods[pixel],
+    ) + candidates.penalty(level as usize, r, pixel)
 }
 
 /// Mean distance of the final triples of a level's computed box (voxels whose 3×3×3
@@ -245,24 +257,48 @@ pub fn correct_voxel(
     } else {
         (u32::MAX, 1u32, current)
     };
-    for (r, role_sets) in sets.iter().enumerate() {
-        // Each distinct shifted-back pixel once: a repeat has the same candidates.
-        let mut bases: Vec<u32> = plane_offsets(r)
-            .iter()
-            .map(|&d| {
-                let t = around[((d[2] + 1) * 9 + (d[1] + 1) * 3 + d[0] + 1) as usize];
-                let back = project(r, d).map(|v| -v);
-                let (x, y) = unpack(moved(t[r], back, h, m));
-                y * m + x
-            })
-            .collect();
-        bases.sort_unstable();
-        bases.dedup();
-        for base in bases {
-            for &c in role_sets.of(base as usize) {
-                let dist = triple_distance(analysis, candidates, level, &planes, c);
-                best = best.min((dist, (c != current) as u32, c));
+    // Each role's distinct shifted-back pixels (a repeat has the same candidates), in a
+    // fixed array instead of a per-voxel allocation.
+    let mut bases = [[0u32; 9]; ROLES];
+    let mut distinct = [0usize; ROLES];
+    for r in 0..ROLES {
+        for (n, d) in plane_offsets(r).iter().enumerate() {
+            let t = around[((d[2] + 1) * 9 + (d[1] + 1) * 3 + d[0] + 1) as usize];
+            let back = project(r, *d).map(|v| -v);
+            let (x, y) = unpack(moved(t[r], back, h, m));
+            bases[r][n] = y * m + x;
+        }
+        bases[r].sort_unstable();
+        let mut k = 1;
+        for n in 1..9 {
+            if bases[r][n] != bases[r][k - 1] {
+                bases[r][k] = bases[r][n];
+                k += 1;
             }
+        }
+        distinct[r] = k;
+    }
+    for (r, i) in (0..ROLES).flat_map(|r| (0..distinct[r]).map(move |i| (r, i))) {
+        let base = bases[r][i];
+        // Every candidate of pixel `base` in role `r` has `base` as its role-`r` coordinate,
+        // so that share of the distance is computed once per set; a partial sum above the
+        // best distance cannot win (the shares are never negative), so the rest is skipped.
+        // The choice is the full comparison's, bit for bit.
+        let own_c = pack(base % m, base / m);
+        let own = role_distance(analysis, candidates, level, &planes, r, own_c);
+        if own > best.0 {
+            continue;
+        }
+        'candidate: for &c in sets[r].of(base as usize) {
+            debug_assert_eq!(c[r], own_c, "a candidate of pixel {base} in role {r}");
+            let mut dist = own;
+            for other in (0..ROLES).filter(|&o| o != r) {
+                dist += role_distance(analysis, candidates, level, &planes, other, c[other]);
+                if dist > best.0 {
+                    continue 'candidate;
+                }
+            }
+            best = best.min((dist, (c != current) as u32, c));
         }
     }
     best.2
