@@ -17,7 +17,7 @@
 //! the current triple, then go to the smallest triple.
 
 use super::analysis::SolidAnalysis;
-use super::candidates::SolidCandidates;
+use super::candidates::{others, SolidCandidates};
 use super::jitter::jitter3;
 use super::plan::{plan_levels, Subpass, VolumeBox};
 use super::roles::{project, ROLES, ROLE_AXES};
@@ -257,48 +257,40 @@ pub fn correct_voxel(
     } else {
         (u32::MAX, 1u32, current)
     };
-    // Each role's distinct shifted-back pixels (a repeat has the same candidates), in a
-    // fixed array instead of a per-voxel allocation.
-    let mut bases = [[0u32; 9]; ROLES];
-    let mut distinct = [0usize; ROLES];
     for r in 0..ROLES {
-        for (n, d) in plane_offsets(r).iter().enumerate() {
+        // The role's shifted-back pixels, sorted so that a repeat (which has the same
+        // candidates) follows its first and is skipped; a fixed array, no allocation per voxel.
+        let mut bases = plane_offsets(r).map(|d| {
             let t = around[((d[2] + 1) * 9 + (d[1] + 1) * 3 + d[0] + 1) as usize];
-            let back = project(r, *d).map(|v| -v);
+            let back = project(r, d).map(|v| -v);
             let (x, y) = unpack(moved(t[r], back, h, m));
-            bases[r][n] = y * m + x;
-        }
-        bases[r].sort_unstable();
-        let mut k = 1;
-        for n in 1..9 {
-            if bases[r][n] != bases[r][k - 1] {
-                bases[r][k] = bases[r][n];
-                k += 1;
+            y * m + x
+        });
+        bases.sort_unstable();
+        for (i, &base) in bases.iter().enumerate() {
+            if i > 0 && base == bases[i - 1] {
+                continue;
             }
-        }
-        distinct[r] = k;
-    }
-    for (r, i) in (0..ROLES).flat_map(|r| (0..distinct[r]).map(move |i| (r, i))) {
-        let base = bases[r][i];
-        // Every candidate of pixel `base` in role `r` has `base` as its role-`r` coordinate,
-        // so that share of the distance is computed once per set; a partial sum above the
-        // best distance cannot win (the shares are never negative), so the rest is skipped.
-        // The choice is the full comparison's, bit for bit.
-        let own_c = pack(base % m, base / m);
-        let own = role_distance(analysis, candidates, level, &planes, r, own_c);
-        if own > best.0 {
-            continue;
-        }
-        'candidate: for &c in sets[r].of(base as usize) {
-            debug_assert_eq!(c[r], own_c, "a candidate of pixel {base} in role {r}");
-            let mut dist = own;
-            for other in (0..ROLES).filter(|&o| o != r) {
-                dist += role_distance(analysis, candidates, level, &planes, other, c[other]);
-                if dist > best.0 {
-                    continue 'candidate;
+            // Every candidate of pixel `base` in role `r` has `base` as its role-`r` coordinate,
+            // so that share of the distance is computed once per set; a partial sum above the
+            // best distance cannot win (the shares are never negative), so the rest is skipped.
+            // The choice is the full comparison's, bit for bit.
+            let own_c = pack(base % m, base / m);
+            let own = role_distance(analysis, candidates, level, &planes, r, own_c);
+            if own > best.0 {
+                continue;
+            }
+            'candidate: for &c in sets[r].of(base as usize) {
+                debug_assert_eq!(c[r], own_c, "a candidate of pixel {base} in role {r}");
+                let mut dist = own;
+                for other in others(r) {
+                    dist += role_distance(analysis, candidates, level, &planes, other, c[other]);
+                    if dist > best.0 {
+                        continue 'candidate;
+                    }
                 }
+                best = best.min((dist, (c != current) as u32, c));
             }
-            best = best.min((dist, (c != current) as u32, c));
         }
     }
     best.2
