@@ -1296,6 +1296,8 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         "blockiness",
         "period repetition",
         "energy",
+        "gradient anisotropy (u - v)/(u + v): exemplars ",
+        "every volume has x - y + z = 0",
         "render (GPU)",
         "feature channel of ",
         "% of the pixels, distance clamped at 4 px, deviation ",
@@ -1493,6 +1495,14 @@ fn bench_solid_writes_times_quality_and_figures() {
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
     // Nine variants, three axes each, plus the header.
     assert_eq!(quality.lines().count(), 1 + 9 * 3, "{quality}");
+    assert!(
+        quality
+            .lines()
+            .next()
+            .unwrap()
+            .contains(",anisotropy,exemplar_anisotropy,"),
+        "{quality}"
+    );
     for name in [
         "terra-16-slices.png",
         "terra-16-keep-current-slices.png",
@@ -1504,6 +1514,47 @@ fn bench_solid_writes_times_quality_and_figures() {
         assert!(figures.join(name).exists(), "{name}");
     }
     assert!(bench.stdout.contains("quality table"), "{}", bench.stdout);
+}
+
+/// `bench solid --no-ablations`: the default synthesis, the colour rules, the extruded
+/// reference and the 2D synthesis are scored; none of the four ablation volumes is made.
+#[test]
+fn bench_solid_without_ablations_scores_the_default_only() {
+    let out = tempfile::tempdir().unwrap();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args([
+                "bench",
+                "solid",
+                "--quick",
+                "--no-ablations",
+                "--exemplars",
+                "terra",
+            ])
+            .args(["--three", "", "--builders", "host"])
+            .args(["--candidate-sides", "16", "--side", "16", "--sizes", "16"])
+            .args(["--passes", "1", "--energy-samples", "64"])
+            .args(["--runs", "1", "--warmup", "0"]),
+        out.path(),
+        &["own role", "mean colour", "extruded E_z", "2d synth"],
+    );
+    for absent in ["keep current", "crossbar only", "no balance", "no feature"] {
+        assert!(
+            !bench.stdout.contains(absent),
+            "{absent}:\n{}",
+            bench.stdout
+        );
+    }
+    let figures = bench
+        .entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
+    // Five variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 5 * 3, "{quality}");
+    assert!(figures.join("terra-16-slices.png").exists());
+    assert!(!figures.join("terra-16-keep-current-slices.png").exists());
 }
 
 /// `bench lazy` on the bunny at 16³ with a 16² terra crop (its candidates take seconds): the

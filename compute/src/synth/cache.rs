@@ -21,6 +21,7 @@
 //! The folder is `LAZYSOLID_CACHE_DIR` when set, else the user's cache folder
 //! (`~/.cache/lazysolid` on Linux, from the `dirs` crate).
 
+use crate::atomic_file::{write_atomically, AtomicWriteError};
 use bytemuck::Pod;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -55,6 +56,9 @@ pub enum CacheError {
         /// The system error.
         source: std::io::Error,
     },
+    /// Writing an entry failed (the step and the system's reason).
+    #[error(transparent)]
+    Write(#[from] AtomicWriteError),
     /// An entry exists but is not a whole, unaltered entry for its key.
     #[error("{path}: corrupt cache entry: {reason}")]
     Corrupt {
@@ -253,25 +257,20 @@ impl DiskCache {
             }
         };
         std::fs::create_dir_all(&folder).map_err(io(&folder, "creating the cache folder"))?;
-        let mut tmp = tempfile::Builder::new()
-            .prefix(".entry-")
-            .suffix(".partial")
-            .tempfile_in(&folder)
-            .map_err(io(&folder, "creating a temporary cache file"))?;
         let mut header = ByteWriter::default();
         header.raw(&MAGIC);
         header.u32(CONTAINER_VERSION);
         header.raw(&key.0);
         header.u64(payload.len() as u64);
         header.raw(blake3::hash(payload).as_bytes());
-        let file = tmp.as_file_mut();
-        file.write_all(&header.into_bytes())
-            .and_then(|()| file.write_all(payload))
-            .and_then(|()| file.sync_all())
-            .map_err(io(&path, "writing the cache entry"))?;
-        tmp.persist(&path)
-            .map_err(|e| io(&path, "renaming the cache entry into place")(e.error))?;
-        Ok(())
+        let header = header.into_bytes();
+        write_atomically(&path, |w| {
+            w.write_all(&header)
+                .and_then(|()| w.write_all(payload))
+                .and_then(|()| w.flush())
+                .and_then(|()| w.get_ref().sync_all())
+                .map_err(io(&path, "writing the cache entry"))
+        })
     }
 
     /// Removes the entry `key` of `kind`, if there is one.

@@ -92,3 +92,13 @@ pub enum OutputError {
         value: String,
     },
 }
+
+impl From<lazysolid_compute::atomic_file::AtomicWriteError> for OutputError {
+    fn from(e: lazysolid_compute::atomic_file::AtomicWriteError) -> OutputError {
+        OutputError::Io {
+            file: e.path,
+            action: e.action,
+            cause: e.cause,
+        }
+    }
+}

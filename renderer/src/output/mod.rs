@@ -6,7 +6,6 @@
 //! interrupted or failed write never leaves a truncated image behind under the real name.
 
 mod animation;
-mod atomic;
 mod error;
 mod exr_io;
 mod film;
@@ -14,10 +13,10 @@ mod png_io;
 mod tonemap;
 
 pub use animation::{preview_frame, write_gif};
-pub(crate) use atomic::write_atomically;
 pub use error::OutputError;
 pub use exr_io::{read_exr_rgb, write_exr};
 pub use film::Film;
+pub(crate) use lazysolid_compute::atomic_file::write_atomically;
 pub(crate) use png_io::write_rgb8;
 pub use png_io::{write_layer_png, write_png, LayerMapping};
 pub(crate) use tonemap::encode8;

@@ -7,8 +7,10 @@
 use super::harness::{Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::multiscale::load_graph;
+use crate::cli::output::write_atomically;
 use crate::cli::GlobalArgs;
 use clap::Args;
+use lazysolid_compute::atomic_file::write_bytes_atomically;
 use lazysolid_compute::synth::multiscale::{
     analyze_graph, colour, MultiscaleAnalysis, MultiscaleGpu, MultiscaleParams, PixelState,
 };
@@ -297,14 +299,16 @@ pub fn run(args: &MultiscaleBenchArgs, global: &GlobalArgs) -> anyhow::Result<()
     }
     let dir = bench.artifact_dir()?;
     let qpath = dir.join("quality.csv");
-    let mut w = csv::Writer::from_path(&qpath)?;
-    for r in &quality {
-        w.serialize(r)?;
-    }
-    w.flush()?;
-    std::fs::write(
-        dir.join("quality.json"),
-        serde_json::to_string_pretty(&quality)?,
+    write_atomically(&qpath, |f| {
+        let mut w = csv::Writer::from_writer(f);
+        for r in &quality {
+            w.serialize(r)?;
+        }
+        Ok(w.flush()?)
+    })?;
+    write_bytes_atomically(
+        &dir.join("quality.json"),
+        serde_json::to_string_pretty(&quality)?.as_bytes(),
     )?;
     println!(
         "per-scale quality ({}² windows at the origin):",

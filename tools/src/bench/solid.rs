@@ -39,12 +39,13 @@ use crate::cli::candidate_builder::Candidates;
 use crate::cli::fit_mode::Fit;
 use crate::cli::solid::{
     axis_quality, oblique, role_scorers, slice, synthesize_cube, AxisQuality, CubeRequest,
-    ImageScorer,
+    ImageScorer, SolidRun,
 };
 use crate::cli::synth::write_png;
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
+use lazysolid_compute::atomic_file::write_bytes_atomically;
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_compute::synth::solid::{
@@ -121,6 +122,11 @@ pub struct SolidArgs {
     /// Only the first exemplar, the first candidate side and the first size.
     #[arg(long)]
     pub quick: bool,
+    /// Score the default synthesis, the colour rules and the 2D synthesis only, without the
+    /// four ablation syntheses (keep current, crossbar only, no balance, no feature): a
+    /// table of many exemplars at 128³ in minutes instead of an hour.
+    #[arg(long)]
+    pub no_ablations: bool,
 }
 
 /// One quality row: a variant of one case, per axis.
@@ -233,8 +239,9 @@ fn synth_2d(
     Ok((out.try_into().expect("three roles"), image))
 }
 
-/// Exemplar, 2D synthesis, the three mid slices of a cube and its oblique slice side by side
-/// (8-pixel gaps).
+/// Exemplar, its two disjoint halves (what the SWD unit compares: the material's own
+/// variability, drawn apart by a 4-pixel gap), 2D synthesis, the three mid slices of a cube
+/// and its oblique slice side by side (8-pixel gaps).
 fn figure(
     exemplar: &Exemplar,
     two_d: &[[u8; 3]],
@@ -243,23 +250,49 @@ fn figure(
 ) -> (u32, u32, Vec<[u8; 3]>) {
     let n = synthesis.window.size[0];
     let gap = 8;
-    let mut panels: Vec<(u32, Vec<[u8; 3]>)> = vec![(exemplar.width, exemplar.rgb.clone())];
-    panels.push((n, two_d.to_vec()));
-    for axis in 0..3 {
-        panels.push((n, slice(synthesis, colours, axis, n / 2).0));
-    }
-    panels.push((n, oblique(colours, n as usize)));
-    let width: u32 = panels.iter().map(|p| p.0).sum::<u32>() + gap * (panels.len() as u32 - 1);
-    let height = panels.iter().map(|p| p.0).max().unwrap_or(0);
-    let mut rgb = vec![[255u8; 3]; (width * height) as usize];
-    let mut x0 = 0;
-    for (side, pixels) in panels {
-        for y in 0..side {
-            for x in 0..side {
-                rgb[(y * width + x0 + x) as usize] = pixels[(y * side + x) as usize];
+    let (ew, eh) = (exemplar.width, exemplar.height);
+    let mut panels: Vec<(u32, u32, Vec<[u8; 3]>)> = vec![(ew, eh, exemplar.rgb.clone())];
+    // The halves as `SwdCalibration` splits them (across the longer side), side by side.
+    let halves = if ew >= eh {
+        let half = ew / 2;
+        let w = 2 * half + 4;
+        let mut rgb = vec![[255u8; 3]; (w * eh) as usize];
+        for y in 0..eh {
+            for x in 0..2 * half {
+                let to = if x < half { x } else { x + 4 };
+                rgb[(y * w + to) as usize] = exemplar.rgb[(y * ew + x) as usize];
             }
         }
-        x0 += side + gap;
+        (w, eh, rgb)
+    } else {
+        let half = eh / 2;
+        let h = 2 * half + 4;
+        let mut rgb = vec![[255u8; 3]; (ew * h) as usize];
+        for y in 0..2 * half {
+            let to = if y < half { y } else { y + 4 };
+            for x in 0..ew {
+                rgb[(to * ew + x) as usize] = exemplar.rgb[(y * ew + x) as usize];
+            }
+        }
+        (ew, h, rgb)
+    };
+    panels.push(halves);
+    panels.push((n, n, two_d.to_vec()));
+    for axis in 0..3 {
+        panels.push((n, n, slice(synthesis, colours, axis, n / 2).0));
+    }
+    panels.push((n, n, oblique(colours, n as usize)));
+    let width: u32 = panels.iter().map(|p| p.0).sum::<u32>() + gap * (panels.len() as u32 - 1);
+    let height = panels.iter().map(|p| p.1).max().unwrap_or(0);
+    let mut rgb = vec![[255u8; 3]; (width * height) as usize];
+    let mut x0 = 0;
+    for (w, h, pixels) in panels {
+        for y in 0..h {
+            for x in 0..w {
+                rgb[(y * width + x0 + x) as usize] = pixels[(y * w + x) as usize];
+            }
+        }
+        x0 += w + gap;
     }
     (width, height, rgb)
 }
@@ -478,55 +511,62 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q(&run.synthesis, &mean)?,
                 Some(run.consistency),
             );
-            let ablation = |candidate_params: &CandidateParams, keep_current: bool| {
-                let r = CubeRequest {
-                    candidate_params: *candidate_params,
-                    keep_current,
-                    ..request.clone()
+            // The ablations' volumes, drawn beside the default's in the figures.
+            let mut drawn: Vec<(&str, SolidRun)> = Vec::new();
+            if !args.no_ablations {
+                let ablation = |candidate_params: &CandidateParams, keep_current: bool| {
+                    let r = CubeRequest {
+                        candidate_params: *candidate_params,
+                        keep_current,
+                        ..request.clone()
+                    };
+                    synthesize_cube(&gpu, exemplars.clone(), &r, Some(&cache))
                 };
-                synthesize_cube(&gpu, exemplars.clone(), &r, Some(&cache))
-            };
-            let keep = ablation(&CandidateParams::default(), true)?;
-            push(
-                "keep current",
-                q(&keep.synthesis, &keep.colours)?,
-                Some(keep.consistency),
-            );
-            let crossbar = ablation(
-                &CandidateParams {
-                    coherence: false,
-                    ..CandidateParams::default()
-                },
-                false,
-            )?;
-            push(
-                "crossbar only",
-                q(&crossbar.synthesis, &crossbar.colours)?,
-                Some(crossbar.consistency),
-            );
-            let unbalanced = ablation(
-                &CandidateParams {
-                    balance: 0,
-                    ..CandidateParams::default()
-                },
-                false,
-            )?;
-            push(
-                "no balance",
-                q(&unbalanced.synthesis, &unbalanced.colours)?,
-                Some(unbalanced.consistency),
-            );
-            let featureless = synthesize_cube(
-                &gpu,
-                exemplars.clone().with_feature_weight(0)?,
-                &request,
-                Some(&cache),
-            )?;
-            push(
-                "no feature",
-                q(&featureless.synthesis, &featureless.colours)?,
-                Some(featureless.consistency),
-            );
+                let keep = ablation(&CandidateParams::default(), true)?;
+                push(
+                    "keep current",
+                    q(&keep.synthesis, &keep.colours)?,
+                    Some(keep.consistency),
+                );
+                let crossbar = ablation(
+                    &CandidateParams {
+                        coherence: false,
+                        ..CandidateParams::default()
+                    },
+                    false,
+                )?;
+                push(
+                    "crossbar only",
+                    q(&crossbar.synthesis, &crossbar.colours)?,
+                    Some(crossbar.consistency),
+                );
+                let unbalanced = ablation(
+                    &CandidateParams {
+                        balance: 0,
+                        ..CandidateParams::default()
+                    },
+                    false,
+                )?;
+                push(
+                    "no balance",
+                    q(&unbalanced.synthesis, &unbalanced.colours)?,
+                    Some(unbalanced.consistency),
+                );
+                let featureless = synthesize_cube(
+                    &gpu,
+                    exemplars.clone().with_feature_weight(0)?,
+                    &request,
+                    Some(&cache),
+                )?;
+                push(
+                    "no feature",
+                    q(&featureless.synthesis, &featureless.colours)?,
+                    Some(featureless.consistency),
+                );
+                drawn.push(("-keep-current", keep));
+                drawn.push(("-no-balance", unbalanced));
+                drawn.push(("-no-feature", featureless));
+            }
             let (ex, ex_colours) = extruded(&exemplars, n);
             push("extruded E_z", q(&ex, &ex_colours)?, None);
             let (two_d, image) = synth_2d(
@@ -540,12 +580,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             )?;
             push("2d synth", two_d, None);
             let name = case.replace('+', "-");
-            for (variant, s) in [
-                ("", &run),
-                ("-keep-current", &keep),
-                ("-no-balance", &unbalanced),
-                ("-no-feature", &featureless),
-            ] {
+            for (variant, s) in
+                std::iter::once(("", &run)).chain(drawn.iter().map(|(v, r)| (*v, r)))
+            {
                 let (w, h, rgb) = figure(exemplars.role(0), &image, &s.synthesis, &s.colours);
                 write_png(
                     &dir.join(format!("{name}-{n}{variant}-slices.png")),
@@ -581,7 +618,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "spread"
     );
     let mut csv = String::from(
-        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,candidate_share,spread,candidate_spread\n",
+        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,candidate_share,spread,candidate_spread\n",
     );
     for row in &quality {
         let (share, spread) = row.consistency.map_or((String::new(), String::new()), |c| {
@@ -613,7 +650,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 )
             });
             csv.push_str(&format!(
-                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{c}\n",
+                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{:.4},{:.4},{c}\n",
                 row.case,
                 row.variant,
                 ["x", "y", "z"][a],
@@ -622,14 +659,16 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q.blockiness,
                 q.energy,
                 q.histogram,
-                q.repetition
+                q.repetition,
+                q.anisotropy,
+                q.exemplar_anisotropy
             ));
         }
     }
-    std::fs::write(dir.join("quality.csv"), csv)?;
-    std::fs::write(
-        dir.join("quality.json"),
-        serde_json::to_string_pretty(&quality)?,
+    write_bytes_atomically(&dir.join("quality.csv"), csv.as_bytes())?;
+    write_bytes_atomically(
+        &dir.join("quality.json"),
+        serde_json::to_string_pretty(&quality)?.as_bytes(),
     )?;
     bench.finish(&peak)?;
     println!("quality table and figures in {}", dir.display());

@@ -2,7 +2,7 @@
 //! all.
 
 use anyhow::{bail, Context};
-use std::io::Write;
+use lazysolid_compute::atomic_file;
 use std::path::{Path, PathBuf};
 
 /// The folder `path` goes into (`.` for a bare file name).
@@ -72,23 +72,14 @@ pub fn check_writable_dir(flag: &str, dir: &Path) -> anyhow::Result<()> {
     })
 }
 
-/// Writes through a temporary file in the same folder and renames it into place, so that an
-/// interrupted or failed write leaves no half file under `path`.
+/// Writes through a temporary file in the same folder and renames it into place
+/// (`lazysolid_compute::atomic_file`), so that an interrupted or failed write leaves no half
+/// file under `path`; `write`'s errors name the file.
 pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let tmp = path.with_file_name(format!(".{name}.partial"));
-    let file =
-        std::fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-    let mut w = std::io::BufWriter::new(file);
-    let written = write(&mut w).and_then(|()| Ok(w.flush()?));
-    drop(w);
-    if let Err(e) = written {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e.context(format!("writing {}", path.display())));
-    }
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+    atomic_file::write_atomically(path, |w| {
+        write(w).with_context(|| format!("writing {}", path.display()))
+    })
 }

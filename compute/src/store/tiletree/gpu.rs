@@ -463,14 +463,11 @@ impl TileTree {
             store: NAME,
             problem: format!("cannot write the tile map image {}: {e}", path.display()),
         };
-        let tmp = path.with_extension("png.partial");
+        let mut png = Vec::new();
         image
-            .save_with_format(&tmp, image::ImageFormat::Png)
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
             .map_err(|e| io(e.to_string()))?;
-        std::fs::rename(&tmp, path).map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            io(e.to_string())
-        })
+        crate::atomic_file::write_bytes_atomically(path, &png).map_err(|e| io(e.to_string()))
     }
 }
 

@@ -7,15 +7,19 @@
 //!   same distance between two disjoint halves of the exemplar (the material's own
 //!   variability): the ratio is 1 for an output as close to the exemplar as the exemplar is to
 //!   itself, and large structures count through the coarse octaves.
+//! - [`anisotropy`]: the balance of gradient energy between the image axes, and the identity
+//!   that keeps a volume from giving all three slice families one exemplar's balance.
 //! - [`blockiness`]: the share of oriented gradient energy that lies along the image axes,
 //!   against the exemplar's: axis-aligned blocks raise it, a blur or a shift leave it.
 //!
 //! See `docs/synthesis.md`, "Quality figures".
 
+pub mod anisotropy;
 pub mod blockiness;
 mod image;
 pub mod swd;
 
+pub use anisotropy::{anisotropy, reachable_gap, VolumeAnisotropy};
 pub use blockiness::{axis_share, Blockiness};
 pub use image::LinearImage;
 pub use swd::{PatchSets, SwdCalibration, SwdParams, SwdReport};
@@ -27,6 +31,8 @@ pub struct ImageFigures {
     pub swd: SwdReport,
     /// Axis share against the exemplar's.
     pub blockiness: Blockiness,
+    /// Balance of the gradient energy between u and v ([`anisotropy()`](fn@anisotropy)).
+    pub anisotropy: f64,
 }
 
 /// An exemplar's calibration for every figure, made once and applied to each image scored
@@ -35,6 +41,7 @@ pub struct ImageFigures {
 pub struct ExemplarFigures {
     swd: SwdCalibration,
     axis_share: f64,
+    anisotropy: f64,
 }
 
 impl ExemplarFigures {
@@ -44,7 +51,13 @@ impl ExemplarFigures {
         ExemplarFigures {
             swd: SwdCalibration::new(&e, SwdParams::default()),
             axis_share: axis_share(&e),
+            anisotropy: anisotropy(&e),
         }
+    }
+
+    /// The exemplar's [`anisotropy()`](fn@anisotropy).
+    pub fn anisotropy(&self) -> f64 {
+        self.anisotropy
     }
 
     /// The SWD calibration.
@@ -58,6 +71,7 @@ impl ExemplarFigures {
         ImageFigures {
             swd: self.swd.measure(&image),
             blockiness: Blockiness::against(&image, self.axis_share),
+            anisotropy: anisotropy(&image),
         }
     }
 }
