@@ -41,13 +41,13 @@ declare -A FULL=(
   [hash]="--image-res 4096x4096 --voxel-res 512 --random-keys 1048576"
   [psh]="--voxel-res 256,1024 --image-res 400x400"
   [textures]="--voxel-res 1024 --res 800x800"
-  [solid]="--exemplars terra,brick --candidate-sides 64,128 --sizes 64,128"
+  [solid]="--exemplars terra,brick --candidate-sides 64,128 --voxel-res 64,128"
   [lazy]="--meshes armadillo --voxel-res 1024"
   [cuts]="--voxel-res 256 --pieces 8,32"
   [trace]="--res 1024x1024"
   [synth]="--exemplars leather --res 256,512 --quality-seeds 1"
   [glints]="--res 128,256,512"
-  [multiscale]="--size 256"
+  [multiscale]="--res 256"
 )
 # The quick run: each suite's smallest meaningful case, one run, no warm-up. Exemplar analysis
 # and candidate precompute grow with the exemplar, so lazy and cuts take a 16² exemplar
@@ -58,13 +58,13 @@ declare -A QUICK=(
   [hash]="--quick --load-factors 0.5,0.9 --datasets random-2d,voxels"
   [psh]="--quick --voxel-res 64 --blocked-voxel-res 64"
   [textures]="--voxel-res 64 --res 64x64 --mesh bunny00"
-  [solid]="--quick --exemplars terra --three= --candidate-sides 16 --side 16 --sizes 16 --passes 1 --energy-samples 64"
+  [solid]="--quick --exemplars terra --three= --candidate-sides 16 --side 16 --voxel-res 16 --passes 1 --energy-samples 64"
   [lazy]="--quick --meshes bunny00 --voxel-res 16 --exemplar @SMALL_EXEMPLAR@"
   [cuts]="--mesh elephant --voxel-res 32 --pieces 4 --exemplar @SMALL_EXEMPLAR@"
   [trace]="--mesh bunny00 --res 64x64"
   [synth]="--quick --exemplars leather --res 64 --quality-seeds 1 --energy-samples 256"
   [glints]="--quick --res 32 --queries 500 --coverage 512 --render-res 32x24 --spp 1"
-  [multiscale]="--graphs @TERRA_LOOP@ --size 64 --deeper 1 --quality-size 32 --energy-samples 64"
+  [multiscale]="--graphs @TERRA_LOOP@ --res 64 --deeper 1 --quality-res 32 --energy-samples 64"
 )
 
 usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; }

@@ -75,6 +75,14 @@ fn main() {
         Err(e) => {
             // Usage errors exit with 1 like every other error (clap's own 2 is validation's).
             let _ = e.print();
+            if let Some(clap::error::ContextValue::String(flag)) =
+                e.get(clap::error::ContextKind::InvalidArg)
+            {
+                let args: Vec<String> = std::env::args().skip(1).collect();
+                if let Some(line) = cli::renamed::hint(&args, flag) {
+                    eprintln!("{line}");
+                }
+            }
             std::process::exit(if e.use_stderr() {
                 exit_status::ERROR
             } else {

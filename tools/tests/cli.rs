@@ -980,12 +980,16 @@ fn bench_results_record_the_revision_once_per_row() {
 
 /// The help of the tool and of every subcommand.
 fn every_help() -> Vec<(String, String)> {
-    let commands: [&[&str]; 12] = [
+    let commands: [&[&str]; 20] = [
         &[],
         &["device"],
         &["diff"],
         &["render"],
         &["synth"],
+        &["multiscale"],
+        &["zoom"],
+        &["fracture"],
+        &["solid"],
         &["bench", "prims"],
         &["bench", "hash"],
         &["bench", "psh"],
@@ -993,6 +997,10 @@ fn every_help() -> Vec<(String, String)> {
         &["bench", "synth"],
         &["bench", "textures"],
         &["bench", "glints"],
+        &["bench", "solid"],
+        &["bench", "lazy"],
+        &["bench", "cuts"],
+        &["bench", "multiscale"],
     ];
     commands
         .iter()
@@ -1012,7 +1020,12 @@ fn every_help_uses_one_word_and_one_value_form_per_thing() {
     for (command, help) in every_help() {
         // Flag lines only (`  -o, --output <OUTPUT>`), not flags named in prose.
         for line in help.lines().filter(|l| l.trim_start().starts_with('-')) {
-            let words: Vec<&str> = line.split_whitespace().collect();
+            // The flags and their value names lead the line; the description after them may
+            // name other flags in prose (`... from --seed`).
+            let words: Vec<&str> = line
+                .split_whitespace()
+                .take_while(|w| w.starts_with('-') || w.starts_with('<'))
+                .collect();
             for (i, w) in words.iter().enumerate() {
                 let flag = w.trim_end_matches(',');
                 if flag.starts_with("--") && flag.len() > 2 {
@@ -1035,6 +1048,7 @@ fn every_help_uses_one_word_and_one_value_form_per_thing() {
             "--image-size",
             "--blocked-resolution",
             "--out <",
+            "--quality-size",
         ] {
             assert!(!help.contains(old), "`{command}` still says {old}:\n{help}");
         }
@@ -1055,30 +1069,77 @@ fn every_help_uses_one_word_and_one_value_form_per_thing() {
 
 #[test]
 fn renamed_flags_are_refused_by_name() {
-    for (args, old) in [
-        (&["bench", "textures", "--view", "64"][..], "--view"),
+    for (args, old, new) in [
+        (
+            &["bench", "textures", "--view", "64"][..],
+            "--view",
+            "--res",
+        ),
         (
             &["bench", "hash", "--voxel-resolution", "32"],
             "--voxel-resolution",
+            "--voxel-res",
         ),
-        (&["bench", "hash", "--image-size", "256"], "--image-size"),
+        (
+            &["bench", "hash", "--image-size", "256"],
+            "--image-size",
+            "--image-res",
+        ),
         (
             &["bench", "psh", "--voxel-resolutions", "64"],
             "--voxel-resolutions",
+            "--voxel-res",
         ),
         (
             &["bench", "psh", "--blocked-resolution", "64"],
             "--blocked-resolution",
+            "--blocked-voxel-res",
         ),
-        (&["bench", "synth", "--sizes", "64"], "--sizes"),
-        (&["bench", "prims", "--out", "results"], "--out"),
-        (&["synth", "terra", "-o", "x.png", "--size", "64"], "--size"),
+        (&["bench", "synth", "--sizes", "64"], "--sizes", "--res"),
+        (
+            &["bench", "prims", "--out", "results"],
+            "--out",
+            "--out-dir",
+        ),
+        (
+            &["synth", "terra", "-o", "x.png", "--size", "64"],
+            "--size",
+            "--res",
+        ),
+        (
+            &["solid", "terra", "-o", "x.nrrd", "--size", "64"],
+            "--size",
+            "--voxel-res",
+        ),
+        (
+            &["bench", "solid", "--sizes", "64"],
+            "--sizes",
+            "--voxel-res",
+        ),
+        (&["multiscale", "g.toml", "--size", "64"], "--size", "--res"),
+        (
+            &["zoom", "g.toml", "--frames", "3"],
+            "--frames",
+            "--frame-count",
+        ),
+        (&["zoom", "g.toml", "-o", "frames"], "-o", "--out-dir"),
+        (
+            &["fracture", "cube", "--pieces", "2", "-o", "pieces"],
+            "-o",
+            "--out-dir",
+        ),
+        (
+            &["bench", "multiscale", "--quality-size", "64"],
+            "--quality-size",
+            "--quality-res",
+        ),
     ] {
         let out = lazysolid().args(args).output().unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
         assert!(
-            err.contains(&format!("unexpected argument '{old}'")),
+            err.contains(&format!("unexpected argument '{old}'"))
+                && err.contains(&format!("`{old}` is now `{new}`")),
             "{args:?}: {err}"
         );
     }
@@ -1277,7 +1338,14 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
             // One correction pass (the defaults' cost a few times more on lavapipe); the
             // synthesizer itself is tested in tests/tests/solid.rs.
             .args([
-                "--size", "64", "--offset", "-70,5,9", "--seed", "4", "--passes", "1",
+                "--voxel-res",
+                "64",
+                "--offset",
+                "-70,5,9",
+                "--seed",
+                "4",
+                "--passes",
+                "1",
             ])
             .args(["--energy-samples", "64", "-o"])
             .arg(&out)
@@ -1390,12 +1458,12 @@ fn solid_names_each_bad_input_and_writes_nothing() {
             &["corrupt.png", "cannot decode"],
         ),
         (
-            vec!["--size".into(), "100".into()],
-            &["--size 100", "64, 128, 256"],
+            vec!["--voxel-res".into(), "100".into()],
+            &["--voxel-res 100", "64, 128, 256"],
         ),
         (
-            vec!["--size".into(), "512".into()],
-            &["--size 512", "64, 128, 256"],
+            vec!["--voxel-res".into(), "512".into()],
+            &["--voxel-res 512", "64, 128, 256"],
         ),
         (
             vec!["--offset".into(), "300000000,0,0".into()],
@@ -1454,7 +1522,14 @@ fn bench_solid_writes_times_quality_and_figures() {
                 "--three",
                 "",
             ])
-            .args(["--candidate-sides", "16", "--side", "16", "--sizes", "16"])
+            .args([
+                "--candidate-sides",
+                "16",
+                "--side",
+                "16",
+                "--voxel-res",
+                "16",
+            ])
             .args(["--passes", "1", "--energy-samples", "64"])
             .args(["--runs", "1", "--warmup", "0"]),
         out.path(),
@@ -1532,7 +1607,14 @@ fn bench_solid_without_ablations_scores_the_default_only() {
                 "terra",
             ])
             .args(["--three", "", "--builders", "host"])
-            .args(["--candidate-sides", "16", "--side", "16", "--sizes", "16"])
+            .args([
+                "--candidate-sides",
+                "16",
+                "--side",
+                "16",
+                "--voxel-res",
+                "16",
+            ])
             .args(["--passes", "1", "--energy-samples", "64"])
             .args(["--runs", "1", "--warmup", "0"]),
         out.path(),
@@ -1605,7 +1687,15 @@ fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("pieces");
     let (ok, stdout, err) = run(lazysolid()
-        .args(["fracture", "elephant", "--pieces", "6", "--seed", "4", "-o"])
+        .args([
+            "fracture",
+            "elephant",
+            "--pieces",
+            "6",
+            "--seed",
+            "4",
+            "--out-dir",
+        ])
         .arg(&out));
     assert!(ok, "{err}");
     assert!(stdout.contains("6 pieces of"), "{stdout}");
@@ -1636,7 +1726,7 @@ fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
             "0,1,0,5",
             "--plane",
             "1,0,0,0.5",
-            "-o",
+            "--out-dir",
         ])
         .arg(&cut));
     assert!(ok, "{err}");
@@ -1666,7 +1756,7 @@ fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
             vec!["no_such_mesh"],
         ),
     ] {
-        let (ok, _, err) = run(lazysolid().args(&args).arg("-o").arg(&refused));
+        let (ok, _, err) = run(lazysolid().args(&args).arg("--out-dir").arg(&refused));
         assert!(!ok, "{args:?} must fail");
         for n in needles {
             assert!(err.contains(n), "{args:?}: {n:?} not in {err}");
@@ -1888,7 +1978,7 @@ fn multiscale_and_zoom_write_their_images_and_bad_graphs_fail_by_line() {
         let (ok, stdout, err) = run(lazysolid()
             .arg("multiscale")
             .arg(&graph)
-            .args(["--level", "8", "--size", "24x16", "--offset", "-5,3"])
+            .args(["--level", "8", "--res", "24x16", "--offset", "-5,3"])
             .args(extra)
             .arg("-o")
             .arg(&out)
@@ -1909,9 +1999,16 @@ fn multiscale_and_zoom_write_their_images_and_bad_graphs_fail_by_line() {
         .arg("zoom")
         .arg(&graph)
         .args([
-            "--from", "5", "--to", "6.5", "--frames", "3", "--size", "16x12",
+            "--from",
+            "5",
+            "--to",
+            "6.5",
+            "--frame-count",
+            "3",
+            "--res",
+            "16x12",
         ])
-        .arg("-o")
+        .arg("--out-dir")
         .arg(&zoom));
     assert!(ok, "{err}");
     for f in [

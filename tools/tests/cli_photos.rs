@@ -110,7 +110,14 @@ fn solid_fits_both_photos_and_says_how() {
             .args(args)
             // The smallest cube and one correction pass: the synthesizer itself is tested in
             // tests/tests/solid.rs.
-            .args(["--size", "64", "--passes", "1", "--energy-samples", "16"])
+            .args([
+                "--voxel-res",
+                "64",
+                "--passes",
+                "1",
+                "--energy-samples",
+                "16",
+            ])
             .arg("--no-render")
             .arg("-o")
             .arg(&out)

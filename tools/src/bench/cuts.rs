@@ -34,10 +34,10 @@ pub struct CutsArgs {
     #[command(flatten)]
     pub common: CommonArgs,
     /// The mesh: a name in the assets' meshes or a path; normalized into the unit cube.
-    #[arg(long, default_value = "armadillo")]
+    #[arg(long, value_name = "NAME|PATH", default_value = "armadillo")]
     pub mesh: String,
     /// Equivalent resolutions R.
-    #[arg(long, value_delimiter = ',', default_value = "256")]
+    #[arg(long, value_name = "N", value_delimiter = ',', default_value = "256")]
     pub voxel_res: Vec<u32>,
     /// Voronoi fractures to time, by piece count.
     #[arg(long, value_delimiter = ',', default_value = "8,32")]

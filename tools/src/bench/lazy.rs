@@ -37,12 +37,18 @@ pub struct LazyArgs {
     /// into the unit cube.
     #[arg(
         long,
+        value_name = "NAME|PATH",
         value_delimiter = ',',
         default_value = "armadillo,bunny00,ChineseDragon-10kv"
     )]
     pub meshes: Vec<String>,
     /// Equivalent resolutions R (the texture is R³ voxels over the unit cube).
-    #[arg(long, value_delimiter = ',', default_value = "256,512,1024")]
+    #[arg(
+        long,
+        value_name = "N",
+        value_delimiter = ',',
+        default_value = "256,512,1024"
+    )]
     pub voxel_res: Vec<u32>,
     #[command(flatten)]
     pub exemplar: SolidExemplarArg,

@@ -8,6 +8,7 @@ use super::harness::{Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::multiscale::load_graph;
 use crate::cli::output::write_atomically;
+use crate::cli::resolution::Resolution;
 use crate::cli::GlobalArgs;
 use clap::Args;
 use lazysolid_compute::atomic_file::write_bytes_atomically;
@@ -34,15 +35,15 @@ pub struct MultiscaleBenchArgs {
         default_value = "scenes/multiscale/parquet_walnut.toml,scenes/multiscale/marble_loop.toml"
     )]
     pub graphs: Vec<PathBuf>,
-    /// Output side in pixels.
-    #[arg(long, default_value_t = 256)]
-    pub size: u32,
+    /// Output size of the timed windows, WxH in pixels (N for NxN).
+    #[arg(long, value_name = "WxH", default_value = "256x256")]
+    pub res: Resolution,
     /// Depths past the root's finest level also timed (against the same 2D baseline).
     #[arg(long, default_value_t = 2)]
     pub deeper: u32,
-    /// Output side of the per-depth quality windows.
-    #[arg(long, default_value_t = 128)]
-    pub quality_size: u32,
+    /// Size of the per-depth quality windows, WxH in pixels (N for NxN).
+    #[arg(long, value_name = "WxH", default_value = "128x128")]
+    pub quality_res: Resolution,
     /// Energy samples per depth (a regular subgrid of the quality window).
     #[arg(long, default_value_t = 256)]
     pub energy_samples: u32,
@@ -62,7 +63,7 @@ fn level_energy(
     exemplar: usize,
     level: u32,
     out: &[[u8; 3]],
-    side: u32,
+    size: Resolution,
     samples: u32,
 ) -> f64 {
     let e = &analysis.exemplars[exemplar];
@@ -70,13 +71,17 @@ fn level_energy(
     let img = &e.stack[level as usize];
     let (w, hh) = (e.width as i32, e.height as i32);
     let per_axis = (samples as f64).sqrt().ceil() as i32;
-    let span = side as i32 - 2 * R;
+    let (out_w, span_x, span_y) = (
+        size.width as i32,
+        size.width as i32 - 2 * R,
+        size.height as i32 - 2 * R,
+    );
     let positions: Vec<(i32, i32)> = (0..per_axis)
         .flat_map(|j| {
             (0..per_axis).map(move |i| {
                 (
-                    R + i * span / per_axis.max(1),
-                    R + j * span / per_axis.max(1),
+                    R + i * span_x / per_axis.max(1),
+                    R + j * span_y / per_axis.max(1),
                 )
             })
         })
@@ -90,7 +95,7 @@ fn level_energy(
                     let mut d = 0u64;
                     'n: for dy in -R..=R {
                         for dx in -R..=R {
-                            let o = out[((py + dy) * side as i32 + px + dx) as usize];
+                            let o = out[((py + dy) * out_w + px + dx) as usize];
                             let sx = (vx + dx * h).rem_euclid(w);
                             let sy = (vy + dy * h).rem_euclid(hh);
                             let s = img[(sy * w + sx) as usize];
@@ -117,14 +122,14 @@ fn level_energy(
 fn level_repetition(
     analysis: &MultiscaleAnalysis,
     states: &[PixelState],
-    side: u32,
+    size: Resolution,
     meta: u32,
 ) -> f64 {
     let s0 = states.iter().find(|s| s.meta == meta).expect("governing");
     let e = &analysis.exemplars[s0.exemplar()];
     let h = 1u32 << (e.finest - s0.level());
     let (px, py) = ((e.width / h) as usize, (e.height / h) as usize);
-    let n = side as usize;
+    let (n, rows) = (size.width as usize, size.height as usize);
     let (mut pairs, mut equal) = (0u64, 0u64);
     let near = |a: &PixelState, b: &PixelState| {
         let (ax, ay) = unpack(a.coord);
@@ -135,14 +140,14 @@ fn level_repetition(
         };
         d(ax, bx, e.width).max(d(ay, by, e.height)) <= REPETITION_TOLERANCE
     };
-    for y in 0..n {
+    for y in 0..rows {
         for x in 0..n {
             let a = &states[y * n + x];
             if a.meta != meta {
                 continue;
             }
             for (qx, qy) in [(x + px, y), (x, y + py)] {
-                if px == 0 || py == 0 || qx >= n || qy >= n {
+                if px == 0 || py == 0 || qx >= n || qy >= rows {
                     continue;
                 }
                 let b = &states[qy * n + qx];
@@ -195,12 +200,12 @@ pub fn run(args: &MultiscaleBenchArgs, global: &GlobalArgs) -> anyhow::Result<()
         let single = GpuSynthesizer::new(&gpu, &flat)?;
         let window = Region {
             origin: [0, 0],
-            size: [args.size, args.size],
+            size: [args.res.width, args.res.height],
         };
-        let pixels = args.size as u64 * args.size as u64;
+        let pixels = args.res.width as u64 * args.res.height as u64;
         let finest = root.finest_level();
         for depth in finest..=finest + args.deeper {
-            let case = format!("{name} {0}x{0} depth {depth}", args.size);
+            let case = format!("{name} {} depth {depth}", args.res);
             bench.case(
                 &case,
                 pixels,
@@ -227,10 +232,10 @@ pub fn run(args: &MultiscaleBenchArgs, global: &GlobalArgs) -> anyhow::Result<()
             )?;
         }
         // Per-scale quality.
-        let q = args.quality_size;
+        let q = args.quality_res;
         let qwin = Region {
             origin: [0, 0],
-            size: [q, q],
+            size: [q.width, q.height],
         };
         for depth in 0..=finest + args.deeper {
             bench.status(format!("{name}: quality at depth {depth}"));
@@ -311,8 +316,8 @@ pub fn run(args: &MultiscaleBenchArgs, global: &GlobalArgs) -> anyhow::Result<()
         serde_json::to_string_pretty(&quality)?.as_bytes(),
     )?;
     println!(
-        "per-scale quality ({}² windows at the origin):",
-        args.quality_size
+        "per-scale quality ({} windows at the origin):",
+        args.quality_res
     );
     println!(
         "graph, depth, governing exemplar level (share of pixels), energy per 7x7 (displayed / \

@@ -6,7 +6,7 @@
 //! `quality.json`.
 //!
 //! Timed rows (wall time on the host): the candidate precompute per exemplar side
-//! (`--candidate-sides`, default 64 and 128) and the synthesis of a cube per `--sizes`
+//! (`--candidate-sides`, default 64 and 128) and the synthesis of a cube per `--voxel-res`
 //! (default 64 and 128: the GPU synthesis alone, the candidates read from the cache), and per
 //! case the whole `synthesize_cube` — CPU analysis, candidates, kernels, synthesis, colours,
 //! slab — with the candidate cache cold (entry removed before each run: the precompute is
@@ -75,6 +75,7 @@ pub struct SolidArgs {
     /// square of that side).
     #[arg(
         long,
+        value_name = "NAME|PATH",
         value_delimiter = ',',
         default_value = "brick,terra,walnut,pink_marble"
     )]
@@ -101,9 +102,14 @@ pub struct SolidArgs {
     /// that loses at most a quarter of the side and resamples otherwise, as `lazysolid solid`.
     #[arg(long, value_enum, default_value_t = Fit::Auto)]
     pub fit: Fit,
-    /// Cube sides whose synthesis is timed; the first is scored.
-    #[arg(long, value_delimiter = ',', default_value = "64,128")]
-    pub sizes: Vec<u32>,
+    /// Cube sides whose synthesis is timed, in voxels; the first is scored.
+    #[arg(
+        long,
+        value_name = "N",
+        value_delimiter = ',',
+        default_value = "64,128"
+    )]
+    pub voxel_res: Vec<u32>,
     /// Seed of the jitter.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
@@ -300,7 +306,7 @@ fn figure(
 /// Runs the suite.
 pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
-    ensure!(!args.sizes.is_empty(), "--sizes names no size");
+    ensure!(!args.voxel_res.is_empty(), "--voxel-res names no cube side");
     // `--three ""` names none.
     let three: Vec<&String> = args.three.iter().filter(|n| !n.is_empty()).collect();
     ensure!(
@@ -319,9 +325,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         );
     }
     let (cases, candidate_sides, sizes) = if args.quick {
-        (&cases[..1], &args.candidate_sides[..1], &args.sizes[..1])
+        (
+            &cases[..1],
+            &args.candidate_sides[..1],
+            &args.voxel_res[..1],
+        )
     } else {
-        (&cases[..], &args.candidate_sides[..], &args.sizes[..])
+        (&cases[..], &args.candidate_sides[..], &args.voxel_res[..])
     };
     let gpu = global.gpu()?;
     let energy = EnergyKernel::new(&gpu)?;

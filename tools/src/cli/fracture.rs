@@ -33,7 +33,7 @@ pub struct FractureArgs {
     #[arg(long, value_parser = parse_plane, allow_hyphen_values = true)]
     pub plane: Vec<[f64; 4]>,
     /// Folder for `piece_NNN.obj` and `fragments.mtl` (created if needed).
-    #[arg(short = 'o', long = "out-dir")]
+    #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
 }
 

@@ -11,6 +11,7 @@ pub mod fit_mode;
 pub mod fracture;
 pub mod multiscale;
 pub mod output;
+pub mod renamed;
 pub mod render;
 pub mod resolution;
 pub mod solid;

@@ -1,11 +1,11 @@
-//! `lazysolid multiscale GRAPH.toml --level T --size WxH --offset X,Y -o out.png`: a window of
+//! `lazysolid multiscale GRAPH.toml --level T --res WxH --offset X,Y -o out.png`: a window of
 //! depth `T` of the unbounded multiscale texture an exemplar graph defines; and
-//! `lazysolid zoom GRAPH.toml --from T0 --to T1 --frames N -o DIR`: a zoom into a point, each
+//! `lazysolid zoom GRAPH.toml --from T0 --to T1 --frame-count N --out-dir DIR`: a zoom into a point, each
 //! frame a window at a fractional depth (a blend of the two depths around it), as numbered PNGs
 //! and an animated GIF. See docs/multiscale.md.
 
 use super::components::components;
-use super::output::check_writable;
+use super::output::{check_writable, check_writable_dir};
 use super::resolution::Resolution;
 use super::synth::write_png;
 use super::{assets, GlobalArgs};
@@ -60,9 +60,9 @@ pub struct MultiscaleArgs {
     /// Synthesis depth T (0: the root's coarsest level; the root's own texels at its L).
     #[arg(long)]
     pub level: u32,
-    /// Output size WxH.
+    /// Output size WxH in pixels (N for NxN).
     #[arg(long, value_name = "WxH", default_value = "256x256")]
-    pub size: Resolution,
+    pub res: Resolution,
     /// Absolute position X,Y of the first pixel in the plane of depth T.
     #[arg(long, default_value = "0,0", value_parser = parse_pair::<i32>, allow_hyphen_values = true)]
     pub offset: (i32, i32),
@@ -83,11 +83,11 @@ pub struct ZoomArgs {
     #[arg(long)]
     pub to: f64,
     /// Frames, evenly spaced in depth (a constant zoom speed).
-    #[arg(long, default_value_t = 32)]
-    pub frames: u32,
-    /// Frame size WxH.
+    #[arg(long, value_name = "N", default_value_t = 32)]
+    pub frame_count: u32,
+    /// Frame size WxH in pixels (N for NxN).
     #[arg(long, value_name = "WxH", default_value = "192x192")]
-    pub size: Resolution,
+    pub res: Resolution,
     /// The point zoomed into, X,Y in texels of depth 0.
     #[arg(long, default_value = "0.37,0.61", value_parser = parse_pair::<f64>, allow_hyphen_values = true)]
     pub center: (f64, f64),
@@ -95,8 +95,8 @@ pub struct ZoomArgs {
     #[arg(long, default_value_t = 12.0)]
     pub fps: f32,
     /// The folder for frame_NNNN.png and zoom.gif (created if missing).
-    #[arg(short, long)]
-    pub output: PathBuf,
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
 }
 
 fn parse_pair<T: std::str::FromStr>(s: &str) -> Result<(T, T), String> {
@@ -213,7 +213,7 @@ pub fn run(args: &MultiscaleArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let engine = Engine::new(args.graph.cpu, global, &a.analysis)?;
     let window = Region {
         origin: [args.offset.0, args.offset.1],
-        size: [args.size.width, args.size.height],
+        size: [args.res.width, args.res.height],
     };
     let start = Instant::now();
     let out = engine.run(&a.analysis, &params, window)?;
@@ -224,8 +224,8 @@ pub fn run(args: &MultiscaleArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         .iter()
         .map(|s| EXEMPLAR_COLOURS[s.exemplar() % EXEMPLAR_COLOURS.len()])
         .collect();
-    write_png(&args.output, args.size.width, args.size.height, &colours)?;
-    write_png(&map_path, args.size.width, args.size.height, &map)?;
+    write_png(&args.output, args.res.width, args.res.height, &colours)?;
+    write_png(&map_path, args.res.width, args.res.height, &map)?;
     println!(
         "graph {} ({} exemplars, {} edges, {} distinct depth sets, loop from depth {})",
         args.graph.graph.display(),
@@ -236,7 +236,7 @@ pub fn run(args: &MultiscaleArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     println!(
         "depth {} window {}x{} at ({}, {}), seed {}",
-        args.level, args.size.width, args.size.height, args.offset.0, args.offset.1, params.seed
+        args.level, args.res.width, args.res.height, args.offset.0, args.offset.1, params.seed
     );
     println!("analysis (CPU)  {:8.3} s", a.analysis_s);
     println!(
@@ -294,14 +294,19 @@ impl Plane {
 
 /// Runs `zoom`.
 pub fn run_zoom(args: &ZoomArgs, global: &GlobalArgs) -> anyhow::Result<()> {
-    ensure!(args.frames >= 1, "--frames must be at least 1");
+    ensure!(args.frame_count >= 1, "--frame-count must be at least 1");
     ensure!(
         args.from >= 0.0 && args.to >= 0.0,
         "--from and --to must not be negative"
     );
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("-o {}: cannot create the folder", args.output.display()))?;
-    let (w, h) = (args.size.width, args.size.height);
+    check_writable_dir("--out-dir", &args.out_dir)?;
+    std::fs::create_dir_all(&args.out_dir).with_context(|| {
+        format!(
+            "--out-dir {}: cannot create the folder",
+            args.out_dir.display()
+        )
+    })?;
+    let (w, h) = (args.res.width, args.res.height);
     let deepest = args.from.max(args.to).floor() as u32 + 1;
     args.graph.params(deepest)?;
     let a = args.graph.analyse()?;
@@ -331,11 +336,11 @@ pub fn run_zoom(args: &ZoomArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     }
     let synth_s = start.elapsed().as_secs_f64();
     let mut gif = Vec::new();
-    for f in 0..args.frames {
-        let z = if args.frames == 1 {
+    for f in 0..args.frame_count {
+        let z = if args.frame_count == 1 {
             args.from
         } else {
-            args.from + (args.to - args.from) * f as f64 / (args.frames - 1) as f64
+            args.from + (args.to - args.from) * f as f64 / (args.frame_count - 1) as f64
         };
         let d = z.floor() as u32;
         let frac = z - d as f64;
@@ -365,12 +370,12 @@ pub fn run_zoom(args: &ZoomArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 }));
             }
         }
-        let path = args.output.join(format!("frame_{f:04}.png"));
+        let path = args.out_dir.join(format!("frame_{f:04}.png"));
         write_png(&path, w, h, &rgb)?;
         let rgba: Vec<u8> = rgb.iter().flat_map(|p| [p[0], p[1], p[2], 255]).collect();
         gif.push(image::RgbaImage::from_raw(w, h, rgba).expect("one RGBA word per pixel"));
     }
-    let gif_path = args.output.join("zoom.gif");
+    let gif_path = args.out_dir.join("zoom.gif");
     lazysolid_renderer::output::write_gif(&gif_path, &gif, args.fps)?;
     println!(
         "graph {}: depths {}..={} synthesized in {:.3} s ({}), analysis {:.3} s",
@@ -383,9 +388,9 @@ pub fn run_zoom(args: &ZoomArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     println!(
         "wrote {} frames and {} to {}",
-        args.frames,
+        args.frame_count,
         gif_path.display(),
-        args.output.display()
+        args.out_dir.display()
     );
     Ok(())
 }

@@ -34,7 +34,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Sides `--size` accepts.
+/// Sides `--voxel-res` accepts.
 pub const SOLID_SIZES: [u32; 3] = [64, 128, 256];
 
 /// What to synthesize and where to write it.
@@ -63,8 +63,8 @@ pub struct SolidArgs {
     #[arg(long, value_name = "N")]
     pub exemplar_side: Option<u32>,
     /// Side of the cube to synthesize: 64, 128 or 256 voxels.
-    #[arg(long, default_value_t = 64)]
-    pub size: u32,
+    #[arg(long, value_name = "N", default_value_t = 64)]
+    pub voxel_res: u32,
     /// Absolute position X,Y,Z of the box's first voxel in the unbounded volume.
     #[arg(long, default_value = "0,0,0", value_parser = parse_offset3, allow_hyphen_values = true)]
     pub offset: [i32; 3],
@@ -513,13 +513,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.output.display()
     );
     ensure!(
-        SOLID_SIZES.contains(&args.size),
-        "--size {}: the cube side must be one of {SOLID_SIZES:?} voxels",
-        args.size
+        SOLID_SIZES.contains(&args.voxel_res),
+        "--voxel-res {}: the cube side must be one of {SOLID_SIZES:?} voxels",
+        args.voxel_res
     );
     check_box(VolumeBox {
         origin: args.offset,
-        size: [args.size; 3],
+        size: [args.voxel_res; 3],
     })
     .with_context(|| {
         format!(
@@ -548,7 +548,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     };
     candidate_params.check()?;
     let gpu = global.gpu()?;
-    let n = args.size;
+    let n = args.voxel_res;
     let cache = if args.no_cache {
         None
     } else {
