@@ -1,6 +1,7 @@
-//! Compiles the kernels this crate owns (`glsl/{prims,hash,store,synth,voxel}/*.comp`) into
+//! Compiles the kernels this crate owns (`glsl/{prims,hash,store,voxel}/*.comp`) into
 //! `kernels.rs` (see the `lazysolid-shader-build` crate). A GLSL error fails the build with the
-//! file and line. The renderer's kernels (`glsl/render/`) are compiled by the renderer.
+//! file and line. The synthesizer's kernels (`glsl/synth/`) are compiled by `lazysolid-synth`,
+//! the renderer's (`glsl/render/`) by the renderer.
 
 use lazysolid_shader_build::{build_kernels, KernelSet};
 use std::path::PathBuf;
@@ -9,7 +10,7 @@ fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").unwrap());
     build_kernels(&KernelSet {
         glsl_root: manifest.join("../glsl"),
-        folders: ["prims", "hash", "store", "synth", "voxel"]
+        folders: ["prims", "hash", "store", "voxel"]
             .map(String::from)
             .to_vec(),
         constants: vec![manifest.join("src/shader_constants.rs")],

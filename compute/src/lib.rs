@@ -1,6 +1,7 @@
 //! lazysolid's compute crate: an explicit Vulkan compute core (ash + gpu-allocator), the GPU
-//! primitives every structure builder uses (scan, compaction, reduce, radix sort), and — as
-//! they land — the sparse texture structures and the synthesizer.
+//! primitives every structure builder uses (scan, compaction, reduce, radix sort), the spatial
+//! hashes, the voxelizer and the sparse texture stores. The synthesizer that fills the stores is
+//! the `lazysolid-synth` crate, built on this one.
 //!
 //! Every GPU kernel has a plain-Rust reference next to it; tests compare the two.
 
@@ -11,7 +12,7 @@ pub mod prims;
 mod push_registry;
 pub mod shader_constants;
 pub mod store;
-pub mod synth;
+pub mod texel;
 pub mod voxel;
 
 /// Kernels compiled from `glsl/` at build time, one module per folder.

@@ -3,11 +3,11 @@
 // candidates of its 3x3 neighbours (shifted back by the neighbour's offset), the one whose
 // exemplar neighbourhood best matches its synthesized neighbourhood (integer SSD; ties keep the
 // current coordinate, then go to the smaller packed one; a candidate whose coherent patch would
-// span an exemplar period gets a penalty added, see compute/src/synth/period.rs). The other
+// span an exemplar period gets a penalty added, see synth/src/period.rs). The other
 // classes are only read, so the update is in place. The neighbourhood is the 4-diagonal one of Lefebvre & Hoppe 2006:
 // per diagonal the sum of 3 predicted appearance vectors, against 3x the candidate's
-// precomputed record. CPU reference: compute/src/synth/cpu.rs (correct_subpass) and
-// compute/src/synth/neighbourhood.rs.
+// precomputed record. CPU reference: synth/src/cpu.rs (correct_subpass) and
+// synth/src/neighbourhood.rs.
 #include "common.glsl"
 #include "synth/synth.glsl"
 
@@ -115,7 +115,7 @@ void main() {
                 + word_distance(sums[6], hi.z) + word_distance(sums[7], hi.w);
             if (pc.penalty != 0u) {
                 // The extent of the patch the candidate would continue: itself and the
-                // neighbours it continues (compute/src/synth/period.rs, spans_period).
+                // neighbours it continues (synth/src/period.rs, spans_period).
                 ivec2 lo = ivec2(0);
                 ivec2 hi = ivec2(0);
                 for (int n = 0; n < 9; n++) {

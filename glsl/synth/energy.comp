@@ -2,7 +2,7 @@
 // Neighbourhood energy of a synthesized image: for each sampled output pixel, the smallest
 // squared RGB distance between its 7x7 neighbourhood and any (toroidal) 7x7 neighbourhood of
 // the exemplar, by exhaustive search (a candidate is abandoned once its partial sum reaches the
-// best so far, which cannot change the minimum). CPU reference: compute/src/synth/energy.rs.
+// best so far, which cannot change the minimum). CPU reference: synth/src/energy.rs.
 #include "common.glsl"
 
 #define R 3

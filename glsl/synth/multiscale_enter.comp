@@ -1,7 +1,7 @@
 #version 460
 // Before a depth's correction passes: each pixel's state (coordinate, exemplar, level,
 // transfer) becomes its working state, the texel index of its stack level in the depth set's
-// packed layout (compute/src/synth/multiscale/atlas.rs) and the packed transfer. A magnified pixel
+// packed layout (synth/src/multiscale/atlas.rs) and the packed transfer. A magnified pixel
 // gets its leaf's finest texel, flagged MS_FIXED; a level absent from the set the zero texel
 // (after the last), flagged too. A pixel at a level offering candidates that can be
 // period-penalized sets control word 0.

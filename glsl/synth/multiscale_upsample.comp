@@ -4,7 +4,7 @@
 // magnified (same texel); its transfer is the bilinear blend (9, 3, 3, 1)/16 of its 4 nearest
 // parents'. Then the jitter of its absolute position at its own spacing (none when magnified).
 // At depth 0: the root's level 0 at position * spacing. CPU reference:
-// compute/src/synth/multiscale/cpu.rs (upsample_jitter_multiscale).
+// synth/src/multiscale/cpu.rs (upsample_jitter_multiscale).
 #include "common.glsl"
 #include "synth/multiscale.glsl"
 

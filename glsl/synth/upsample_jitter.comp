@@ -1,7 +1,7 @@
 #version 460
 // One pyramid level's starting point: each pixel inherits its parent's exemplar coordinate
 // plus spacing * (child parity) (at level 0: position * spacing), then adds the jitter of its
-// absolute position. CPU reference: compute/src/synth/cpu.rs (upsample_jitter).
+// absolute position. CPU reference: synth/src/cpu.rs (upsample_jitter).
 #include "common.glsl"
 #include "synth/synth.glsl"
 

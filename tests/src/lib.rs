@@ -109,8 +109,8 @@ pub fn exemplar_crop(
     y0: u32,
     width: u32,
     height: u32,
-) -> lazysolid_compute::synth::Exemplar {
-    use lazysolid_compute::synth::Exemplar;
+) -> lazysolid_synth::Exemplar {
+    use lazysolid_synth::Exemplar;
     let full = Exemplar::load(&asset_exemplar(file)).unwrap_or_else(|e| panic!("{e}"));
     let rgb = (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
@@ -209,9 +209,10 @@ lazysolid_compute::push_block! {
 }
 
 /// Every kernel of the workspace with the push block its dispatches use: the compute crate's,
-/// the renderer's and the shading and glint test kernels.
+/// the synthesizer's, the renderer's and the shading and glint test kernels.
 pub fn push_registry() -> Vec<PushRegistration> {
     let mut all = lazysolid_compute::push_registry();
+    all.extend(lazysolid_synth::push_registry());
     all.extend(lazysolid_renderer::push_registry());
     all.push(PushRegistration::of::<ShadingTestPush>(
         &lazysolid_renderer::kernels::render::SHADING_TEST,

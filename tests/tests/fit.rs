@@ -5,8 +5,8 @@
 //! CPU reference.
 
 use image::{GrayAlphaImage, ImageBuffer, Rgb, RgbImage, RgbaImage};
-use lazysolid_compute::synth::solid::{candidates_key, CandidateParams, SolidExemplars};
-use lazysolid_compute::synth::{
+use lazysolid_synth::solid::{candidates_key, CandidateParams, SolidExemplars};
+use lazysolid_synth::{
     analyze, default_jitter, default_passes, load_plane, load_solid, synthesize_cpu,
     AnalysisParams, Border, ChannelLayout, DecodedImage, Exemplar, FitMode, GpuSynthesizer, Region,
     SynthError, SynthParams,

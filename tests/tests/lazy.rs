@@ -10,16 +10,16 @@ use lazysolid_compute::store::{
     unpack_rgba8, ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, PerfectStore,
     SparseStore, StoreKernels, TileTree, TileTreeConfig,
 };
-use lazysolid_compute::synth::solid::lazy::{
+use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_synth::solid::lazy::{
     dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MAX_LAZY_COORD,
 };
-use lazysolid_compute::synth::solid::{
+use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
     pack_rgb, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, SolidAnalysis,
     SolidCandidates, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_BALANCE,
 };
-use lazysolid_compute::synth::{SynthError, SynthParams};
-use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_synth::{SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, unit_mesh, with_gpu};
 use rand::Rng;
 use std::collections::BTreeSet;
@@ -314,8 +314,7 @@ fn stores_filled_by_lazy_synthesis_hold_the_full_volume_colours() {
         let mut lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
         let (c_interp, first) = lazy.colours(&interp).unwrap();
         let (c_surface, second) = lazy.colours(&surface).unwrap();
-        let total =
-            |r: &lazysolid_compute::synth::solid::lazy::LazyReport| r.computed.iter().sum::<u64>();
+        let total = |r: &lazysolid_synth::solid::lazy::LazyReport| r.computed.iter().sum::<u64>();
         assert!(
             total(&second) < total(&first) / 4,
             "the surface mostly reuses the first request"

@@ -3,12 +3,12 @@
 //! one-exemplar graph against the 2D synthesizer (bit for bit), windows agreeing on their
 //! overlaps, synthesis deeper than any exemplar through a loop, and GPU = CPU.
 
-use lazysolid_compute::synth::multiscale::{
+use lazysolid_synth::multiscale::{
     analyze_topology, fit_transfer, synthesize_multiscale_cpu, CorrectionVariant, ExemplarGraph,
     GraphError, MultiscaleAnalysis, MultiscaleGpu, MultiscaleParams, Topology, MAGNIFIED,
     TRANSFER_ONE,
 };
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     analyze, default_jitter, default_passes, synthesize_cpu, AnalysisParams, Exemplar, Region,
     SynthParams, DEFAULT_PERIOD_PENALTY,
 };

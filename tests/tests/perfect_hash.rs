@@ -25,7 +25,7 @@ fn payloads_for(keys: &[u64]) -> Vec<u32> {
 
 /// The pixels of an exemplar brighter than its mean: a sparse 2D image.
 fn image_keys(layout: KeyLayout) -> (Universe, Vec<u64>, Vec<u32>) {
-    let e = lazysolid_compute::synth::Exemplar::load(&asset_exemplar("brick.pat")).unwrap();
+    let e = lazysolid_synth::Exemplar::load(&asset_exemplar("brick.pat")).unwrap();
     let u = Universe::new_2d(e.width, e.height, layout).unwrap();
     let lum: Vec<u32> = e
         .rgb

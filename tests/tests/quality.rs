@@ -2,8 +2,8 @@
 //! exemplars: a shifted copy, a blockified copy, a blur and an unrelated material must rank
 //! as a person would rank them.
 
-use lazysolid_compute::synth::quality::{Blockiness, LinearImage, SwdCalibration, SwdParams};
-use lazysolid_compute::synth::Exemplar;
+use lazysolid_synth::quality::{Blockiness, LinearImage, SwdCalibration, SwdParams};
+use lazysolid_synth::Exemplar;
 use lazysolid_tests::asset_exemplar;
 
 fn load(name: &str) -> LinearImage {

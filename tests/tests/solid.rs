@@ -2,15 +2,15 @@
 //! CPU references (exactly, every level), spatial determinism of boxes, the known answer of a
 //! lattice volume, and the errors of bad exemplars.
 
-use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
-use lazysolid_compute::synth::solid::{
+use lazysolid_synth::cache::{CacheOutcome, DiskCache};
+use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cached, candidates_cpu, candidates_host,
     candidates_key, decode_candidates, encode_candidates, plan_boxes, synthesize_solid_cpu,
     triple_consistency, voxel_colour, CandidateParams, GpuCandidates, GpuSolidSynthesizer,
     SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND,
     DEFAULT_BALANCE, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
-use lazysolid_compute::synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
+use lazysolid_synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, with_gpu};
 use rand::Rng;
 use std::sync::OnceLock;
@@ -493,8 +493,8 @@ fn usage_balance_evens_out_what_the_volume_uses() {
     let params = SynthParams::new(
         levels,
         3,
-        &lazysolid_compute::synth::solid::default_solid_passes(levels),
-        &lazysolid_compute::synth::solid::default_solid_jitter(levels),
+        &lazysolid_synth::solid::default_solid_passes(levels),
+        &lazysolid_synth::solid::default_solid_jitter(levels),
     )
     .unwrap();
     let window = boxed([0, 0, 0], [24, 24, 24]);

@@ -2,7 +2,7 @@
 //! spatial determinism of windows, the zero-jitter tiling, the energy metric on known answers,
 //! and the errors of bad exemplars.
 
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     analyze, default_passes, energy_cpu, hash4, histogram_distance, pack, period_repetition,
     plan_regions, synthesize_cpu, unpack, AnalysisParams, EnergyKernel, Exemplar, ExemplarAnalysis,
     GpuSynthesizer, Region, SynthError, SynthParams, MAX_PERIOD_PENALTY, MIN_EXEMPLAR_SIDE,

@@ -2,7 +2,7 @@
 //! change of pixels or parameters misses, and a damaged entry is recomputed (never trusted,
 //! never a panic). Every test uses its own temporary cache folder.
 
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     analysis_key, analyze, analyze_cached, AnalysisParams, CacheOutcome, DiskCache, Exemplar,
     ExemplarAnalysis, ANALYSIS_CACHE_KIND,
 };

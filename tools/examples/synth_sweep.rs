@@ -13,7 +13,7 @@
 
 use anyhow::{bail, Context};
 use lazysolid_compute::gpu::{Gpu, GpuOptions};
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     analyze_cached, default_jitter, default_passes, histogram_distance, period_repetition,
     AnalysisParams, DiskCache, EnergyKernel, EnergyReport, Exemplar, GpuSynthesizer, Region,
     SynthParams, DEFAULT_PERIOD_PENALTY,

@@ -1310,8 +1310,7 @@ fn terra_square(dir: &std::path::Path, side: u32) -> std::path::PathBuf {
         .map(|i| i.to_rgb8())
         .unwrap_or_else(|_| {
             // The image crate does not read GIMP patterns: decode through the library.
-            let e = lazysolid_compute::synth::Exemplar::load(&repo("assets/exemplars/terra.pat"))
-                .unwrap();
+            let e = lazysolid_synth::Exemplar::load(&repo("assets/exemplars/terra.pat")).unwrap();
             image::RgbImage::from_fn(e.width, e.height, |x, y| image::Rgb(e.at(x, y)))
         });
     let path = dir.join(format!("terra{side}.png"));

@@ -31,7 +31,7 @@ fn pattern(name: &str) -> image::RgbImage {
         "{} is missing: run scripts/fetch-assets.sh",
         path.display()
     );
-    let e = lazysolid_compute::synth::Exemplar::load(&path).unwrap();
+    let e = lazysolid_synth::Exemplar::load(&path).unwrap();
     image::RgbImage::from_fn(e.width, e.height, |x, y| image::Rgb(e.at(x, y)))
 }
 

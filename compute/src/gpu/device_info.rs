@@ -60,7 +60,9 @@ pub struct DeviceInfo {
 }
 
 impl DeviceInfo {
-    pub(crate) fn is_cpu(&self) -> bool {
+    /// Whether the device is a CPU implementation (lavapipe): work that runs faster as native
+    /// code than as a kernel on the same cores chooses the host there.
+    pub fn is_cpu(&self) -> bool {
         self.device_type == "cpu"
     }
 

@@ -1,6 +1,7 @@
 //! Plain-Rust lookups over any texel function, the references of every store's GLSL lookups:
 //! the same footprints, clamping and "undefined" answer.
 
+pub use crate::texel::unpack_rgba8;
 use glam::{UVec3, Vec3, Vec4};
 
 /// The voxel a nearest lookup at `pos` reads: floor(pos·R), clamped onto the grid.
@@ -11,16 +12,6 @@ pub fn nearest_voxel(pos: Vec3, resolution: u32) -> [u32; 3] {
         .clamp(Vec3::ZERO, Vec3::splat(r - 1.0))
         .as_uvec3()
         .to_array()
-}
-
-/// An RGBA8 word as colour in [0, 1]⁴; 0 (absent) is (0, 0, 0, 0).
-pub fn unpack_rgba8(c: u32) -> Vec4 {
-    Vec4::new(
-        (c & 255) as f32,
-        ((c >> 8) & 255) as f32,
-        ((c >> 16) & 255) as f32,
-        (c >> 24) as f32,
-    ) / 255.0
 }
 
 /// Nearest lookup: the texel of the voxel containing `pos`, or 0 where it is not stored.

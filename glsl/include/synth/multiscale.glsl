@@ -1,5 +1,5 @@
-// State and analysis layout of the multiscale synthesizer (compute/src/synth/multiscale/gpu.rs),
-// mirrored exactly by the CPU reference compute/src/synth/multiscale/cpu.rs.
+// State and analysis layout of the multiscale synthesizer (synth/src/multiscale/gpu.rs),
+// mirrored exactly by the CPU reference synth/src/multiscale/cpu.rs.
 #ifndef LAZYSOLID_MULTISCALE_GLSL
 #define LAZYSOLID_MULTISCALE_GLSL
 
@@ -15,7 +15,7 @@ struct MsState {
 };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer MsStates { MsState v[]; };
 
-// A pixel's working state during correction (compute/src/synth/multiscale/atlas.rs), in two
+// A pixel's working state during correction (synth/src/multiscale/atlas.rs), in two
 // buffers: its texel index in the depth set's packed layout, MS_FIXED set when it is not
 // corrected and offers no candidates (magnified: its leaf's finest texel, predicted without
 // shift; its stack level absent from the set: the zero texel after the last), and its

@@ -7,7 +7,7 @@
 // coordinate, transfer). Magnified pixels are not corrected.
 //
 // Pixels are working states over the depth set's packed layout (multiscale_enter.comp,
-// compute/src/synth/multiscale/atlas.rs): every shift is precomputed per texel, and texel
+// synth/src/multiscale/atlas.rs): every shift is precomputed per texel, and texel
 // order is (meta, coordinate) order, so the kernel reads what the 2D one reads (correct.comp)
 // plus the transfers.
 //
@@ -19,7 +19,7 @@
 // not need must be absent from its kernel, not skipped; and every load is a gather per lane,
 // hence few words per state.
 //
-// CPU reference: compute/src/synth/multiscale/cpu.rs (correct_subpass_multiscale).
+// CPU reference: synth/src/multiscale/cpu.rs (correct_subpass_multiscale).
 #include "common.glsl"
 #include "synth/multiscale.glsl"
 

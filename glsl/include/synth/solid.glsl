@@ -1,4 +1,4 @@
-// Integer helpers of solid synthesis, mirrored exactly by compute/src/synth/solid/ (strips.rs,
+// Integer helpers of solid synthesis, mirrored exactly by synth/src/solid/ (strips.rs,
 // candidates.rs). Exemplars are square with a power-of-two side 2^shift; pixels are row-major
 // indices, coordinates packed as in synth.glsl.
 #ifndef LAZYSOLID_SOLID_GLSL
@@ -31,13 +31,13 @@ uint solid_pack_pixel(uint p, uint shift) {
     return synth_pack(uvec2(p & ((1u << shift) - 1u), p >> shift));
 }
 
-// World offset d seen in the image plane of a role (compute/src/synth/solid/roles.rs):
+// World offset d seen in the image plane of a role (synth/src/solid/roles.rs):
 // E_x images (y, z), E_y (x, z), E_z (x, y).
 ivec2 solid_project(uint role, ivec3 d) {
     return role == 0u ? d.yz : (role == 1u ? d.xz : d.xy);
 }
 
-// The 3D jitter of compute/src/synth/solid/jitter.rs.
+// The 3D jitter of synth/src/solid/jitter.rs.
 ivec3 solid_jitter(ivec3 p, uint level, uint seed, uint spacing, uint strength) {
     uint base = synth_hash4(uint(p.x), uint(p.y), uint(p.z), seed);
     ivec3 j;

@@ -2,7 +2,7 @@
 // (synth/solid/correct.comp) and the lazy one (synth/solid/lazy_correct.comp): among the
 // voxel's current triple and the candidates gathered in each role's plane, the triple whose
 // three exemplar neighbourhoods, each with its coordinate's usage penalty (balance.rs), best
-// match the three planes through the voxel (see correct.comp). CPU reference: correct_voxel in compute/src/synth/solid/cpu.rs.
+// match the three planes through the voxel (see correct.comp). CPU reference: correct_voxel in synth/src/solid/cpu.rs.
 #ifndef LAZYSOLID_SOLID_CORRECT_GLSL
 #define LAZYSOLID_SOLID_CORRECT_GLSL
 

@@ -1,4 +1,4 @@
-// Integer helpers of the texture synthesizer, mirrored exactly by compute/src/synth/
+// Integer helpers of the texture synthesizer, mirrored exactly by synth/src/
 // (coords.rs, jitter.rs, appearance.rs): every value here is an integer, so the CPU reference
 // and any GPU agree bit for bit.
 #ifndef LAZYSOLID_SYNTH_GLSL
@@ -53,7 +53,7 @@ ivec2 synth_jitter(ivec2 p, uint level, uint seed, uint spacing, uint strength) 
 // Appearance vectors are 8 x i8, two words; the 4-diagonal records 8 words (16-byte aligned).
 layout(buffer_reference, scalar, buffer_reference_align = 8) buffer UVec2Ptr { uvec2 v[]; };
 
-// The 4 signed bytes of a word, the first in the low byte (compute/src/synth/neighbourhood.rs,
+// The 4 signed bytes of a word, the first in the low byte (synth/src/neighbourhood.rs,
 // pack_i8_words).
 ivec4 synth_i8x4(uint w) {
     int v = int(w);

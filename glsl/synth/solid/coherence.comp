@@ -6,7 +6,7 @@
 // crossbar) ones and is flagged. Smaller sets are copied. Order is preserved. The workgroup
 // puts the neighbours' coordinates of each of the two roles into a hash set in shared memory,
 // so a candidate costs 4 look-ups per coordinate instead of a scan of up to 400 coordinates.
-// CPU reference: compute/src/synth/solid/candidates.rs (coherence_step_cpu).
+// CPU reference: synth/src/solid/candidates.rs (coherence_step_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
 

@@ -9,7 +9,7 @@
 // keep_current). Ties keep the current triple, then go to the smallest triple.
 // Each distinct shifted-back pixel of a role is evaluated once (a repeat gives the same
 // candidates, so it cannot change the choice), and a candidate's distance stops once its
-// partial sum exceeds the best (it cannot win). CPU reference: compute/src/synth/solid/cpu.rs.
+// partial sum exceeds the best (it cannot win). CPU reference: synth/src/solid/cpu.rs.
 #include "common.glsl"
 #include "synth/solid_correct.glsl"
 
@@ -18,7 +18,7 @@ layout(push_constant, scalar) uniform Push {
     // 15 addresses (push constants hold only 128 bytes on lavapipe), per role r:
     // [r] appearance, 2 words (8 x i8) per exemplar pixel; [3 + r] 4-diagonal records, 8 words
     // per pixel; [6 + r] SOLID_MAX_CANDIDATES x 3 packed coordinates per pixel; [9 + r] valid
-    // candidates per pixel; [12 + r] usage penalty per pixel (compute/src/synth/solid/balance.rs).
+    // candidates per pixel; [12 + r] usage penalty per pixel (synth/src/solid/balance.rs).
     uint64_t table;
     ivec3 origin;
     uvec3 size;

@@ -2,7 +2,7 @@
 // Lazy synthesis into the stores: the RGBA8 colour (red in the low byte, alpha 255) of each
 // voxel of a sorted key set of the R^3 grid (Morton keys of its position), from its final
 // triple: per channel the median of the three roles' exemplar colours (voxel_colour in
-// compute/src/synth/solid/volume.rs). A voxel that is not final counts an error.
+// synth/src/solid/volume.rs). A voxel that is not final counts an error.
 #include "common.glsl"
 #include "synth/lazy.glsl"
 #include "synth/synth.glsl"

@@ -4,7 +4,7 @@
 // neighbours at the versions they hold after the previous stage (through the level's table),
 // decides as correct.comp does (synth/solid_correct.glsl), and stores the new version. Voxels
 // of one class read only other classes, so the subpass updates them independently. CPU
-// reference: LazySolidCpu::request in compute/src/synth/solid/lazy/state_cpu.rs.
+// reference: LazySolidCpu::request in synth/src/solid/lazy/state_cpu.rs.
 #include "common.glsl"
 #include "synth/lazy.glsl"
 #include "synth/solid_correct.glsl"

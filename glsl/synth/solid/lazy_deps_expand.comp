@@ -1,5 +1,5 @@
 #version 460
-// One backward step of the dependency walk (compute/src/synth/solid/lazy/deps.rs), over the
+// One backward step of the dependency walk (synth/src/solid/lazy/deps.rs), over the
 // stage-tagged keys of one level: a voxel needed after subpass `stage` of its own class whose
 // version from that subpass is not stored yet needs its 18 plane neighbours after stage − 1.
 // write == 0: flags[i] = 1 for such a voxel. write == 1 (flags scanned into offsets): out[i]

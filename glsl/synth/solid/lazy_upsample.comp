@@ -3,7 +3,7 @@
 // parent's final triple (found in the level above's table) moved by spacing times the child
 // offset projected into each role (level 0: the projection of the position times the
 // spacing), then moves by the projected 3D jitter. Exactly upsample_jitter.comp per voxel;
-// CPU reference: upsample_voxel in compute/src/synth/solid/cpu.rs.
+// CPU reference: upsample_voxel in synth/src/solid/cpu.rs.
 #include "common.glsl"
 #include "synth/lazy.glsl"
 #include "synth/solid.glsl"

@@ -7,7 +7,7 @@
 // targets). The list is a max-heap on (distance, index) while searching (an insertion costs
 // log2(S) steps, not a shift of the list that keeps every SIMD lane waiting), sorted by the
 // last dispatch.
-// CPU reference: compute/src/synth/solid/candidates.rs (search_cpu).
+// CPU reference: synth/src/solid/candidates.rs (search_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
 

@@ -8,8 +8,8 @@
 // SIMD lanes waiting whenever one inserted. One dispatch ranks the rows i = first_row ..
 // first_row + rows and folds them into the heap of earlier dispatches, kept in `errors` and
 // `keys` (llvmpipe stops an invocation's loops after 65535 iterations in all; the host sizes
-// the rows, compute/src/synth/solid/candidates_gpu.rs); the last dispatch sorts the heap and
-// writes the triples. CPU reference: compute/src/synth/solid/candidates.rs (triples_cpu).
+// the rows, synth/src/solid/candidates_gpu.rs); the last dispatch sorts the heap and
+// writes the triples. CPU reference: synth/src/solid/candidates.rs (triples_cpu).
 #include "common.glsl"
 #include "synth/solid.glsl"
 

@@ -2,7 +2,7 @@
 // One level's starting triples: each voxel inherits its parent's triple moved by spacing times
 // the child offset projected into each role (level 0: the projection of the position times
 // the spacing), then moves by the projected 3D jitter of its absolute position. CPU reference:
-// compute/src/synth/solid/cpu.rs (upsample_jitter_3d).
+// synth/src/solid/cpu.rs (upsample_jitter_3d).
 #include "common.glsl"
 #include "synth/solid.glsl"
 

@@ -24,11 +24,11 @@ use lazysolid_compute::store::{
     PerfectStore, PerfectStoreParams, SparseStore, StoreKernels, TileTree, TileTreeConfig,
     TileTreeParams,
 };
-use lazysolid_compute::synth::cache::DiskCache;
-use lazysolid_compute::synth::solid::lazy::GpuLazySolid;
-use lazysolid_compute::synth::solid::SolidExemplars;
-use lazysolid_compute::synth::{load_solid, ExemplarFit, FitMode, SynthError};
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
+use lazysolid_synth::cache::DiskCache;
+use lazysolid_synth::solid::lazy::GpuLazySolid;
+use lazysolid_synth::solid::SolidExemplars;
+use lazysolid_synth::{load_solid, ExemplarFit, FitMode, SynthError};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;

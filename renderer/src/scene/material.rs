@@ -13,7 +13,7 @@ use super::{
     StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
 };
 use glam::Vec3;
-use lazysolid_compute::synth::{load_solid, FitMode};
+use lazysolid_synth::{load_solid, FitMode};
 use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;

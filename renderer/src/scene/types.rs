@@ -239,7 +239,7 @@ pub struct SynthesizedSpec {
     pub exemplar: std::path::PathBuf,
     /// How the image becomes the solid exemplar (`lazysolid solid --fit auto`'s rule), decided
     /// when the scene is read and reported with the render.
-    pub fit: lazysolid_compute::synth::ExemplarFit,
+    pub fit: lazysolid_synth::ExemplarFit,
     /// Seed of the synthesis's jitter.
     pub seed: u32,
 }

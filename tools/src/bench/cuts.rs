@@ -21,12 +21,12 @@ use glam::{DVec3, Vec3};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{ColourSource, HashStore, SparseStore, StoreKernels};
-use lazysolid_compute::synth::cache::DiskCache;
-use lazysolid_compute::synth::solid::lazy::GpuLazySolid;
-use lazysolid_compute::synth::solid::SolidExemplars;
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};
 use lazysolid_renderer::mesh::Mesh;
+use lazysolid_synth::cache::DiskCache;
+use lazysolid_synth::solid::lazy::GpuLazySolid;
+use lazysolid_synth::solid::SolidExemplars;
 
 /// What to measure.
 #[derive(Args)]

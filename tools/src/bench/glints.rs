@@ -32,7 +32,6 @@ use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::{Args, ValueEnum};
 use lazysolid_compute::gpu::GpuBuffer;
-use lazysolid_compute::synth::Exemplar;
 use lazysolid_renderer::glint::minmax_mip::{
     brute_force, minmax_mip_bytes, random_squares, table_query, MinMaxMip,
 };
@@ -46,6 +45,7 @@ use lazysolid_renderer::glint::{
 use lazysolid_renderer::kernels::render::GLINT_RANGE_LEVEL;
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::{MaterialKind, Scene};
+use lazysolid_synth::Exemplar;
 use std::path::PathBuf;
 use std::time::Duration;
 

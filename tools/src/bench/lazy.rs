@@ -19,12 +19,12 @@ use lazysolid_compute::store::{
     ColourSource, HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore, StoreKernels,
     TileTree, TileTreeConfig,
 };
-use lazysolid_compute::synth::cache::DiskCache;
-use lazysolid_compute::synth::solid::lazy::{GpuLazySolid, LazyReport};
-use lazysolid_compute::synth::solid::{voxel_colour, SolidExemplars};
-use lazysolid_compute::synth::{load_solid, FitMode};
 use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
+use lazysolid_synth::cache::DiskCache;
+use lazysolid_synth::solid::lazy::{GpuLazySolid, LazyReport};
+use lazysolid_synth::solid::{voxel_colour, SolidExemplars};
+use lazysolid_synth::{load_solid, FitMode};
 use std::cell::RefCell;
 use std::path::PathBuf;
 

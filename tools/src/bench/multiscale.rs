@@ -12,10 +12,10 @@ use crate::cli::resolution::Resolution;
 use crate::cli::GlobalArgs;
 use clap::Args;
 use lazysolid_compute::atomic_file::write_bytes_atomically;
-use lazysolid_compute::synth::multiscale::{
+use lazysolid_synth::multiscale::{
     analyze_graph, colour, MultiscaleAnalysis, MultiscaleGpu, MultiscaleParams, PixelState,
 };
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     analyze, default_jitter, default_passes, unpack, AnalysisParams, GpuSynthesizer, Region,
     SynthParams, DEFAULT_PERIOD_PENALTY, REPETITION_TOLERANCE,
 };

@@ -47,12 +47,12 @@ use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::atomic_file::write_bytes_atomically;
 use lazysolid_compute::gpu::Gpu;
-use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
-use lazysolid_compute::synth::solid::{
+use lazysolid_synth::cache::{CacheOutcome, DiskCache};
+use lazysolid_synth::solid::{
     analyze_solid, candidates_key, CandidateBuilder, CandidateParams, LevelTriples, SolidExemplars,
     SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
 };
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     analyze, default_jitter, default_passes, load_solid, pack, period_repetition, unpack,
     AnalysisParams, EnergyKernel, Exemplar, ExemplarFit, FittedExemplar, GpuSynthesizer, Region,
     SynthParams,

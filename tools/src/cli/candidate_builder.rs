@@ -2,7 +2,7 @@
 //! computes them.
 
 use clap::ValueEnum;
-use lazysolid_compute::synth::solid::CandidateBuilder;
+use lazysolid_synth::solid::CandidateBuilder;
 
 /// The solid candidates' builder; both give the same candidates, bit for bit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]

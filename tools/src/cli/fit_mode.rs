@@ -1,8 +1,8 @@
 //! `--fit`: how an image becomes a solid exemplar, for every subcommand that synthesizes
-//! solids from images (the rules are in `lazysolid_compute::synth` `fit.rs`).
+//! solids from images (the rules are in `lazysolid_synth` `fit.rs`).
 
 use clap::ValueEnum;
-use lazysolid_compute::synth::FitMode;
+use lazysolid_synth::FitMode;
 
 /// How a solid exemplar is made square with a power-of-two side.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]

@@ -11,11 +11,11 @@ use super::synth::write_png;
 use super::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
-use lazysolid_compute::synth::multiscale::{
+use lazysolid_synth::multiscale::{
     analyze_graph, colour, synthesize_multiscale_cpu, ExemplarGraph, MultiscaleAnalysis,
     MultiscaleGpu, MultiscaleParams, MultiscaleSynthesis,
 };
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     AnalysisParams, Region, DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY,
 };
 use std::path::{Path, PathBuf};

@@ -15,21 +15,21 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::atomic_file::write_bytes_atomically;
 use lazysolid_compute::gpu::Gpu;
-use lazysolid_compute::synth::cache::{CacheOutcome, DiskCache};
-use lazysolid_compute::synth::feature::{feature_map, DEFAULT_FEATURE_WEIGHT};
-use lazysolid_compute::synth::quality::{reachable_gap, ExemplarFigures, VolumeAnisotropy};
-use lazysolid_compute::synth::solid::{
+use lazysolid_renderer::output::{Operator, ToneMap};
+use lazysolid_synth::cache::{CacheOutcome, DiskCache};
+use lazysolid_synth::feature::{feature_map, DEFAULT_FEATURE_WEIGHT};
+use lazysolid_synth::quality::{reachable_gap, ExemplarFigures, VolumeAnisotropy};
+use lazysolid_synth::solid::{
     analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
     solid_jitter_or_default, solid_passes_or_default, triple_consistency, CandidateBuilder,
     CandidateParams, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency,
     VolumeBox, DEFAULT_BALANCE, DEFAULT_S, DEFAULT_STRIP, MAX_SOLID_SIDE, MIN_SOLID_SIDE,
     ROLE_NAMES,
 };
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     histogram_distance, load_solid, period_repetition, EnergyKernel, EnergyReport, Exemplar,
     ExemplarFit, FitMode, SynthParams,
 };
-use lazysolid_renderer::output::{Operator, ToneMap};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -198,7 +198,7 @@ pub fn slice(
     let w = synthesis.window;
     let n = w.size[0] as usize;
     let triples = synthesis.window_triples();
-    let [a, b] = lazysolid_compute::synth::solid::ROLE_AXES[axis];
+    let [a, b] = lazysolid_synth::solid::ROLE_AXES[axis];
     let mut rgb = Vec::with_capacity(n * n);
     let mut coords = Vec::with_capacity(n * n);
     for j in 0..n {

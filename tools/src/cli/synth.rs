@@ -8,7 +8,7 @@ use super::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use lazysolid_compute::synth::{
+use lazysolid_synth::{
     analyze_cached, histogram_distance, jitter_or_default, load_plane, passes_or_default,
     period_repetition, unpack, AnalysisParams, Border, DiskCache, EnergyKernel, EnergyReport,
     FittedExemplar, GpuSynthesizer, Region, SynthParams, DEFAULT_COHERENCE_K,
@@ -59,7 +59,7 @@ pub struct SynthArgs {
     /// Weight of the feature-distance channel in the appearance space, in percent of the
     /// colour's standard deviation, 0 to 400 (0: colour only): a signed distance to the
     /// exemplar's cracks, veins or outlines, found automatically (docs/synthesis.md)
-    #[arg(long, default_value_t = lazysolid_compute::synth::feature::DEFAULT_FEATURE_WEIGHT)]
+    #[arg(long, default_value_t = lazysolid_synth::feature::DEFAULT_FEATURE_WEIGHT)]
     pub feature_weight: u32,
     /// Neither read nor write the on-disk cache of exemplar analyses (kept in
     /// LAZYSOLID_CACHE_DIR, else in the user's cache folder, e.g. ~/.cache/lazysolid).
@@ -185,7 +185,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let report = EnergyReport::from_minima(&minima);
     let energy_s = start.elapsed().as_secs_f64();
     let histogram = histogram_distance(&exemplar.rgb, &colours);
-    let figures = lazysolid_compute::synth::quality::ExemplarFigures::new(
+    let figures = lazysolid_synth::quality::ExemplarFigures::new(
         &exemplar.rgb,
         exemplar.width,
         exemplar.height,
@@ -203,7 +203,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     println!("exemplar fit: {fit}");
     if analysis_params.feature_weight > 0 {
         let colours: Vec<[f32; 3]> = exemplar.rgb.iter().map(|p| p.map(f32::from)).collect();
-        let map = lazysolid_compute::synth::feature::feature_map(
+        let map = lazysolid_synth::feature::feature_map(
             &colours,
             exemplar.width,
             exemplar.height,

@@ -214,7 +214,7 @@ impl BlockedPerfectHash {
                     .map(|a| if d[a] == 1 { f[a] } else { 1.0 - f[a] })
                     .product::<f32>();
                 let word = self.table.data[s * bw + (t.x + side * (t.y + side * t.z)) as usize];
-                crate::store::unpack_rgba8(word) * w
+                crate::texel::unpack_rgba8(word) * w
             })
             .sum()
     }

@@ -2,7 +2,7 @@
 //! CPU), run with its defaults except the seed, the output size and the thread count.
 
 use anyhow::Context;
-use lazysolid_compute::synth::{pack, Exemplar, MAX_EXEMPLAR_SIDE};
+use lazysolid_synth::{pack, Exemplar, MAX_EXEMPLAR_SIDE};
 use texture_synthesis::image::{DynamicImage, RgbImage, Rgba, RgbaImage};
 use texture_synthesis::{Dims, GeneratedImage, Session};
 

@@ -27,8 +27,8 @@ use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_compute::gpu::Gpu;
-use lazysolid_compute::synth::quality::ExemplarFigures;
-use lazysolid_compute::synth::{
+use lazysolid_synth::quality::ExemplarFigures;
+use lazysolid_synth::{
     analysis_key, analyze, analyze_cached, jitter_or_default, load_plane, passes_or_default,
     AnalysisParams, Border, CacheOutcome, DiskCache, EnergyKernel, Exemplar, ExemplarAnalysis,
     GpuSynthesizer, LevelTimes, Region, SynthParams, ANALYSIS_CACHE_KIND, DEFAULT_COARSE_JITTER,

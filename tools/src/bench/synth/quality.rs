@@ -4,8 +4,8 @@
 //! all against the exemplar; and a side-by-side image so the numbers can be checked by eye.
 
 use super::super::plot::rgb_image;
-use lazysolid_compute::synth::quality::ExemplarFigures;
-use lazysolid_compute::synth::{
+use lazysolid_synth::quality::ExemplarFigures;
+use lazysolid_synth::{
     histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar,
 };
 use std::path::Path;

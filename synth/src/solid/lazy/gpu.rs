@@ -1,0 +1,990 @@
+//! Lazy synthesis on the GPU. The state of every level lives in the project's coherent hash
+//! (a Robin Hood table with the coherent probe sequence, Morton keys of the voxel positions
+//! plus [`LAZY_MARGIN`]) whose payload is a slot, and per slot the versions computed so far
+//! (`passes + 1` triples) and their count. A request walks the dependency sets on the GPU
+//! (`lazy_deps_expand.comp` per stage, the radix sort, `lazy_deps_unique.comp` keeping each
+//! voxel's last stage, `lazy_deps_parents.comp` between levels; the keys carry their stage in
+//! their low bits, see `keys.rs`), stopping at stored versions, then per level:
+//! looks up every needed voxel (`lazy_prepare.comp`), gives the new ones slots and inserts them
+//! (`lazy_assign.comp`, the scan, the table's insert), upsamples the voxels with no version
+//! (`lazy_upsample.comp`), and runs the `8 × passes` subpasses (`lazy_correct.comp`); the
+//! requested voxels' final triples are gathered at the end (`lazy_gather.comp`). The CPU
+//! reference is [`LazySolidCpu`](super::LazySolidCpu); both equal the full volume.
+//!
+//! Memory policy: every version of every voxel is kept (the table, `12 · (passes + 1)` bytes
+//! of versions and 4 bytes of count per voxel), so no later request recomputes anything;
+//! [`GpuLazySolid::bytes`] reports it.
+
+use super::deps::{final_stage, subpass_class, version_at, Dependencies, LevelDeps};
+use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
+use crate::cache::DiskCache;
+use crate::kernels::synth_solid;
+use crate::solid::analysis::{analyze_solid, pack_rgb, SolidAnalysis};
+use crate::solid::candidates::CandidateParams;
+use crate::solid::candidates::SolidCandidates;
+use crate::solid::candidates_cache::candidates_cached;
+use crate::solid::candidates_host::CandidateBuilder;
+use crate::solid::cpu::check_levels;
+use crate::solid::defaults::{default_solid_jitter, default_solid_passes};
+use crate::solid::gpu::GpuSolidSynthesizer;
+use crate::solid::roles::{SolidExemplars, ROLES};
+use crate::{SynthError, SynthParams, SynthResult};
+use lazysolid_compute::gpu::{DeviceAddress, DeviceRecords, Gpu, GpuBuffer, Kernel, PushValue};
+use lazysolid_compute::hash::{
+    fastmod_multiplier, morton_decode, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable,
+    Universe,
+};
+use lazysolid_compute::prims::{RadixSort, Scan, MAX_ELEMENTS};
+use lazysolid_compute::voxel::{SortUnique, VoxelKeys};
+use std::sync::Arc;
+
+/// Voxels of room around the requested `[0, R)³` at every level: the dependencies reach at
+/// most 5 voxels a side per pass and level along x (3 along y, 2 along z) plus half the
+/// reach of the level below, under 80 for the largest pass count.
+pub const LAZY_MARGIN: i32 = 96;
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct PreparePush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        flags: DeviceAddress<'a>,
+        work: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct AssignPush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        offsets: DeviceAddress<'a>,
+        new_keys: DeviceAddress<'a>,
+        new_payloads: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        base: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LazyUpsamplePush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        side: u32,
+        spacing: u32,
+        seed: u32,
+        strength: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct LazyCorrectPush<'a> {
+        levels: DeviceAddress<'a>,
+        table: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        slots: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        stage: u32,
+        cls: u32,
+        version: u32,
+        side: u32,
+        spacing: u32,
+        keep_current: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct GatherPush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        triples: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ColoursPush<'a> {
+        levels: DeviceAddress<'a>,
+        keys: DeviceAddress<'a>,
+        rgb: DeviceAddress<'a>,
+        colours: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        side: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ExpandPush<'a> {
+        levels: DeviceAddress<'a>,
+        tagged: DeviceAddress<'a>,
+        flags: DeviceAddress<'a>,
+        out_keys: DeviceAddress<'a>,
+        errors: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        stage: u32,
+        cls: u32,
+        version: u32,
+        write: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct TaggedUniquePush<'a> {
+        tagged: DeviceAddress<'a>,
+        flags: DeviceAddress<'a>,
+        out_keys: DeviceAddress<'a>,
+        n: u32,
+        write: u32,
+    }
+}
+
+lazysolid_compute::push_block! {
+    #[derive(Clone, Copy)]
+    pub(crate) struct ParentsPush<'a> {
+        levels: DeviceAddress<'a>,
+        src: DeviceAddress<'a>,
+        dst: DeviceAddress<'a>,
+        n: u32,
+        level: u32,
+        stage: u32,
+        mode: u32,
+    }
+}
+
+/// The key `lazy_deps_parents.comp` writes for a voxel with no parent to request; it sorts
+/// after every real key.
+const NO_KEY: u64 = (1 << (3 * LAZY_AXIS_BITS)) - 1;
+
+/// One level's dependency set on the GPU: sorted stage-tagged keys.
+struct LevelSet {
+    tagged: GpuBuffer<u64>,
+    len: usize,
+}
+
+lazysolid_compute::push_block! {
+    /// One level as the kernels see it: `LazyLevel` in `glsl/include/synth/lazy.glsl`,
+    /// borrowing the level's table, versions and counts.
+    #[derive(Clone, Copy)]
+    pub(crate) struct LazyLevelRecord<'a> {
+        cells: DeviceAddress<'a>,
+        fastmod_m: u64,
+        versions: DeviceAddress<'a>,
+        counts: DeviceAddress<'a>,
+        table_size: u32,
+        key_bits: u32,
+        probe: u32,
+        stride: u32,
+        margin: i32,
+        extent: u32,
+    }
+}
+
+/// One level's state.
+struct LevelState {
+    universe: Universe,
+    table: Option<RobinHoodTable>,
+    versions: GpuBuffer<u32>,
+    counts: GpuBuffer<u32>,
+    stride: u32,
+    len: u32,
+}
+
+impl LevelState {
+    fn record(&self) -> LazyLevelRecord<'_> {
+        let (cells, table_size, key_bits, probe) = match &self.table {
+            Some(t) => (
+                t.cells_address(),
+                t.table_size(),
+                t.format().key_bits,
+                t.config().probe.id(),
+            ),
+            None => (DeviceAddress::NULL, 0, 0, 0),
+        };
+        LazyLevelRecord {
+            cells,
+            fastmod_m: fastmod_multiplier(table_size.max(1)),
+            versions: self.versions.address(),
+            counts: self.counts.address(),
+            table_size,
+            key_bits,
+            probe,
+            stride: self.stride,
+            margin: LAZY_MARGIN,
+            extent: self.universe.dims[0],
+        }
+    }
+
+    fn bytes(&self) -> u64 {
+        self.table.as_ref().map_or(0, |t| t.bytes()) + self.versions.bytes() + self.counts.bytes()
+    }
+}
+
+/// What one request did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LazyReport {
+    /// Voxels in each level's dependency set, coarsest first.
+    pub needed: Vec<u64>,
+    /// Voxel versions computed at each level (upsampled or corrected), coarsest first.
+    pub computed: Vec<u64>,
+    /// Device time of the synthesis kernels, milliseconds.
+    pub gpu_ms: f64,
+    /// Wall time of the dependency walk, milliseconds.
+    pub deps_ms: f64,
+    /// Wall time of the whole request, milliseconds.
+    pub wall_ms: f64,
+}
+
+/// Lazy synthesis of one volume texture of resolution `R` (finest-level voxels `[0, R)³`) on
+/// the GPU, keeping its state between requests.
+pub struct GpuLazySolid {
+    gpu: Gpu,
+    synth: GpuSolidSynthesizer,
+    hash: Arc<HashKernels>,
+    scan: Scan,
+    prepare: Arc<Kernel>,
+    assign: Arc<Kernel>,
+    upsample: Arc<Kernel>,
+    correct: Arc<Kernel>,
+    gather: Arc<Kernel>,
+    colour: Arc<Kernel>,
+    expand: Arc<Kernel>,
+    unique: Arc<Kernel>,
+    parents: Arc<Kernel>,
+    sort_unique: SortUnique,
+    sort: RadixSort,
+    params: SynthParams,
+    resolution: u32,
+    levels: Vec<LevelState>,
+    /// Every level's record, rewritten whenever a level's table or buffers change.
+    records: DeviceRecords,
+    /// The three roles' exemplar colours, packed RGB, role after role.
+    rgb: GpuBuffer<u32>,
+}
+
+/// Initial slots per level.
+const INITIAL_SLOTS: usize = 1024;
+
+impl GpuLazySolid {
+    /// Uploads the analysis and candidates for textures of `resolution`³ voxels synthesized
+    /// with `params`.
+    ///
+    /// # Errors
+    /// Parameters that do not fit the analysis, a resolution outside 1..=4096, or a GPU
+    /// failure.
+    pub fn new(
+        gpu: &Gpu,
+        exemplars: &SolidExemplars,
+        analysis: &SolidAnalysis,
+        candidates: &SolidCandidates,
+        params: &SynthParams,
+        resolution: u32,
+    ) -> SynthResult<GpuLazySolid> {
+        check_levels(analysis, candidates, params)?;
+        if !(1..=4096).contains(&resolution) {
+            return Err(SynthError::Parameter {
+                name: "resolution",
+                value: resolution.to_string(),
+                limit: "must lie in 1..=4096".into(),
+            });
+        }
+        let n_levels = analysis.levels.len();
+        let mut levels = Vec::with_capacity(n_levels);
+        for l in 0..n_levels {
+            let shift = (n_levels - 1 - l) as u32;
+            let extent = resolution.div_ceil(1 << shift) + 2 * LAZY_MARGIN as u32;
+            let universe = Universe::new_3d([extent; 3], KeyLayout::Morton).map_err(|e| {
+                SynthError::Parameter {
+                    name: "resolution",
+                    value: resolution.to_string(),
+                    limit: e.to_string(),
+                }
+            })?;
+            let stride = params.passes[l] + 1;
+            levels.push(LevelState {
+                universe,
+                table: None,
+                versions: GpuBuffer::zeroed(
+                    gpu,
+                    format!("lazy versions level {l}"),
+                    INITIAL_SLOTS * 3 * stride as usize,
+                )?,
+                counts: GpuBuffer::zeroed(gpu, format!("lazy counts level {l}"), INITIAL_SLOTS)?,
+                stride,
+                len: 0,
+            });
+        }
+        let records: Vec<LazyLevelRecord<'_>> = levels.iter().map(LevelState::record).collect();
+        let records = DeviceRecords::new(gpu, "lazy level records", &records)?;
+        let side = analysis.side;
+        let rgb: Vec<u32> = (0..ROLES)
+            .flat_map(|r| {
+                let e = exemplars.role(r);
+                (0..side * side).map(move |i| pack_rgb(e.at(i % side, i / side)))
+            })
+            .collect();
+        let me = GpuLazySolid {
+            gpu: gpu.clone(),
+            synth: GpuSolidSynthesizer::new(gpu, analysis, candidates)?,
+            hash: HashKernels::new(gpu)?,
+            scan: Scan::new(gpu)?,
+            prepare: gpu.kernel(&synth_solid::LAZY_PREPARE)?,
+            assign: gpu.kernel(&synth_solid::LAZY_ASSIGN)?,
+            upsample: gpu.kernel(&synth_solid::LAZY_UPSAMPLE)?,
+            correct: gpu.kernel(&synth_solid::LAZY_CORRECT)?,
+            gather: gpu.kernel(&synth_solid::LAZY_GATHER)?,
+            colour: gpu.kernel(&synth_solid::LAZY_COLOURS)?,
+            expand: gpu.kernel(&synth_solid::LAZY_DEPS_EXPAND)?,
+            unique: gpu.kernel(&synth_solid::LAZY_DEPS_UNIQUE)?,
+            parents: gpu.kernel(&synth_solid::LAZY_DEPS_PARENTS)?,
+            sort_unique: SortUnique::new(gpu)?,
+            sort: RadixSort::new(gpu)?,
+            params: params.clone(),
+            resolution,
+            levels,
+            records,
+            rgb: GpuBuffer::from_slice(gpu, "lazy exemplar colours", &rgb)?,
+        };
+        Ok(me)
+    }
+
+    /// The lazy state of `exemplars` at `resolution` with the solid synthesizer's defaults and
+    /// `seed`: the analysis, and the candidates through `cache` (computed on the GPU on a
+    /// miss). How scenes and `bench lazy` make one.
+    ///
+    /// # Errors
+    /// As [`GpuLazySolid::new`], and candidate or cache failures.
+    pub fn with_defaults(
+        gpu: &Gpu,
+        exemplars: &SolidExemplars,
+        seed: u32,
+        resolution: u32,
+        cache: Option<&DiskCache>,
+    ) -> SynthResult<GpuLazySolid> {
+        let analysis = analyze_solid(exemplars);
+        let params = CandidateParams::default();
+        let (candidates, _) = candidates_cached(exemplars, &params, cache, || {
+            // The same candidates on either side; natively on the host on a CPU device.
+            CandidateBuilder::Auto.compute(gpu, &analysis, &params, &mut |_| {})
+        })?;
+        let levels = analysis.levels.len() as u32;
+        let synth = SynthParams::new(
+            levels,
+            seed,
+            &default_solid_passes(levels),
+            &default_solid_jitter(levels),
+        )?;
+        GpuLazySolid::new(gpu, exemplars, &analysis, &candidates, &synth, resolution)
+    }
+
+    /// Rewrites the records the kernels read (they keep the buffers they point into alive).
+    fn write_records(&mut self) -> SynthResult<()> {
+        let records: Vec<LazyLevelRecord<'_>> =
+            self.levels.iter().map(LevelState::record).collect();
+        self.records = DeviceRecords::new(&self.gpu, "lazy level records", &records)?;
+        Ok(())
+    }
+
+    /// Bytes of the kept state: tables, versions and counts of every level.
+    pub fn bytes(&self) -> u64 {
+        let record = <LazyLevelRecord<'_> as PushValue>::SIZE as u64;
+        self.levels.iter().map(LevelState::bytes).sum::<u64>() + record * self.levels.len() as u64
+    }
+
+    /// Voxels stored per level, coarsest first.
+    pub fn stored(&self) -> Vec<u64> {
+        self.levels.iter().map(|l| l.len as u64).collect()
+    }
+
+    /// The dependency sets of the finest-level voxels `requested` given what is stored,
+    /// walked on the GPU and read back (what [`dependencies_cpu`](super::dependencies_cpu)
+    /// computes from the same stored versions).
+    ///
+    /// # Errors
+    /// As [`GpuLazySolid::request`].
+    pub fn dependencies(&mut self, requested: &[[i32; 3]]) -> SynthResult<Dependencies> {
+        self.check_requested(requested)?;
+        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        let sets = self.walk(&keys)?;
+        let mut levels = Vec::with_capacity(sets.len());
+        for set in &sets {
+            let tagged = if set.len == 0 {
+                Vec::new()
+            } else {
+                set.tagged.read_range(0, set.len)?
+            };
+            levels.push(LevelDeps {
+                keys: tagged.iter().map(|&t| untag(t).0).collect(),
+                need: tagged.iter().map(|&t| untag(t).1 as u8).collect(),
+            });
+        }
+        Ok(levels.into())
+    }
+
+    fn check_requested(&self, requested: &[[i32; 3]]) -> SynthResult<()> {
+        let r = self.resolution as i32;
+        let limit = format!("must lie in 0..{r} (the texture's resolution)");
+        for &p in requested {
+            check_within(p, 0..r, &limit)?;
+        }
+        if requested.len() > MAX_ELEMENTS / 8 {
+            return Err(SynthError::Parameter {
+                name: "requested voxels",
+                value: requested.len().to_string(),
+                limit: format!(
+                    "at most {} per request (split the request)",
+                    MAX_ELEMENTS / 8
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Synthesizes the voxels `keys` (sorted Morton keys of positions in the `R³` grid: a
+    /// mesh's surface or interpolation voxels, a cut's) and returns their RGBA8 colours on the
+    /// device in key order, ready as a
+    /// [`ColourSource::Buffer`](lazysolid_compute::store::ColourSource::Buffer) for any store.
+    ///
+    /// # Errors
+    /// As [`GpuLazySolid::request`].
+    pub fn colours(&mut self, keys: &VoxelKeys) -> SynthResult<(GpuBuffer<u32>, LazyReport)> {
+        let start = std::time::Instant::now();
+        let positions: Vec<[i32; 3]> = if keys.is_empty() {
+            Vec::new()
+        } else {
+            keys.read()?
+                .iter()
+                .map(|&k| morton_decode(k, 3).map(|v| v as i32))
+                .collect()
+        };
+        self.check_requested(&positions)?;
+        let lazy: Vec<u64> = positions.iter().map(|&p| lazy_key(p)).collect();
+        let mut report = self.synthesize(&lazy, start)?;
+        let n = keys.len();
+        let colours = GpuBuffer::<u32>::new(&self.gpu, "lazy colours", n.max(1))?;
+        if n > 0 {
+            let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy colour errors", 1)?;
+            self.gpu.submit(|rec| {
+                let push = ColoursPush {
+                    levels: self.records.address(),
+                    keys: keys.keys.address(),
+                    rgb: self.rgb.address(),
+                    colours: colours.address(),
+                    errors: errors.address(),
+                    n: n as u32,
+                    level: (self.levels.len() - 1) as u32,
+                    side: self.synth.side(),
+                };
+                rec.dispatch(&self.colour, self.colour.groups_for(n as u64), &[], &push)
+            })?;
+            check_errors(&errors, "voxels missing or not final")?;
+        }
+        report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok((colours, report))
+    }
+
+    /// The dependency walk and the synthesis of every level for the lazy keys `keys`.
+    fn synthesize(&mut self, keys: &[u64], start: std::time::Instant) -> SynthResult<LazyReport> {
+        let sets = self.walk(keys)?;
+        let mut report = LazyReport {
+            deps_ms: start.elapsed().as_secs_f64() * 1e3,
+            ..LazyReport::default()
+        };
+        for (l, set) in sets.iter().enumerate() {
+            report.needed.push(set.len as u64);
+            let (work, ms) = if set.len == 0 {
+                (0, 0.0)
+            } else {
+                self.level(l, set)?
+            };
+            report.computed.push(work);
+            report.gpu_ms += ms;
+        }
+        Ok(report)
+    }
+
+    /// The dependency walk on the GPU: per level, finest first, the sorted stage-tagged keys.
+    fn walk(&mut self, keys: &[u64]) -> SynthResult<Vec<LevelSet>> {
+        let gpu = self.gpu.clone();
+        let n_levels = self.levels.len();
+        let empty = || -> SynthResult<LevelSet> {
+            Ok(LevelSet {
+                tagged: GpuBuffer::new(&gpu, "lazy empty set", 1)?,
+                len: 0,
+            })
+        };
+        let mut sets: Vec<LevelSet> = Vec::with_capacity(n_levels);
+        let errors = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk errors", 1)?;
+        let mut target = if keys.is_empty() {
+            None
+        } else {
+            let buf = GpuBuffer::from_slice(&gpu, "lazy requested keys", keys)?;
+            let unique =
+                self.sort_unique
+                    .run(&buf, keys.len(), 3 * LAZY_AXIS_BITS, "lazy requested set")?;
+            Some((unique.keys, unique.len))
+        };
+        for l in (0..n_levels).rev() {
+            let Some((plain, n)) = target.take().filter(|t| t.1 > 0) else {
+                sets.push(empty()?);
+                continue;
+            };
+            let last = final_stage(self.params.passes[l]);
+            let mut tagged = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), n)?;
+            gpu.submit(|rec| {
+                let push = ParentsPush {
+                    levels: self.records.address(),
+                    src: plain.address(),
+                    dst: tagged.address(),
+                    n: n as u32,
+                    level: l as u32,
+                    stage: last,
+                    mode: 1,
+                };
+                rec.dispatch(&self.parents, self.parents.groups_for(n as u64), &[], &push)
+            })?;
+            let mut len = n;
+            for stage in (1..=last).rev() {
+                let cls = subpass_class(stage);
+                let flags = GpuBuffer::<u32>::new(&gpu, "lazy walk flags", len)?;
+                let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk count", 1)?;
+                let count = ExpandPush {
+                    levels: self.records.address(),
+                    tagged: tagged.address(),
+                    flags: flags.address(),
+                    out_keys: DeviceAddress::NULL,
+                    errors: errors.address(),
+                    n: len as u32,
+                    level: l as u32,
+                    stage,
+                    cls,
+                    version: version_at(stage, cls),
+                    write: 0,
+                };
+                gpu.submit(|rec| {
+                    let k = &self.expand;
+                    rec.dispatch(k, k.groups_for(len as u64), &[], &count)?;
+                    self.scan.record(rec, &flags, &flags, len, Some(&total))
+                })?;
+                let grow = total.read()?[0] as usize;
+                if grow == 0 {
+                    continue;
+                }
+                let m = len + 18 * grow;
+                if m > MAX_ELEMENTS {
+                    return Err(SynthError::Parameter {
+                        name: "lazy dependency set",
+                        value: format!("{m} entries at level {l}"),
+                        limit: format!("at most {MAX_ELEMENTS} (split the request)"),
+                    });
+                }
+                let info = gpu.info();
+                check_fits(
+                    &format!("the dependency set of level {l}"),
+                    m as u64 * 8,
+                    self.bytes() + m as u64 * 24,
+                    info.max_memory_allocation_size.min(info.max_buffer_size),
+                    info.heap_size,
+                )?;
+                let out = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), m)?;
+                let heads = GpuBuffer::<u32>::new(&gpu, "lazy walk heads", m)?;
+                let kept = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk kept", 1)?;
+                gpu.submit(|rec| {
+                    let k = &self.expand;
+                    let write = ExpandPush {
+                        out_keys: out.address(),
+                        write: 1,
+                        ..count
+                    };
+                    rec.dispatch(k, k.groups_for(len as u64), &[], &write)?;
+                    self.sort.record_u64(rec, &out, None, m, 64)?;
+                    let u = &self.unique;
+                    let p = TaggedUniquePush {
+                        tagged: out.address(),
+                        flags: heads.address(),
+                        out_keys: DeviceAddress::NULL,
+                        n: m as u32,
+                        write: 0,
+                    };
+                    rec.dispatch(u, u.groups_for(m as u64), &[], &p)?;
+                    self.scan.record(rec, &heads, &heads, m, Some(&kept))
+                })?;
+                let next_len = kept.read()?[0] as usize;
+                let next = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), next_len)?;
+                gpu.submit(|rec| {
+                    let u = &self.unique;
+                    let p = TaggedUniquePush {
+                        tagged: out.address(),
+                        flags: heads.address(),
+                        out_keys: next.address(),
+                        n: m as u32,
+                        write: 1,
+                    };
+                    rec.dispatch(u, u.groups_for(m as u64), &[], &p)
+                })?;
+                tagged = next;
+                len = next_len;
+            }
+            if l > 0 {
+                let parents =
+                    GpuBuffer::<u64>::new(&gpu, format!("lazy parents of level {l}"), len)?;
+                gpu.submit(|rec| {
+                    let push = ParentsPush {
+                        levels: self.records.address(),
+                        src: tagged.address(),
+                        dst: parents.address(),
+                        n: len as u32,
+                        level: l as u32,
+                        stage: 0,
+                        mode: 0,
+                    };
+                    rec.dispatch(
+                        &self.parents,
+                        self.parents.groups_for(len as u64),
+                        &[],
+                        &push,
+                    )
+                })?;
+                let unique =
+                    self.sort_unique
+                        .run(&parents, len, 3 * LAZY_AXIS_BITS, "lazy parents")?;
+                let mut count = unique.len;
+                if count > 0 && unique.keys.read_range(count - 1, 1)?[0] == NO_KEY {
+                    count -= 1;
+                }
+                target = Some((unique.keys, count));
+            }
+            sets.push(LevelSet { tagged, len });
+        }
+        let e = errors.read()?[0];
+        if e != 0 {
+            return Err(SynthError::Parameter {
+                name: "lazy margin",
+                value: format!("{e} dependencies outside the state's extent"),
+                limit: format!("dependencies must stay within {LAZY_MARGIN} voxels of the texture"),
+            });
+        }
+        sets.reverse();
+        Ok(sets)
+    }
+
+    /// Synthesizes the finest-level voxels `requested` (positions in `[0, R)³`) and returns
+    /// their final triples in the same order.
+    ///
+    /// # Errors
+    /// A position outside the texture, state that would exceed the device's limits, or a GPU
+    /// failure.
+    pub fn request(&mut self, requested: &[[i32; 3]]) -> SynthResult<(Vec<[u32; 3]>, LazyReport)> {
+        let start = std::time::Instant::now();
+        self.check_requested(requested)?;
+        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        let mut report = self.synthesize(&keys, start)?;
+        let finest = self.levels.len() - 1;
+        let n = keys.len();
+        if n == 0 {
+            report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
+            return Ok((Vec::new(), report));
+        }
+        let keys_buf = GpuBuffer::from_slice(&self.gpu, "lazy requested keys", &keys)?;
+        let out = GpuBuffer::<[u32; 3]>::new(&self.gpu, "lazy requested triples", n)?;
+        let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy gather errors", 1)?;
+        self.gpu.submit(|rec| {
+            let push = GatherPush {
+                levels: self.records.address(),
+                keys: keys_buf.address(),
+                triples: out.address(),
+                errors: errors.address(),
+                n: n as u32,
+                level: finest as u32,
+            };
+            rec.dispatch(&self.gather, self.gather.groups_for(n as u64), &[], &push)
+        })?;
+        check_errors(&errors, "requested voxels missing or not final")?;
+        let triples = out.read()?;
+        report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
+        Ok((triples, report))
+    }
+
+    /// Synthesizes level `l`'s dependency set; returns the versions computed and the device
+    /// time in milliseconds.
+    fn level(&mut self, l: usize, set: &LevelSet) -> SynthResult<(u64, f64)> {
+        let gpu = self.gpu.clone();
+        let n = set.len;
+        let keys_buf = &set.tagged;
+        let slots = GpuBuffer::<u32>::new(&gpu, format!("lazy slots level {l}"), n)?;
+        let flags = GpuBuffer::<u32>::new(&gpu, format!("lazy new flags level {l}"), n)?;
+        let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy new count", 1)?;
+        let work = GpuBuffer::<u32>::zeroed(&gpu, "lazy work", 1)?;
+        gpu.submit(|rec| {
+            let push = PreparePush {
+                levels: self.records.address(),
+                keys: keys_buf.address(),
+                slots: slots.address(),
+                flags: flags.address(),
+                work: work.address(),
+                n: n as u32,
+                level: l as u32,
+            };
+            rec.dispatch(&self.prepare, self.prepare.groups_for(n as u64), &[], &push)?;
+            self.scan.record(rec, &flags, &flags, n, Some(&total))
+        })?;
+        let fresh = total.read()?[0] as usize;
+        let work = work.read()?[0] as u64;
+        if work == 0 {
+            return Ok((0, 0.0));
+        }
+        if fresh > 0 {
+            self.reserve(l, self.levels[l].len as usize + fresh)?;
+            let new_keys = GpuBuffer::<u64>::new(&gpu, "lazy new keys", fresh)?;
+            let new_payloads = GpuBuffer::<u32>::new(&gpu, "lazy new slots", fresh)?;
+            gpu.submit(|rec| {
+                let push = AssignPush {
+                    levels: self.records.address(),
+                    keys: keys_buf.address(),
+                    slots: slots.address(),
+                    offsets: flags.address(),
+                    new_keys: new_keys.address(),
+                    new_payloads: new_payloads.address(),
+                    n: n as u32,
+                    level: l as u32,
+                    base: self.levels[l].len,
+                };
+                rec.dispatch(&self.assign, self.assign.groups_for(n as u64), &[], &push)
+            })?;
+            let state = &mut self.levels[l];
+            match &mut state.table {
+                Some(t) => {
+                    t.insert(&new_keys, &new_payloads, fresh)
+                        .map_err(|e| hash_error(l, e))?;
+                }
+                None => {
+                    let config = RobinHoodConfig {
+                        validate: true,
+                        ..RobinHoodConfig::default()
+                    };
+                    state.table = Some(
+                        RobinHoodTable::build(
+                            &self.hash,
+                            state.universe,
+                            &new_keys,
+                            &new_payloads,
+                            fresh,
+                            config,
+                        )
+                        .map_err(|e| hash_error(l, e))?,
+                    );
+                }
+            }
+            state.len += fresh as u32;
+            self.write_records()?;
+        }
+        let errors = GpuBuffer::<u32>::zeroed(&gpu, "lazy synthesis errors", 1)?;
+        let side = self.synth.side();
+        let spacing = self.synth.spacing(l);
+        let table = self.synth.level_table(l);
+        let passes = self.params.passes[l];
+        let ((), stamps) = gpu.submit_timed(|rec| {
+            rec.timestamp()?;
+            let push = LazyUpsamplePush {
+                levels: self.records.address(),
+                keys: keys_buf.address(),
+                slots: slots.address(),
+                errors: errors.address(),
+                n: n as u32,
+                level: l as u32,
+                side,
+                spacing,
+                seed: self.params.seed,
+                strength: self.params.jitter[l],
+            };
+            rec.dispatch(
+                &self.upsample,
+                self.upsample.groups_for(n as u64),
+                &[],
+                &push,
+            )?;
+            for stage in 1..=final_stage(passes) {
+                let cls = subpass_class(stage);
+                let push = LazyCorrectPush {
+                    levels: self.records.address(),
+                    table: table.address(),
+                    keys: keys_buf.address(),
+                    slots: slots.address(),
+                    errors: errors.address(),
+                    n: n as u32,
+                    level: l as u32,
+                    stage,
+                    cls,
+                    version: version_at(stage, cls),
+                    side,
+                    spacing,
+                    keep_current: self.params.keep_current as u32,
+                };
+                rec.dispatch(&self.correct, self.correct.groups_for(n as u64), &[], &push)?;
+            }
+            rec.timestamp()
+        })?;
+        check_errors(&errors, "dependencies missing during synthesis")?;
+        Ok((work, (stamps[1] - stamps[0]) * 1e-6))
+    }
+
+    /// Grows level `l`'s versions and counts to hold `slots` voxels.
+    fn reserve(&mut self, l: usize, slots: usize) -> SynthResult<()> {
+        let state = &mut self.levels[l];
+        let have = state.counts.len();
+        if slots <= have {
+            return Ok(());
+        }
+        let stride = state.stride as usize;
+        let grown = slots.max(have + have / 2).next_power_of_two();
+        let words = grown as u64 * 3 * stride as u64;
+        if words > u32::MAX as u64 {
+            return Err(SynthError::Parameter {
+                name: "lazy state",
+                value: format!("{grown} voxels at level {l}"),
+                limit: format!(
+                    "at most {} voxels per level (32-bit word indices)",
+                    u32::MAX as u64 / (3 * stride as u64)
+                ),
+            });
+        }
+        let info = self.gpu.info();
+        let kept = self.levels.iter().map(LevelState::bytes).sum::<u64>();
+        let old = self.levels[l].versions.bytes() + self.levels[l].counts.bytes();
+        check_fits(
+            &format!("the versions of level {l}"),
+            words * 4,
+            kept - old + words * 4 + grown as u64 * 4,
+            info.max_memory_allocation_size.min(info.max_buffer_size),
+            info.heap_size,
+        )?;
+        let state = &mut self.levels[l];
+        let versions = GpuBuffer::<u32>::zeroed(
+            &self.gpu,
+            format!("lazy versions level {l}"),
+            words as usize,
+        )?;
+        let counts = GpuBuffer::<u32>::zeroed(&self.gpu, format!("lazy counts level {l}"), grown)?;
+        let used = state.len as usize;
+        self.gpu.submit(|rec| {
+            rec.copy(&state.versions, 0, &versions, 0, used * 3 * stride)?;
+            rec.copy(&state.counts, 0, &counts, 0, used)
+        })?;
+        state.versions = versions;
+        state.counts = counts;
+        Ok(())
+    }
+}
+
+/// Share of the device heap the kept state and one step's buffers may take: the rest is left
+/// to the radix sort's scratch, the stores and the renderer.
+const HEAP_SHARE: f64 = 0.75;
+
+/// Refuses a buffer of `bytes` (`what`) over the device's largest allocation `max_alloc`, or a
+/// request whose kept state and buffers (`total` bytes) would pass [`HEAP_SHARE`] of `heap`,
+/// naming the limit.
+fn check_fits(what: &str, bytes: u64, total: u64, max_alloc: u64, heap: u64) -> SynthResult<()> {
+    let mib = |b: u64| format!("{:.1} MiB", b as f64 / (1u64 << 20) as f64);
+    if bytes > max_alloc {
+        return Err(SynthError::Parameter {
+            name: "lazy synthesis request",
+            value: format!("{} for {what}", mib(bytes)),
+            limit: format!(
+                "the device's largest buffer is {} (request fewer voxels at once, or a lower \
+                 resolution)",
+                mib(max_alloc)
+            ),
+        });
+    }
+    let budget = (heap as f64 * HEAP_SHARE) as u64;
+    if total > budget {
+        return Err(SynthError::Parameter {
+            name: "lazy synthesis request",
+            value: format!("{} of kept state and buffers at {what}", mib(total)),
+            limit: format!(
+                "{:.0} % of the device heap, {} (request fewer voxels, or a lower resolution)",
+                HEAP_SHARE * 100.0,
+                mib(budget)
+            ),
+        });
+    }
+    Ok(())
+}
+
+fn check_errors(errors: &GpuBuffer<u32>, what: &str) -> SynthResult<()> {
+    let e = errors.read()?[0];
+    if e != 0 {
+        return Err(SynthError::Parameter {
+            name: "lazy synthesis",
+            value: format!("{e} {what}"),
+            limit: "the dependency sets must cover every read".into(),
+        });
+    }
+    Ok(())
+}
+
+fn hash_error(level: usize, e: lazysolid_compute::hash::HashError) -> SynthError {
+    SynthError::Parameter {
+        name: "lazy state table",
+        value: format!("level {level}"),
+        limit: e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_fits;
+
+    #[test]
+    fn requests_past_the_device_limits_are_refused_with_the_limit() {
+        let mib = 1u64 << 20;
+        assert!(check_fits("x", 10 * mib, 100 * mib, 128 * mib, 2048 * mib).is_ok());
+        let e = check_fits(
+            "the versions of level 6",
+            200 * mib,
+            300 * mib,
+            128 * mib,
+            2048 * mib,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("200.0 MiB for the versions of level 6") && e.contains("128.0 MiB"),
+            "{e}"
+        );
+        let e = check_fits(
+            "the dependency set of level 5",
+            10 * mib,
+            1600 * mib,
+            128 * mib,
+            2048 * mib,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("1600.0 MiB") && e.contains("75 % of the device heap, 1536.0 MiB"),
+            "{e}"
+        );
+    }
+}

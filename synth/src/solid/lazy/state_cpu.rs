@@ -1,0 +1,145 @@
+//! The CPU reference of lazy synthesis: the dependency sets synthesized level by level,
+//! stage by stage, with every computed version of every voxel kept for later requests.
+//!
+//! Memory policy: everything is kept (each voxel's versions 0..=P at its level), so a later
+//! request never recomputes a version; [`LazySolidCpu::bytes`] reports the size. Each
+//! version is a function of absolute positions only, so the result equals the full-volume
+//! synthesizer's on every requested voxel, and a sequence of requests equals one request of
+//! their union.
+
+use super::deps::{
+    class_index, dependencies_cpu, final_stage, subpass_class, version_at, Dependencies,
+};
+use super::keys::{check_request, lazy_key, lazy_position};
+use crate::solid::analysis::SolidAnalysis;
+use crate::solid::candidates::SolidCandidates;
+use crate::solid::cpu::{check_levels, correct_voxel, offset27, upsample_voxel};
+use crate::{SynthParams, SynthResult};
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// Lazy synthesis state on the CPU: per level, each computed voxel's versions.
+#[derive(Clone, Debug, Default)]
+pub struct LazySolidCpu {
+    levels: Vec<HashMap<u64, Vec<[u32; 3]>>>,
+    computed: Vec<u64>,
+}
+
+impl LazySolidCpu {
+    /// An empty state.
+    pub fn new() -> LazySolidCpu {
+        LazySolidCpu::default()
+    }
+
+    /// Versions of voxel `key` of level `level` computed so far.
+    pub fn versions(&self, level: usize, key: u64) -> u32 {
+        self.levels
+            .get(level)
+            .and_then(|m| m.get(&key))
+            .map_or(0, |v| v.len() as u32)
+    }
+
+    /// Voxel versions computed per level over every request so far.
+    pub fn computed(&self) -> &[u64] {
+        &self.computed
+    }
+
+    /// Bytes of the kept state: a key and 12 bytes per version.
+    pub fn bytes(&self) -> u64 {
+        self.levels
+            .iter()
+            .flat_map(|m| m.values())
+            .map(|v| 8 + 12 * v.len() as u64)
+            .sum()
+    }
+
+    /// The dependency sets of `requested` given what is already computed.
+    pub fn dependencies(&self, requested: &[u64], params: &SynthParams) -> Dependencies {
+        dependencies_cpu(requested, &params.passes, &|l, k| self.versions(l, k))
+    }
+
+    /// Synthesizes the finest-level voxels at `requested` (absolute positions) and returns
+    /// their final triples in the same order. Every request to one state must use the same
+    /// analysis, candidates and parameters.
+    ///
+    /// # Errors
+    /// A position outside the key range, or parameters that do not fit the analysis.
+    pub fn request(
+        &mut self,
+        analysis: &SolidAnalysis,
+        candidates: &SolidCandidates,
+        params: &SynthParams,
+        requested: &[[i32; 3]],
+    ) -> SynthResult<Vec<[u32; 3]>> {
+        check_levels(analysis, candidates, params)?;
+        for &p in requested {
+            check_request(p)?;
+        }
+        let levels = analysis.levels.len();
+        self.levels.resize_with(levels, HashMap::new);
+        self.computed.resize(levels, 0);
+        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        let deps = self.dependencies(&keys, params);
+        for (l, d) in deps.levels.iter().enumerate() {
+            let l32 = l as u32;
+            // Stage 0: upsample the voxels with no version yet from their final parents.
+            let fresh: Vec<(u64, [u32; 3])> = d
+                .keys
+                .par_iter()
+                .filter(|&&k| self.versions(l, k) == 0)
+                .map(|&k| {
+                    let p = lazy_position(k);
+                    let parent = (l > 0).then(|| {
+                        let up = lazy_key(p.map(|v| v.div_euclid(2)));
+                        self.levels[l - 1][&up][params.passes[l - 1] as usize]
+                    });
+                    (k, upsample_voxel(analysis, params, l32, p, parent))
+                })
+                .collect();
+            self.computed[l] += fresh.len() as u64;
+            for (k, t) in fresh {
+                self.levels[l].insert(k, vec![t]);
+            }
+            for stage in 1..=final_stage(params.passes[l]) {
+                let class = subpass_class(stage);
+                let version = version_at(stage, class) as usize;
+                let state = &self.levels[l];
+                let updated: Vec<(u64, [u32; 3])> = (0..d.len())
+                    .into_par_iter()
+                    .filter(|&i| d.need[i] as u32 >= stage)
+                    .map(|i| d.keys[i])
+                    .filter(|&k| {
+                        class_index(lazy_position(k)) == class && state[&k].len() == version
+                    })
+                    .map(|k| {
+                        let p = lazy_position(k);
+                        let around: [[u32; 3]; 27] = std::array::from_fn(|n| {
+                            let o = offset27(n);
+                            if o.iter().all(|&v| v != 0) {
+                                return [0; 3];
+                            }
+                            let q = [p[0] + o[0], p[1] + o[1], p[2] + o[2]];
+                            let v = version_at(stage - 1, class_index(q)) as usize;
+                            state[&lazy_key(q)][v]
+                        });
+                        (
+                            k,
+                            correct_voxel(analysis, candidates, l32, params.keep_current, &around),
+                        )
+                    })
+                    .collect();
+                self.computed[l] += updated.len() as u64;
+                let state = &mut self.levels[l];
+                for (k, t) in updated {
+                    state
+                        .get_mut(&k)
+                        .expect("an updated voxel was upsampled")
+                        .push(t);
+                }
+            }
+        }
+        let finest = levels - 1;
+        let last = params.passes[finest] as usize;
+        Ok(keys.iter().map(|k| self.levels[finest][k][last]).collect())
+    }
+}
