@@ -6,7 +6,7 @@
 
 use super::colours::{fill_colours, new_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
+use super::kernels::{timed_lookup, StoreKernels, TimedLookup};
 use super::keys::check_keys;
 use super::{Filter, InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer};
@@ -221,19 +221,22 @@ impl SparseStore for HashStore {
         _normals: &[Vec3],
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
-        let k = &self.kernels;
-        let kernel = k.gpu.kernel(&store::HASH_LOOKUP)?;
-        let groups = kernel.groups_for(points.len() as u64);
-        let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
-        Ok(prepare_lookup(k, points, &[], move |rec, a| {
-            let push = LookupPush {
-                store: self.params(),
-                points: a.points,
-                results: a.results,
-                n,
-                mode,
-            };
-            rec.dispatch(&kernel, groups, &[], &push)
-        })?)
+        Ok(timed_lookup(
+            &self.kernels,
+            &store::HASH_LOOKUP,
+            points,
+            &[],
+            filter,
+            move |rec, c| {
+                let push = LookupPush {
+                    store: self.params(),
+                    points: c.points,
+                    results: c.results,
+                    n: c.n,
+                    mode: c.mode,
+                };
+                rec.dispatch(c.kernel, c.groups, &[], &push)
+            },
+        )?)
     }
 }

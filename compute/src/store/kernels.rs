@@ -2,7 +2,8 @@
 //! their first use (a store never builds the pipelines of another kind); the hash contexts
 //! and the sort + unique step keep their scratch here between builds.
 
-use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Recorder};
+use super::Filter;
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Kernel, KernelDef, Recorder};
 use crate::hash::perfect::PerfectKernels;
 use crate::hash::HashKernels;
 use crate::voxel::SortUnique;
@@ -34,9 +35,8 @@ impl StoreKernels {
     }
 }
 
-/// Records one lookup dispatch, given the addresses of its points, normals and results.
-type RecordFn<'a> =
-    Box<dyn for<'b> Fn(&mut Recorder<'_>, LookupAddresses<'b>) -> GpuResult<()> + 'a>;
+/// Records one lookup dispatch of a store's kernel with the push block it builds from the call.
+type RecordFn<'a> = Box<dyn for<'b> Fn(&mut Recorder<'_>, LookupCall<'b>) -> GpuResult<()> + 'a>;
 
 /// A lookup whose points are already on the device, run as often as a benchmark needs: each
 /// [`TimedLookup::run`] is one dispatch between two GPU timestamps, so uploads and read-backs
@@ -46,23 +46,30 @@ pub struct TimedLookup<'a> {
     points: GpuBuffer<f32>,
     normals: Option<GpuBuffer<f32>>,
     results: GpuBuffer<[f32; 4]>,
+    kernel: Arc<Kernel>,
+    mode: u32,
     record: RecordFn<'a>,
 }
 
 impl TimedLookup<'_> {
     /// One lookup of every point; returns its GPU time in milliseconds.
     pub fn run(&self) -> GpuResult<f64> {
-        let addresses = LookupAddresses {
+        let n = self.results.len() as u32;
+        let call = LookupCall {
+            kernel: &self.kernel,
+            groups: self.kernel.groups_for(n as u64),
             points: self.points.address(),
             normals: self
                 .normals
                 .as_ref()
                 .map_or(DeviceAddress::NULL, GpuBuffer::address),
             results: self.results.address(),
+            n,
+            mode: self.mode,
         };
         let ((), t) = self.gpu.submit_timed(|rec| {
             rec.timestamp()?;
-            (self.record)(rec, addresses)?;
+            (self.record)(rec, call)?;
             rec.timestamp()
         })?;
         Ok((t[1] - t[0]) * 1e-6)
@@ -79,23 +86,33 @@ impl TimedLookup<'_> {
     }
 }
 
-/// Device addresses a lookup kernel's push block takes.
+/// One dispatch of a store's lookup kernel: the kernel and its groups, and what its push block
+/// takes besides the store.
 #[derive(Clone, Copy)]
-pub(crate) struct LookupAddresses<'a> {
+pub(crate) struct LookupCall<'a> {
+    pub kernel: &'a Kernel,
+    pub groups: [u32; 3],
     pub points: DeviceAddress<'a>,
     /// Null when no normals were given.
     pub normals: DeviceAddress<'a>,
     pub results: DeviceAddress<'a>,
+    /// Points, one result each.
+    pub n: u32,
+    /// 1 for [`Filter::Trilinear`], 0 for [`Filter::Nearest`].
+    pub mode: u32,
 }
 
-/// Uploads `points` (and `normals` when given) and prepares `dispatch`, which records the
-/// store's lookup kernel with the uploaded buffers' addresses: every store's lookup, timed or
-/// not, goes through here.
-pub(crate) fn prepare_lookup<'a>(
+/// Every store's [`SparseStore::timed_lookup`](super::SparseStore::timed_lookup): fetches
+/// `kernel` from the device's cache, uploads `points` (and `normals` when given) and prepares
+/// `dispatch`, which records the kernel with the store's push block built from the
+/// [`LookupCall`]. Timed or not, every lookup goes through here.
+pub(crate) fn timed_lookup<'a>(
     kernels: &'a StoreKernels,
+    kernel: &'static KernelDef,
     points: &[Vec3],
     normals: &[Vec3],
-    dispatch: impl for<'b> Fn(&mut Recorder<'_>, LookupAddresses<'b>) -> GpuResult<()> + 'a,
+    filter: Filter,
+    dispatch: impl for<'b> Fn(&mut Recorder<'_>, LookupCall<'b>) -> GpuResult<()> + 'a,
 ) -> GpuResult<TimedLookup<'a>> {
     let gpu = &kernels.gpu;
     let flat = |v: &[Vec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f32>>();
@@ -113,6 +130,8 @@ pub(crate) fn prepare_lookup<'a>(
         points: GpuBuffer::from_slice(gpu, "store lookup points", &flat(points))?,
         normals,
         results: GpuBuffer::zeroed(gpu, "store lookup results", points.len())?,
+        kernel: gpu.kernel(kernel)?,
+        mode: (filter == Filter::Trilinear) as u32,
         record: Box::new(dispatch),
     })
 }

@@ -8,7 +8,7 @@
 
 use super::colours::{new_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{prepare_lookup, StoreKernels, TimedLookup};
+use super::kernels::{timed_lookup, StoreKernels, TimedLookup};
 use super::keys::check_keys;
 use super::{Filter, InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
@@ -603,33 +603,41 @@ impl SparseStore for OctreeStore {
         _normals: &[Vec3],
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
-        Ok(self.prepare(points, (filter == Filter::Trilinear) as u32)?)
+        Ok(self.lookup_in_mode(points, filter, None)?)
     }
 }
 
 impl OctreeStore {
     /// MIP lookup: the average colour of the node of level `depth` containing each point.
     pub fn lookup_mip(&self, points: &[Vec3], depth: u32) -> Result<Vec<Vec4>, StoreError> {
-        let lookup = self.prepare(points, 2 + depth)?;
+        let lookup = self.lookup_in_mode(points, Filter::Nearest, Some(depth))?;
         lookup.run()?;
         Ok(lookup.results()?)
     }
 
-    /// The lookup kernel in `mode` (0 nearest, 1 trilinear, 2 + depth MIP) at `points`.
-    fn prepare(&self, points: &[Vec3], mode: u32) -> GpuResult<TimedLookup<'_>> {
-        let k = &self.kernels;
-        let kernel = k.gpu.kernel(&store::OCTREE_LOOKUP)?;
-        let groups = kernel.groups_for(points.len() as u64);
-        let n = points.len() as u32;
-        prepare_lookup(k, points, &[], move |rec, a| {
-            let push = LookupPush {
-                store: self.params(),
-                points: a.points,
-                results: a.results,
-                n,
-                mode,
-            };
-            rec.dispatch(&kernel, groups, &[], &push)
-        })
+    /// The lookup kernel at `points`: by `filter`, or the MIP of level `mip` (mode 2 + depth).
+    fn lookup_in_mode(
+        &self,
+        points: &[Vec3],
+        filter: Filter,
+        mip: Option<u32>,
+    ) -> GpuResult<TimedLookup<'_>> {
+        timed_lookup(
+            &self.kernels,
+            &store::OCTREE_LOOKUP,
+            points,
+            &[],
+            filter,
+            move |rec, c| {
+                let push = LookupPush {
+                    store: self.params(),
+                    points: c.points,
+                    results: c.results,
+                    n: c.n,
+                    mode: mip.map_or(c.mode, |depth| 2 + depth),
+                };
+                rec.dispatch(c.kernel, c.groups, &[], &push)
+            },
+        )
     }
 }

@@ -5,10 +5,11 @@
 //! 3D image.
 
 use crate::output::srgb_eotf;
+use lazysolid_synth::solid::{decode_nrrd, RgbVolume, MAX_VOLUME_SIDE};
 use std::path::{Path, PathBuf};
 
-/// Largest side of a volume texture along any axis.
-pub const MAX_VOLUME_TEXTURE_SIDE: u32 = 1024;
+/// Largest side of a volume texture along any axis: the largest box `lazysolid solid` writes.
+pub const MAX_VOLUME_TEXTURE_SIDE: u32 = MAX_VOLUME_SIDE;
 
 /// An RGB volume, sRGB-encoded bytes, x fastest, then y, then z.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,90 +38,11 @@ impl VolumeTexture {
     /// # Errors
     /// As [`VolumeTexture::load`].
     pub fn decode(bytes: &[u8], path: &Path) -> Result<VolumeTexture, String> {
-        let bad = |what: String| format!("{}: {what}", path.display());
-        if !bytes.starts_with(b"NRRD000") {
-            return Err(bad(
-                "not an NRRD file (it must start with NRRD0001..NRRD0005)".into(),
-            ));
-        }
-        let end = bytes
-            .windows(2)
-            .position(|w| w == b"\n\n")
-            .ok_or_else(|| bad("the header has no end (an empty line before the data)".into()))?;
-        let header =
-            std::str::from_utf8(&bytes[..end]).map_err(|_| bad("the header is not text".into()))?;
-        let (mut kind, mut dimension, mut sizes, mut encoding) = (None, None, None, None);
-        for line in header.lines().skip(1) {
-            if line.starts_with('#') || line.trim().is_empty() {
-                continue;
-            }
-            // `key: value`; `key:=value` lines are key-value pairs of the data, not fields.
-            let Some((key, value)) = line.split_once(": ") else {
-                continue;
-            };
-            let value = value.trim();
-            match key.trim() {
-                "type" => kind = Some(value.to_string()),
-                "dimension" => dimension = Some(value.to_string()),
-                "sizes" => sizes = Some(value.to_string()),
-                "encoding" => encoding = Some(value.to_string()),
-                _ => {}
-            }
-        }
-        let field = |name: &str, v: Option<String>| {
-            v.ok_or_else(|| bad(format!("the header has no `{name}` field")))
-        };
-        let kind = field("type", kind)?;
-        if !["uint8", "uchar", "unsigned char", "uint8_t"].contains(&kind.as_str()) {
-            return Err(bad(format!(
-                "type: {kind} is not supported (must be uint8: 8-bit sRGB)"
-            )));
-        }
-        let dimension = field("dimension", dimension)?;
-        if dimension != "4" {
-            return Err(bad(format!(
-                "dimension: {dimension} is not supported (must be 4: RGB, x, y, z)"
-            )));
-        }
-        let encoding = field("encoding", encoding)?;
-        if encoding != "raw" {
-            return Err(bad(format!(
-                "encoding: {encoding} is not supported (must be raw)"
-            )));
-        }
-        let sizes_text = field("sizes", sizes)?;
-        let sizes: Vec<u32> = sizes_text
-            .split_whitespace()
-            .map(|s| s.parse::<u32>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| bad(format!("sizes: {sizes_text} are not four whole numbers")))?;
-        if sizes.len() != 4 || sizes[0] != 3 {
-            return Err(bad(format!(
-                "sizes: {sizes_text} must be `3 X Y Z` (three channels per voxel)"
-            )));
-        }
-        let size = [sizes[1], sizes[2], sizes[3]];
-        if let Some(s) = size
-            .iter()
-            .find(|&&s| !(1..=MAX_VOLUME_TEXTURE_SIDE).contains(&s))
-        {
-            return Err(bad(format!(
-                "sizes: a side of {s} voxels is outside 1..={MAX_VOLUME_TEXTURE_SIDE}"
-            )));
-        }
-        let voxels = size.iter().map(|&s| s as usize).product::<usize>();
-        let data = &bytes[end + 2..];
-        if data.len() != voxels * 3 {
-            return Err(bad(format!(
-                "holds {} bytes of data, sizes {sizes_text} need {}",
-                data.len(),
-                voxels * 3
-            )));
-        }
+        let RgbVolume { size, rgb } = decode_nrrd(bytes, path)?;
         Ok(VolumeTexture {
             path: path.to_path_buf(),
             size,
-            rgb: data.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            rgb,
         })
     }
 
@@ -176,40 +98,5 @@ mod tests {
         assert_eq!(v.at_voxel([1, 0, 0], 4), [1, 2, 3]);
         assert_eq!(v.at_voxel([2, 3, 3], 4), [4, 5, 6]);
         assert_eq!(v.at_voxel([9, 9, 9], 4), [4, 5, 6]);
-    }
-
-    #[test]
-    fn names_the_field_that_is_wrong() {
-        let p = Path::new("dir/v.nrrd");
-        for (bytes, needles) in [
-            (b"P6\n".to_vec(), &["dir/v.nrrd", "not an NRRD"][..]),
-            (
-                nrrd(&GOOD.replace("uint8", "float"), &[0; 6]),
-                &["type: float", "uint8"][..],
-            ),
-            (
-                nrrd(&GOOD.replace("dimension: 4", "dimension: 3"), &[0; 6]),
-                &["dimension: 3"][..],
-            ),
-            (
-                nrrd(&GOOD.replace("raw", "gzip"), &[0; 6]),
-                &["encoding: gzip"][..],
-            ),
-            (
-                nrrd(&GOOD.replace("3 2 1 1", "1 2 1 1"), &[0; 2]),
-                &["sizes: 1 2 1 1", "3 X Y Z"][..],
-            ),
-            (
-                nrrd(&GOOD.replace("3 2 1 1", "3 2000 1 1"), &[0; 6]),
-                &["2000", "1..=1024"][..],
-            ),
-            (nrrd(GOOD, &[0; 5]), &["5 bytes", "need 6"][..]),
-            (GOOD.replace("\n\n", "\n").into_bytes(), &["no end"][..]),
-        ] {
-            let e = VolumeTexture::decode(&bytes, p).unwrap_err();
-            for n in needles {
-                assert!(e.contains(n), "{n:?} not in {e:?}");
-            }
-        }
     }
 }

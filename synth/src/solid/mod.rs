@@ -5,6 +5,7 @@
 //! the unbounded volume, each on the GPU with an exact CPU reference. See `docs/solid.md`.
 
 mod analysis;
+mod axis_quality;
 mod balance;
 mod candidates;
 mod candidates_cache;
@@ -17,14 +18,17 @@ pub(crate) mod gpu;
 mod jitter;
 pub mod lazy;
 mod loop_budget;
+mod nrrd;
 mod plan;
 mod roles;
 mod slab;
+mod slices;
 mod strip_tree;
 mod strips;
 mod volume;
 
 pub use analysis::{analyze_solid, pack_rgb, unpack_rgb, RoleLevel, SolidAnalysis, SolidLevel};
+pub use axis_quality::{axis_quality, role_scorers, AxisQuality, ImageScorer};
 pub use balance::{
     balance_usage, DEFAULT_BALANCE, MAX_BALANCE, MAX_PENALTY, PILOT_ORIGIN, PILOT_SEED, PILOT_SIDE,
 };
@@ -51,12 +55,14 @@ pub use defaults::{
 pub use gpu::GpuSolidSynthesizer;
 pub use jitter::jitter3;
 pub use loop_budget::{LOOP_BUDGET, LOOP_LIMIT};
+pub use nrrd::{decode_nrrd, encode_nrrd, RgbVolume};
 pub use plan::{plan_boxes, plan_levels, LevelPlan, Subpass, VolumeBox, CLASSES_3D, SUBPASSES_3D};
 pub use roles::{
     image_axis, project, shared_axis, SolidExemplars, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLES,
     ROLE_AXES, ROLE_NAMES,
 };
 pub use slab::candidate_slab;
+pub use slices::{oblique, slice};
 pub use strips::{strip_distance, DEFAULT_STRIP, MAX_STRIP};
 pub use volume::{
     check_box, voxel_colour, LevelTriples, SolidSynthesis, MAX_VOLUME_ORIGIN, MAX_VOLUME_SIDE,

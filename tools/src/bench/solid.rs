@@ -37,11 +37,9 @@ use super::CommonArgs;
 use crate::cli::assets;
 use crate::cli::candidate_builder::Candidates;
 use crate::cli::fit_mode::Fit;
-use crate::cli::solid::{
-    axis_quality, oblique, role_scorers, slice, synthesize_cube, AxisQuality, CubeRequest,
-    ImageScorer, SolidRun,
-};
+use crate::cli::solid::{synthesize_cube, CubeRequest, SolidRun};
 use crate::cli::synth::write_png;
+use crate::cli::tuning::Schedule;
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -49,8 +47,9 @@ use lazysolid_compute::atomic_file::write_bytes_atomically;
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::solid::{
-    analyze_solid, candidates_key, CandidateBuilder, CandidateParams, LevelTriples, SolidExemplars,
-    SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
+    analyze_solid, axis_quality, candidates_key, oblique, role_scorers, slice, AxisQuality,
+    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, SolidExemplars, SolidSynthesis,
+    TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
 };
 use lazysolid_synth::{
     analyze, default_jitter, default_passes, load_solid, pack, period_repetition, unpack,
@@ -113,15 +112,6 @@ pub struct SolidArgs {
     /// Seed of the jitter.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
-    /// Correction passes, one for all levels or one per level, coarsest first [default: as
-    /// `lazysolid solid`, 2 per level and 1 at the finest]. Each pass pads every level's box by up to 5, 3 and 2 voxels a
-    /// side along x, y and z, so fewer passes make a small run possible on a slow device.
-    #[arg(long, value_delimiter = ',')]
-    pub passes: Vec<u32>,
-    /// Jitter strength in 0..=1, one for all levels or one per level, coarsest first
-    /// [default: as `lazysolid solid`].
-    #[arg(long, value_delimiter = ',')]
-    pub jitter: Vec<f32>,
     /// Most pixels of each slice the energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -133,6 +123,8 @@ pub struct SolidArgs {
     /// table of many exemplars at 128³ in minutes instead of an hour.
     #[arg(long)]
     pub no_ablations: bool,
+    #[command(flatten)]
+    pub schedule: Schedule,
 }
 
 /// One quality row: a variant of one case, per axis.
@@ -406,8 +398,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         for (i, &n) in sizes.iter().enumerate() {
             let request = CubeRequest {
                 seed: args.seed,
-                passes: &args.passes,
-                jitter: &args.jitter,
+                passes: &args.schedule.passes,
+                jitter: &args.schedule.jitter,
                 ..CubeRequest::new(n)
             };
             let cube = |cache: Option<&DiskCache>| {

@@ -17,6 +17,7 @@ pub mod resolution;
 pub mod solid;
 pub mod solid_render;
 pub mod synth;
+pub mod tuning;
 
 use lazysolid_compute::gpu::{Gpu, GpuOptions, Validation, ValidationLog};
 use std::cell::RefCell;

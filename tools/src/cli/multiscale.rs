@@ -8,6 +8,7 @@ use super::components::components;
 use super::output::{check_writable, check_writable_dir};
 use super::resolution::Resolution;
 use super::synth::write_png;
+use super::tuning::{Coherence, Schedule};
 use super::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -15,9 +16,7 @@ use lazysolid_synth::multiscale::{
     analyze_graph, colour, synthesize_multiscale_cpu, ExemplarGraph, MultiscaleAnalysis,
     MultiscaleGpu, MultiscaleParams, MultiscaleSynthesis,
 };
-use lazysolid_synth::{
-    AnalysisParams, Region, DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY,
-};
+use lazysolid_synth::{AnalysisParams, Region};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -31,32 +30,18 @@ pub struct GraphOptions {
     /// Seed of the jitter.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
-    /// Jitter strength in 0..=1, one for all depths or one per depth, coarsest first
-    /// [default: the 2D synthesizer's schedule].
-    #[arg(long, value_delimiter = ',')]
-    pub jitter: Vec<f32>,
-    /// Correction passes, one for all depths or one per depth [default: 4, 2 at the deepest].
-    #[arg(long, value_delimiter = ',')]
-    pub passes: Vec<u32>,
-    /// Period penalty (0 turns it off).
-    #[arg(long, default_value_t = DEFAULT_PERIOD_PENALTY)]
-    pub period_penalty: u32,
-    /// Size of the k-coherence sets.
-    #[arg(short, long, default_value_t = DEFAULT_COHERENCE_K)]
-    pub k: u32,
-    /// Smallest distance between members of a set at the same stack level.
-    #[arg(long, default_value_t = DEFAULT_COHERENCE_SPREAD)]
-    pub spread: u32,
     /// Synthesize with the CPU reference instead of the device.
     #[arg(long)]
     pub cpu: bool,
+    #[command(flatten)]
+    pub schedule: Schedule,
+    #[command(flatten)]
+    pub coherence: Coherence,
 }
 
 /// `lazysolid multiscale`.
 #[derive(Args)]
 pub struct MultiscaleArgs {
-    #[command(flatten)]
-    pub graph: GraphOptions,
     /// Synthesis depth T (0: the root's coarsest level; the root's own texels at its L).
     #[arg(long)]
     pub level: u32,
@@ -69,13 +54,13 @@ pub struct MultiscaleArgs {
     /// The PNG to write; NAME.exemplars.png next to it shows which exemplar each pixel uses.
     #[arg(short, long)]
     pub output: PathBuf,
+    #[command(flatten)]
+    pub graph: GraphOptions,
 }
 
 /// `lazysolid zoom`.
 #[derive(Args)]
 pub struct ZoomArgs {
-    #[command(flatten)]
-    pub graph: GraphOptions,
     /// First depth (may be fractional).
     #[arg(long)]
     pub from: f64,
@@ -97,6 +82,8 @@ pub struct ZoomArgs {
     /// The folder for frame_NNNN.png and zoom.gif (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
+    #[command(flatten)]
+    pub graph: GraphOptions,
 }
 
 fn parse_pair<T: std::str::FromStr>(s: &str) -> Result<(T, T), String> {
@@ -131,8 +118,8 @@ impl GraphOptions {
         let analysis = analyze_graph(
             &graph,
             &AnalysisParams {
-                k: self.k,
-                spread: self.spread,
+                k: self.coherence.k,
+                spread: self.coherence.spread,
                 toroidal: true,
                 // Ignored: the multiscale appearance space is colour only.
                 feature_weight: 0,
@@ -149,9 +136,9 @@ impl GraphOptions {
         Ok(MultiscaleParams::new(
             self.seed,
             depth,
-            &self.passes,
-            &self.jitter,
-            self.period_penalty,
+            &self.schedule.passes,
+            &self.schedule.jitter,
+            self.coherence.period_penalty,
         )?)
     }
 }

@@ -9,6 +9,7 @@ use super::components::components;
 use super::fit_mode::Fit;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
+use super::tuning::{Features, Schedule};
 use super::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -17,20 +18,16 @@ use lazysolid_compute::atomic_file::write_bytes_atomically;
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_renderer::output::{Operator, ToneMap};
 use lazysolid_synth::cache::{CacheOutcome, DiskCache};
-use lazysolid_synth::feature::{feature_map, DEFAULT_FEATURE_WEIGHT};
-use lazysolid_synth::quality::{reachable_gap, ExemplarFigures, VolumeAnisotropy};
+use lazysolid_synth::feature::feature_map;
+use lazysolid_synth::quality::reachable_gap;
 use lazysolid_synth::solid::{
-    analyze_solid, candidate_slab, candidates_cached, check_box, plan_levels,
-    solid_jitter_or_default, solid_passes_or_default, triple_consistency, CandidateBuilder,
-    CandidateParams, GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency,
-    VolumeBox, DEFAULT_BALANCE, DEFAULT_S, DEFAULT_STRIP, MAX_SOLID_SIDE, MIN_SOLID_SIDE,
-    ROLE_NAMES,
+    analyze_solid, axis_quality, candidate_slab, candidates_cached, check_box, encode_nrrd,
+    oblique, plan_levels, role_scorers, slice, solid_jitter_or_default, solid_passes_or_default,
+    triple_consistency, CandidateBuilder, CandidateParams, GpuSolidSynthesizer, SolidExemplars,
+    SolidSynthesis, TripleConsistency, VolumeBox, DEFAULT_BALANCE, DEFAULT_S, DEFAULT_STRIP,
+    MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLE_NAMES,
 };
-use lazysolid_synth::{
-    histogram_distance, load_solid, period_repetition, EnergyKernel, EnergyReport, Exemplar,
-    ExemplarFit, FitMode, SynthParams,
-};
-use std::io::Write;
+use lazysolid_synth::{load_solid, EnergyKernel, ExemplarFit, FitMode, SynthParams};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -71,14 +68,6 @@ pub struct SolidArgs {
     /// Seed of the jitter.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
-    /// Jitter strength in 0..=1, one for all levels or one per level, coarsest first
-    /// [default: 0.6, 0.5, 0.4, 0.3 at the four coarsest levels, 0.2 below].
-    #[arg(long, value_delimiter = ',')]
-    pub jitter: Vec<f32>,
-    /// Correction passes, one for all levels or one per level, coarsest first [default: 2 per
-    /// level, 1 at the finest].
-    #[arg(long, value_delimiter = ',')]
-    pub passes: Vec<u32>,
     /// Do not render the cube and sphere carved out of the volume (NAME.render.png and the
     /// scene NAME.scene.toml it comes from).
     #[arg(long)]
@@ -98,11 +87,6 @@ pub struct SolidArgs {
     /// exemplar's dark spots, outlines and cracks (docs/solid.md)
     #[arg(long, default_value_t = DEFAULT_BALANCE)]
     pub balance: u32,
-    /// Weight of the feature-distance channel in the appearance space, in percent of the
-    /// colour's standard deviation, 0 to 400 (0: colour only): a signed distance to the
-    /// exemplar's cracks, veins or outlines, found automatically (docs/solid.md)
-    #[arg(long, default_value_t = DEFAULT_FEATURE_WEIGHT)]
-    pub feature_weight: u32,
     /// Most pixels of each slice the neighbourhood energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -115,6 +99,10 @@ pub struct SolidArgs {
     /// feature channel on) NAME.features.png: each exemplar, its feature mask and distance.
     #[arg(short, long)]
     pub output: PathBuf,
+    #[command(flatten)]
+    pub schedule: Schedule,
+    #[command(flatten)]
+    pub features: Features,
 }
 
 fn parse_offset3(s: &str) -> Result<[i32; 3], String> {
@@ -185,166 +173,6 @@ pub fn load_exemplars(
         fits.remove(0);
     }
     Ok((SolidExemplars::new(main.exemplar, given)?, fits))
-}
-
-/// An axis-aligned slice of a synthesized cube of side `n`: perpendicular to world `axis` at
-/// `at`, over that role's image axes; colours and the role's own coordinates.
-pub fn slice(
-    synthesis: &SolidSynthesis,
-    colours: &[[u8; 3]],
-    axis: usize,
-    at: u32,
-) -> (Vec<[u8; 3]>, Vec<u32>) {
-    let w = synthesis.window;
-    let n = w.size[0] as usize;
-    let triples = synthesis.window_triples();
-    let [a, b] = lazysolid_synth::solid::ROLE_AXES[axis];
-    let mut rgb = Vec::with_capacity(n * n);
-    let mut coords = Vec::with_capacity(n * n);
-    for j in 0..n {
-        for i in 0..n {
-            let mut p = [0usize; 3];
-            p[axis] = at as usize;
-            p[a] = i;
-            p[b] = j;
-            let idx = (p[2] * n + p[1]) * n + p[0];
-            rgb.push(colours[idx]);
-            coords.push(triples[idx][axis]);
-        }
-    }
-    (rgb, coords)
-}
-
-/// The diagonal plane `y + z = n − 1` of a cube of side `n` (a 45° cut about x), as an
-/// `n`×`n` image (stretched by √2 along its second axis).
-pub fn oblique(colours: &[[u8; 3]], n: usize) -> Vec<[u8; 3]> {
-    (0..n * n)
-        .map(|k| {
-            let (x, y) = (k % n, k / n);
-            let z = n - 1 - y;
-            colours[(z * n + y) * n + x]
-        })
-        .collect()
-}
-
-/// Quality of the slices perpendicular to one axis.
-#[derive(Clone, Copy, Debug, serde::Serialize)]
-pub struct AxisQuality {
-    /// Mean 7×7 neighbourhood energy of the mid slice against the axis's exemplar.
-    pub energy: f64,
-    /// Colour-histogram distance of the mid slice to the exemplar.
-    pub histogram: f64,
-    /// Period repetition of the role's coordinates in the mid slice.
-    pub repetition: f64,
-    /// Multi-scale sliced Wasserstein distance of the mid slice's patches to the exemplar's
-    /// (8-bit levels, mean over octaves).
-    pub swd: f64,
-    /// `swd` over the distance between the exemplar's two halves: 1 is the material's own
-    /// variability.
-    pub swd_ratio: f64,
-    /// Share of oriented gradient energy along the image axes over the exemplar's: 1 is as
-    /// axis-aligned as the material, above it blocks.
-    pub blockiness: f64,
-    /// `(J_uu − J_vv) / (J_uu + J_vv)` of the gradient energy over all of this axis's
-    /// slices (`synth/quality/anisotropy.rs`).
-    pub anisotropy: f64,
-    /// The same figure of the axis's exemplar: no volume matches it on every axis unless
-    /// `a_x − a_y + a_z = 0`.
-    pub exemplar_anisotropy: f64,
-}
-
-/// One exemplar's calibrated figures, computed once and applied to every image scored
-/// against it.
-pub struct ImageScorer(ExemplarFigures);
-
-impl ImageScorer {
-    /// Calibrates on `exemplar`.
-    pub fn new(exemplar: &Exemplar) -> ImageScorer {
-        ImageScorer(ExemplarFigures::new(
-            &exemplar.rgb,
-            exemplar.width,
-            exemplar.height,
-        ))
-    }
-
-    /// Scores a `w`×`h` image: energy (GPU), histogram, the given repetition, SWD and
-    /// blockiness.
-    #[allow(clippy::too_many_arguments)]
-    pub fn score(
-        &self,
-        energy: &EnergyKernel,
-        exemplar: &Exemplar,
-        rgb: &[[u8; 3]],
-        w: u32,
-        h: u32,
-        repetition: f64,
-        samples: usize,
-    ) -> anyhow::Result<AxisQuality> {
-        let minima = energy.minima(exemplar, rgb, w, h, samples)?;
-        let figures = self.0.measure(rgb, w, h);
-        Ok(AxisQuality {
-            energy: EnergyReport::from_minima(&minima).mean,
-            histogram: histogram_distance(&exemplar.rgb, rgb),
-            repetition,
-            swd: figures.swd.mean,
-            swd_ratio: figures.swd.ratio,
-            blockiness: figures.blockiness.ratio,
-            anisotropy: figures.anisotropy,
-            exemplar_anisotropy: self.0.anisotropy(),
-        })
-    }
-}
-
-/// One [`ImageScorer`] per role of `exemplars`.
-pub fn role_scorers(exemplars: &SolidExemplars) -> [ImageScorer; 3] {
-    std::array::from_fn(|r| ImageScorer::new(exemplars.role(r)))
-}
-
-/// Scores the mid slices of a cube perpendicular to each axis against that axis's exemplar.
-pub fn axis_quality(
-    energy: &EnergyKernel,
-    scorers: &[ImageScorer; 3],
-    exemplars: &SolidExemplars,
-    synthesis: &SolidSynthesis,
-    colours: &[[u8; 3]],
-    samples: usize,
-) -> anyhow::Result<[AxisQuality; 3]> {
-    let n = synthesis.window.size[0];
-    let m = exemplars.side();
-    let volume = VolumeAnisotropy::measure(colours, n as usize);
-    let mut out = Vec::with_capacity(3);
-    for (axis, scorer) in scorers.iter().enumerate() {
-        let (rgb, coords) = slice(synthesis, colours, axis, n / 2);
-        let e = exemplars.role(axis);
-        let repetition = period_repetition(&coords, n, n, m, m);
-        let mut q = scorer.score(energy, e, &rgb, n, n, repetition, samples)?;
-        // The mid slice alone is one sample; the identity holds for the families.
-        q.anisotropy = volume.axes[axis];
-        out.push(q);
-    }
-    Ok(out.try_into().expect("three axes"))
-}
-
-/// Encodes an RGB cube of side `n` as NRRD (raw bytes, x fastest), the format ParaView, 3D
-/// Slicer and ImageJ open, with `notes` as comment lines of its header (kept ASCII, as
-/// readers expect of a header: `→` is written `->`).
-pub fn nrrd(colours: &[[u8; 3]], n: u32, notes: &[String]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(colours.len() * 3 + 200);
-    let _ = write!(out, "NRRD0004\n# lazysolid solid texture\n");
-    for note in notes {
-        let ascii: String = note
-            .replace('→', "->")
-            .chars()
-            .map(|c| if c.is_ascii() && c != '\n' { c } else { '?' })
-            .collect();
-        let _ = writeln!(out, "# {ascii}");
-    }
-    let _ = write!(
-        out,
-        "type: uint8\ndimension: 4\nsizes: 3 {n} {n} {n}\nkinds: RGB-color domain domain domain\nspacings: NaN 1 1 1\nencoding: raw\n\n"
-    );
-    out.extend(colours.iter().flatten());
-    out
 }
 
 fn bar(len: u64, message: &'static str) -> ProgressBar {
@@ -539,7 +367,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.fit.into(),
         args.exemplar_side,
     )?;
-    let exemplars = exemplars.with_feature_weight(args.feature_weight)?;
+    let exemplars = exemplars.with_feature_weight(args.features.feature_weight)?;
     let candidate_params = CandidateParams {
         strip: args.strip,
         s: args.s,
@@ -561,8 +389,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             candidate_params,
             builder: args.candidates.into(),
             seed: args.seed,
-            passes: &args.passes,
-            jitter: &args.jitter,
+            passes: &args.schedule.passes,
+            jitter: &args.schedule.jitter,
             keep_current: false,
             n,
             offset: args.offset,
@@ -581,7 +409,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     )?;
 
     let notes: Vec<String> = fits.iter().map(|f| format!("exemplar fit: {f}")).collect();
-    let volume = nrrd(&run.colours, n, &notes);
+    let volume = encode_nrrd(&run.colours, n, &notes);
     let render = if args.no_render {
         None
     } else {

@@ -4,6 +4,7 @@
 use super::components::components;
 use super::output::{check_writable, write_atomically};
 use super::resolution::Resolution;
+use super::tuning::{Coherence, Features, Schedule};
 use super::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -11,8 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_synth::{
     analyze_cached, histogram_distance, jitter_or_default, load_plane, passes_or_default,
     period_repetition, unpack, AnalysisParams, Border, DiskCache, EnergyKernel, EnergyReport,
-    FittedExemplar, GpuSynthesizer, Region, SynthParams, DEFAULT_COHERENCE_K,
-    DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY,
+    FittedExemplar, GpuSynthesizer, Region, SynthParams,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -34,33 +34,10 @@ pub struct SynthArgs {
     /// Seed of the jitter.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
-    /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first
-    /// [default: 1.0, 0.8, 0.6, 0.4 at the four coarsest levels, 0.2 below].
-    #[arg(long, value_delimiter = ',')]
-    pub jitter: Vec<f32>,
-    /// Correction passes, one for all levels or a comma-separated list, coarsest first
-    /// [default: 4 at every level, 2 at the finest].
-    #[arg(long, value_delimiter = ',')]
-    pub passes: Vec<u32>,
-    /// Added to the distance of a candidate whose coherent patch would span an exemplar
-    /// period (0 turns the test off; the default ranks such a candidate behind every other).
-    #[arg(long, default_value_t = DEFAULT_PERIOD_PENALTY)]
-    pub period_penalty: u32,
-    /// Size of the k-coherence similarity sets.
-    #[arg(short, long, default_value_t = DEFAULT_COHERENCE_K)]
-    pub k: u32,
-    /// Smallest distance in pixels between members of a similarity set.
-    #[arg(long, default_value_t = DEFAULT_COHERENCE_SPREAD)]
-    pub spread: u32,
     /// The exemplar does not tile: clamp at its borders instead of wrapping (a resample of an
     /// image over 512 pixels clamps too).
     #[arg(long)]
     pub clamp: bool,
-    /// Weight of the feature-distance channel in the appearance space, in percent of the
-    /// colour's standard deviation, 0 to 400 (0: colour only): a signed distance to the
-    /// exemplar's cracks, veins or outlines, found automatically (docs/synthesis.md)
-    #[arg(long, default_value_t = lazysolid_synth::feature::DEFAULT_FEATURE_WEIGHT)]
-    pub feature_weight: u32,
     /// Neither read nor write the on-disk cache of exemplar analyses (kept in
     /// LAZYSOLID_CACHE_DIR, else in the user's cache folder, e.g. ~/.cache/lazysolid).
     #[arg(long)]
@@ -72,6 +49,12 @@ pub struct SynthArgs {
     /// before synthesis starts).
     #[arg(short, long)]
     pub output: PathBuf,
+    #[command(flatten)]
+    pub schedule: Schedule,
+    #[command(flatten)]
+    pub coherence: Coherence,
+    #[command(flatten)]
+    pub features: Features,
 }
 
 fn parse_offset(s: &str) -> Result<(i32, i32), String> {
@@ -129,10 +112,10 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     };
     let start = Instant::now();
     let analysis_params = AnalysisParams {
-        k: args.k,
-        spread: args.spread,
+        k: args.coherence.k,
+        spread: args.coherence.spread,
         toroidal: !args.clamp,
-        feature_weight: args.feature_weight,
+        feature_weight: args.features.feature_weight,
     };
     let (analysis, cached) = analyze_cached(&exemplar, &analysis_params, cache.as_ref())?;
     let analysis_s = start.elapsed().as_secs_f64();
@@ -140,10 +123,10 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let params = SynthParams::new(
         levels,
         args.seed,
-        &passes_or_default(&args.passes, levels),
-        &jitter_or_default(&args.jitter, levels),
+        &passes_or_default(&args.schedule.passes, levels),
+        &jitter_or_default(&args.schedule.jitter, levels),
     )?
-    .with_period_penalty(args.period_penalty)?;
+    .with_period_penalty(args.coherence.period_penalty)?;
     let window = Region {
         origin: [args.offset.0, args.offset.1],
         size: [args.res.width, args.res.height],
@@ -198,7 +181,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         exemplar.width,
         exemplar.height,
         levels,
-        args.k
+        args.coherence.k
     );
     println!("exemplar fit: {fit}");
     if analysis_params.feature_weight > 0 {

@@ -6,7 +6,7 @@ use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
 use crate::kernels::store;
 use crate::store::colours::{fill_colours, ByKey, KeyedColours};
-use crate::store::kernels::{prepare_lookup, StoreKernels, TimedLookup};
+use crate::store::kernels::{timed_lookup, StoreKernels, TimedLookup};
 use crate::store::{ColourSource, Filter, InsertUnit, SparseStore, StoreError, StoreReport};
 use crate::voxel::VoxelKeys;
 use glam::{Vec3, Vec4};
@@ -560,20 +560,23 @@ impl SparseStore for TileTree {
         filter: Filter,
     ) -> Result<TimedLookup<'_>, StoreError> {
         check_normals(points, normals)?;
-        let k = &self.kernels;
-        let kernel = k.gpu.kernel(&store::TILETREE_LOOKUP)?;
-        let groups = kernel.groups_for(points.len() as u64);
-        let (n, mode) = (points.len() as u32, (filter == Filter::Trilinear) as u32);
-        Ok(prepare_lookup(k, points, normals, move |rec, a| {
-            let push = LookupPush {
-                store: self.params(),
-                points: a.points,
-                normals: a.normals,
-                results: a.results,
-                n,
-                mode,
-            };
-            rec.dispatch(&kernel, groups, &[], &push)
-        })?)
+        Ok(timed_lookup(
+            &self.kernels,
+            &store::TILETREE_LOOKUP,
+            points,
+            normals,
+            filter,
+            move |rec, c| {
+                let push = LookupPush {
+                    store: self.params(),
+                    points: c.points,
+                    normals: c.normals,
+                    results: c.results,
+                    n: c.n,
+                    mode: c.mode,
+                };
+                rec.dispatch(c.kernel, c.groups, &[], &push)
+            },
+        )?)
     }
 }

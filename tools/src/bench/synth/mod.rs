@@ -23,6 +23,7 @@ use super::harness::{time_cpu, Bench, Throughput};
 use super::plot::bar_chart;
 use super::CommonArgs;
 use crate::cli::resolution::Resolution;
+use crate::cli::tuning::Schedule;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -70,14 +71,6 @@ pub struct SynthArgs {
     /// energy moves by up to ±45 % with the layout it draws, so fewer seeds decide little.
     #[arg(long, default_value_t = 8)]
     pub quality_seeds: u32,
-    /// Jitter strengths of lazysolid's synthesis, one for all levels or one per level (coarsest
-    /// first) [default: 1.0, 0.8, 0.6, 0.4 at the four coarsest levels, 0.2 below].
-    #[arg(long, value_delimiter = ',')]
-    pub jitter: Vec<f32>,
-    /// Correction passes of lazysolid's synthesis, one for all levels or one per level
-    /// (coarsest first) [default: 4 at every level, 2 at the finest].
-    #[arg(long, value_delimiter = ',')]
-    pub passes: Vec<u32>,
     /// Most output pixels the neighbourhood energy evaluates, for both outputs.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -87,6 +80,8 @@ pub struct SynthArgs {
     /// Only the first exemplar at the first size.
     #[arg(long)]
     pub quick: bool,
+    #[command(flatten)]
+    pub schedule: Schedule,
 }
 
 /// Smallest and largest output side: the 7×7 energy needs 7 pixels, and the baseline's time
@@ -239,8 +234,8 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         )?;
         let analysis = analysis.expect("analysed at least once");
         let levels = analysis.levels.len() as u32;
-        let passes = passes_or_default(&args.passes, levels);
-        let jitter = jitter_or_default(&args.jitter, levels);
+        let passes = passes_or_default(&args.schedule.passes, levels);
+        let jitter = jitter_or_default(&args.schedule.jitter, levels);
         let params = SynthParams::new(levels, args.seed, &passes, &jitter)?;
         let synth = GpuSynthesizer::new(&gpu, &analysis)?;
         let key = analysis_key(exemplar, &analysis_params);
@@ -430,18 +425,27 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         ("quality seeds".to_string(), args.quality_seeds as f64),
         (
             "jitter (coarsest level)".to_string(),
-            args.jitter
+            args.schedule
+                .jitter
                 .first()
                 .copied()
                 .unwrap_or(DEFAULT_COARSE_JITTER[0]) as f64,
         ),
         (
             "passes (finest level)".to_string(),
-            args.passes.last().copied().unwrap_or(DEFAULT_FINEST_PASSES) as f64,
+            args.schedule
+                .passes
+                .last()
+                .copied()
+                .unwrap_or(DEFAULT_FINEST_PASSES) as f64,
         ),
         (
             "passes (other levels)".to_string(),
-            args.passes.first().copied().unwrap_or(DEFAULT_PASSES) as f64,
+            args.schedule
+                .passes
+                .first()
+                .copied()
+                .unwrap_or(DEFAULT_PASSES) as f64,
         ),
         ("baseline threads".to_string(), threads as f64),
     ];

@@ -1,0 +1,54 @@
+//! The synthesis tuning flags, defined once: every command that synthesizes flattens these
+//! groups in, so a flag has one name, one parser and one help text wherever it appears, under
+//! the help heading "Synthesis tuning".
+
+use clap::Args;
+use lazysolid_synth::{DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY};
+
+/// The per-level schedule of the pyramid synthesis: how strongly each level is jittered and
+/// how often it is corrected. Empty lists mean the synthesizer's own defaults.
+#[derive(Args, Clone, Debug, Default)]
+#[command(next_help_heading = "Synthesis tuning")]
+pub struct Schedule {
+    /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first
+    /// [default: 2D and multiscale 1.0, 0.8, 0.6, 0.4 at the four coarsest levels, 0.2 below;
+    /// solid 0.6, 0.5, 0.4, 0.3, then 0.2].
+    #[arg(long, value_delimiter = ',')]
+    pub jitter: Vec<f32>,
+    /// Correction passes, one for all levels or a comma-separated list, coarsest first
+    /// [default: 2D and multiscale 4 per level, 2 at the finest; solid 2 per level, 1 at the
+    /// finest]. Each solid pass pads every level's box by up to 5, 3 and 2 voxels a side along
+    /// x, y and z, so fewer passes make a small run possible on a slow device.
+    #[arg(long, value_delimiter = ',')]
+    pub passes: Vec<u32>,
+}
+
+/// The 2D correction's candidate sets: their size and spread, and the period penalty that
+/// keeps a coherent patch from spanning an exemplar period.
+#[derive(Args, Clone, Debug)]
+#[command(next_help_heading = "Synthesis tuning")]
+pub struct Coherence {
+    /// Added to the distance of a candidate whose coherent patch would span an exemplar
+    /// period (0 turns the test off; the default ranks such a candidate behind every other).
+    #[arg(long, default_value_t = DEFAULT_PERIOD_PENALTY)]
+    pub period_penalty: u32,
+    /// Size of the k-coherence similarity sets.
+    #[arg(short, long, default_value_t = DEFAULT_COHERENCE_K)]
+    pub k: u32,
+    /// Smallest distance in pixels between members of a similarity set (at the same stack
+    /// level, in multiscale).
+    #[arg(long, default_value_t = DEFAULT_COHERENCE_SPREAD)]
+    pub spread: u32,
+}
+
+/// The feature-distance channel of the appearance space.
+#[derive(Args, Clone, Debug)]
+#[command(next_help_heading = "Synthesis tuning")]
+pub struct Features {
+    /// Weight of the feature-distance channel in the appearance space, in percent of the
+    /// colour's standard deviation, 0 to 400 (0: colour only): a signed distance to the
+    /// exemplar's cracks, veins or outlines, found automatically (docs/synthesis.md,
+    /// docs/solid.md)
+    #[arg(long, default_value_t = lazysolid_synth::feature::DEFAULT_FEATURE_WEIGHT)]
+    pub feature_weight: u32,
+}
