@@ -3,7 +3,7 @@
 //! hash constants) and the synthesizer's own. A GLSL error fails the build with the file and
 //! line.
 
-use lazysolid_shader_build::{build_kernels, KernelSet};
+use lazysolid_shader_build::{build_kernels, dependency_constants, KernelSet};
 use std::path::PathBuf;
 
 fn main() {
@@ -11,10 +11,10 @@ fn main() {
     build_kernels(&KernelSet {
         glsl_root: manifest.join("../glsl"),
         folders: vec!["synth".into()],
-        constants: vec![
-            manifest.join("../compute/src/shader_constants.rs"),
-            manifest.join("src/shader_constants.rs"),
-        ],
+        constants: dependency_constants("lazysolid_compute")
+            .into_iter()
+            .chain([manifest.join("src/shader_constants.rs")])
+            .collect(),
         gpu_module: "lazysolid_compute::gpu".into(),
     });
 }

@@ -51,18 +51,6 @@ pub const ENVIRONMENT_CONSTANT: u32 = 0;
 /// See [`ENVIRONMENT_CONSTANT`].
 pub const ENVIRONMENT_LATLONG: u32 = 1;
 
-/// What `glsl/render/shading_test.comp` evaluates for each case: the BSDF entry points, the
-/// solid textures, the lights, the environment, or the random numbers and warps.
-pub const SHADING_TEST_BSDF: u32 = 0;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_TEXTURE: u32 = 1;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_LIGHT: u32 = 2;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_ENVIRONMENT: u32 = 3;
-/// See [`SHADING_TEST_BSDF`].
-pub const SHADING_TEST_RNG: u32 = 4;
-
 /// Sparse stores a renderer record may describe.
 pub const STORE_KIND_HASH: u32 = 0;
 /// See [`STORE_KIND_HASH`].

@@ -4,6 +4,13 @@
 //! validation layer required. [`with_gpu`] fails the test on any validation error, including
 //! leaks, which the layer reports only when the device is destroyed.
 
+pub mod shader_constants;
+
+/// The test-only kernels, compiled from `glsl/render_test/` by this crate's `build.rs`.
+pub mod kernels {
+    include!(concat!(env!("OUT_DIR"), "/kernels.rs"));
+}
+
 use lazysolid_compute::gpu::{DeviceAddress, Gpu, GpuOptions, PushRegistration};
 use lazysolid_compute::hash::Universe;
 use lazysolid_renderer::glint::synthetic::{self, BumpExtent};
@@ -139,7 +146,7 @@ pub fn point_on_triangle(g: &mut impl Rng, [p0, p1, p2]: [glam::Vec3; 3]) -> gla
 }
 
 lazysolid_compute::push_block! {
-    /// Push block of `glsl/render/shading_test.comp`, the kernel that runs the GLSL shading
+    /// Push block of `glsl/render_test/shading_test.comp`, the kernel that runs the GLSL shading
     /// library on test cases.
     #[derive(Clone, Copy)]
     pub struct ShadingTestPush<'a> {
@@ -157,7 +164,7 @@ lazysolid_compute::push_block! {
 }
 
 lazysolid_compute::push_block! {
-    /// Push block of `glsl/render/glint_test.comp`, the kernel that runs the glint point query
+    /// Push block of `glsl/render_test/glint_test.comp`, the kernel that runs the glint point query
     /// on test points.
     #[derive(Clone, Copy)]
     pub struct GlintTestPush<'a> {
@@ -173,7 +180,7 @@ lazysolid_compute::push_block! {
 }
 
 lazysolid_compute::push_block! {
-    /// Push block of `glsl/render/glint_pndf_test.comp`, the kernel that runs the glint P-NDF
+    /// Push block of `glsl/render_test/glint_pndf_test.comp`, the kernel that runs the glint P-NDF
     /// and its sampling on test cases.
     #[derive(Clone, Copy)]
     pub struct GlintPndfTestPush<'a> {
@@ -193,7 +200,7 @@ lazysolid_compute::push_block! {
 }
 
 lazysolid_compute::push_block! {
-    /// Push block of `glsl/render/glint_bsdf_test.comp`, the kernel that runs the glint
+    /// Push block of `glsl/render_test/glint_bsdf_test.comp`, the kernel that runs the glint
     /// material (`render/glint_bsdf.glsl`) on test cases.
     #[derive(Clone, Copy)]
     pub struct GlintBsdfTestPush<'a> {
@@ -215,16 +222,16 @@ pub fn push_registry() -> Vec<PushRegistration> {
     all.extend(lazysolid_synth::push_registry());
     all.extend(lazysolid_renderer::push_registry());
     all.push(PushRegistration::of::<ShadingTestPush>(
-        &lazysolid_renderer::kernels::render::SHADING_TEST,
+        &kernels::render_test::SHADING_TEST,
     ));
     all.push(PushRegistration::of::<GlintTestPush>(
-        &lazysolid_renderer::kernels::render::GLINT_TEST,
+        &kernels::render_test::GLINT_TEST,
     ));
     all.push(PushRegistration::of::<GlintPndfTestPush>(
-        &lazysolid_renderer::kernels::render::GLINT_PNDF_TEST,
+        &kernels::render_test::GLINT_PNDF_TEST,
     ));
     all.push(PushRegistration::of::<GlintBsdfTestPush>(
-        &lazysolid_renderer::kernels::render::GLINT_BSDF_TEST,
+        &kernels::render_test::GLINT_BSDF_TEST,
     ));
     all
 }

@@ -1,5 +1,5 @@
 //! The glint microstructure by example: the GLSL point query (run by
-//! `glsl/render/glint_test.comp`) against its CPU twin, the Jacobians against finite
+//! `glsl/render_test/glint_test.comp`) against its CPU twin, the Jacobians against finite
 //! differences, the map's continuity across target-patch borders, the device-built range table
 //! against its CPU build and brute force, conservative blended ranges, and bad input.
 //!
@@ -15,7 +15,7 @@ use lazysolid_compute::gpu::{Gpu, GpuBuffer};
 use lazysolid_renderer::glint::{
     build_range_table, BlendMode, ByExampleMap, GlintError, GpuGlintMap, NormalExample, RangeTable,
 };
-use lazysolid_renderer::kernels::render::GLINT_TEST;
+use lazysolid_tests::kernels::render_test::GLINT_TEST;
 use lazysolid_tests::{bumps_and_scratches, rng, with_gpu, GlintTestPush};
 use rand::Rng;
 

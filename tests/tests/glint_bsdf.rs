@@ -1,5 +1,5 @@
 //! The glint material (`glsl/include/render/glint_bsdf.glsl`) against its CPU twin
-//! (`shading::reference::glint`), input by input through `glsl/render/glint_bsdf_test.comp`,
+//! (`shading::reference::glint`), input by input through `glsl/render_test/glint_bsdf_test.comp`,
 //! and the twin's own consistency: a sample's density is the pdf of its direction, its weight
 //! is eval / pdf, and f is reciprocal.
 
@@ -9,12 +9,12 @@ use lazysolid_renderer::glint::{
     build_range_table, BlendMode, ByExampleMap, GlintRecordParams, GpuGlintMap, NormalExample,
     RangeTable,
 };
-use lazysolid_renderer::kernels::render::GLINT_BSDF_TEST;
 use lazysolid_renderer::shader_constants::{GLINT_UV_PLANAR, GLINT_UV_SPHERICAL};
 use lazysolid_renderer::shading::reference::{
     glint_eval, glint_pdf, glint_sample, glint_shade, GlintParams, GlintShade,
 };
 use lazysolid_renderer::shading::GpuMaterial;
+use lazysolid_tests::kernels::render_test::GLINT_BSDF_TEST;
 use lazysolid_tests::{bumps_and_scratches, rng, with_gpu, GlintBsdfTestPush};
 use rand::Rng;
 

@@ -9,7 +9,7 @@ use lazysolid_renderer::glint::{build_range_table, GpuGlintMap};
 use lazysolid_renderer::glint::{
     BlendMode, ByExampleMap, Footprint, MaterializedMap, NormalExample, RangeTable, SampleTexels,
 };
-use lazysolid_renderer::kernels::render::GLINT_PNDF_TEST;
+use lazysolid_tests::kernels::render_test::GLINT_PNDF_TEST;
 use lazysolid_tests::{bumps_and_scratches, rng, with_gpu, GlintPndfTestPush};
 use rand::Rng;
 

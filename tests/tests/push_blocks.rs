@@ -7,12 +7,13 @@ use lazysolid_compute::kernels::{self, prims};
 #[test]
 fn every_kernel_push_block_matches_its_host_block() {
     let registry = lazysolid_tests::push_registry();
-    // Each crate compiles its own kernels: the compute crate's, the synthesizer's and the
-    // renderer's.
+    // Each crate compiles its own kernels: the compute crate's, the synthesizer's, the
+    // renderer's and the tests' own.
     let kernels: Vec<_> = kernels::ALL
         .iter()
         .chain(lazysolid_synth::kernels::ALL)
         .chain(lazysolid_renderer::kernels::ALL)
+        .chain(lazysolid_tests::kernels::ALL)
         .flat_map(|m| m.iter())
         .collect();
     let mut problems = Vec::new();

@@ -1,5 +1,5 @@
 //! The shading library of the path tracer: every GLSL function (run by
-//! `glsl/render/shading_test.comp`) against its CPU reference input by input, then the
+//! `glsl/render_test/shading_test.comp`) against its CPU reference input by input, then the
 //! statistics of the reference: energy conservation, pdfs that integrate to the probability of
 //! sampling them, samples consistent with eval/pdf, normalized light and environment pdfs.
 //!
@@ -11,11 +11,12 @@
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
-use lazysolid_renderer::kernels::render::SHADING_TEST;
 use lazysolid_renderer::scene::{Environment, Light};
 use lazysolid_renderer::shader_constants::*;
 use lazysolid_renderer::shading::reference as cpu;
 use lazysolid_renderer::shading::{EnvironmentMap, GpuEnvironment, GpuLight, GpuMaterial};
+use lazysolid_tests::kernels::render_test::SHADING_TEST;
+use lazysolid_tests::shader_constants::*;
 use lazysolid_tests::{rng, with_gpu, ShadingTestPush};
 use rand::Rng;
 use rayon::prelude::*;
@@ -27,7 +28,7 @@ const RESULT_FLOATS: usize = 24;
 /// Cases per material configuration, texture kind, light kind.
 const CASES: usize = 4096;
 
-/// One input of the test kernel (`ShadingCase` in `glsl/render/shading_test.comp`). Per mode:
+/// One input of the test kernel (`ShadingCase` in `glsl/render_test/shading_test.comp`). Per mode:
 /// - BSDF: a = albedo, b = wo, c = wi, d = u; results: eval (0..3), pdf (3), ok (4), wi (5..8),
 ///   weight (8..11), pdf (11), specular (12), has_smooth_lobe (13);
 /// - texture: a = point; results: albedo (0..3);

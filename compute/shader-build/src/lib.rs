@@ -62,6 +62,27 @@ pub fn build_kernels(set: &KernelSet) {
     }
 }
 
+/// Hands the constants files `set` was compiled with to the build scripts of the crates that
+/// depend on this one directly (Cargo's `links` metadata: the crate's `links = "NAME"` key makes
+/// them `DEP_NAME_CONSTANTS`), so a dependent's kernels, which may include this crate's GLSL,
+/// get the same `#define`s without naming another crate's files by path.
+pub fn export_constants(set: &KernelSet) {
+    let joined = std::env::join_paths(&set.constants)
+        .unwrap_or_else(|e| panic!("constants paths cannot be joined: {e}"));
+    println!("cargo::metadata=constants={}", joined.to_string_lossy());
+}
+
+/// The constants files the dependency whose `links` key is `links` exported with
+/// [`export_constants`]. Panics (failing the build with the variable's name) when it exported
+/// none: the dependency is then not a direct one, or has no `links` key.
+pub fn dependency_constants(links: &str) -> Vec<PathBuf> {
+    let var = format!("DEP_{}_CONSTANTS", links.to_uppercase().replace('-', "_"));
+    let value = std::env::var_os(&var).unwrap_or_else(|| {
+        panic!("{var} is not set: `{links}` must be a direct dependency with `links = \"{links}\"`")
+    });
+    std::env::split_paths(&value).collect()
+}
+
 /// Compiles every kernel of `set` and returns the generated Rust source.
 ///
 /// # Errors

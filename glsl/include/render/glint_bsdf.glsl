@@ -8,7 +8,7 @@
 // its solid-angle density is p_s(s) h.z / (4 wo.h), the density MIS weights use.
 // Host side: renderer/src/glint/gpu_material.rs; CPU twins of the P-NDF and sampling:
 // renderer/src/glint/pndf.rs, of this file: renderer/src/shading/reference/glint.rs (tested
-// input by input through glsl/render/glint_bsdf_test.comp in tests/tests/glint_bsdf.rs).
+// input by input through glsl/render_test/glint_bsdf_test.comp in tests/tests/glint_bsdf.rs).
 #ifndef LAZYSOLID_RENDER_GLINT_BSDF_GLSL
 #define LAZYSOLID_RENDER_GLINT_BSDF_GLSL
 
