@@ -1,0 +1,41 @@
+//! `lazysolid bench lazy`: lazy synthesis of a mesh's voxels, each store's bytes and the
+//! cross-section figure.
+
+use crate::support::{lazysolid, terra_square, BenchRun};
+
+/// `bench lazy` on the bunny at 16³ with a 16² terra crop (its candidates take seconds): the
+/// timed row, the per-level notes, each store's bytes and the cross-section figure.
+#[test]
+fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
+    let out = tempfile::tempdir().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = terra_square(dir.path(), 16);
+    let bench = BenchRun::new(
+        lazysolid()
+            .args(["bench", "lazy", "--meshes", "bunny00", "--voxel-res", "16"])
+            .arg("--exemplar")
+            .arg(&exemplar)
+            .args(["--runs", "1", "--warmup", "0"])
+            .env("LAZYSOLID_CACHE_DIR", dir.path().join("cache")),
+        out.path(),
+        &[
+            "bunny00 16³",
+            "gpu lazy (wall)",
+            "bunny00 16³: finest-level voxels synthesized % of R³",
+            "bunny00 16³: store MB: tiletree",
+            "bunny00 16³: store MB: perfect hash (trilinear)",
+            "bunny00 16³: level 0 voxels",
+            "bunny00 16³ cross-section z = 8: voxel versions computed after the surface",
+        ],
+    );
+    let figures = bench
+        .entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let section = image::open(figures.join("bunny00-16-section-z8.png")).unwrap();
+    assert_eq!((section.width(), section.height()), (16, 16));
+    assert!(bench.json()["rows"]
+        .as_array()
+        .is_some_and(|r| r.len() == 1));
+}

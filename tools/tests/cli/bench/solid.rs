@@ -1,0 +1,138 @@
+//! `lazysolid bench solid`: solid synthesis times, peak memory, the quality table with and without
+//! the ablations, and the figures.
+
+use crate::support::{lazysolid, BenchRun};
+
+/// `bench solid` end to end at the smallest size: the candidate row, the synthesis row, the
+/// cold and warm end-to-end rows (each checks what the candidate cache did), the peak memory,
+/// the quality table with its variants and the figures.
+#[test]
+fn bench_solid_writes_times_quality_and_figures() {
+    let out = tempfile::tempdir().unwrap();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args([
+                "bench",
+                "solid",
+                "--quick",
+                "--exemplars",
+                "terra",
+                "--three",
+                "",
+            ])
+            .args([
+                "--candidate-sides",
+                "16",
+                "--side",
+                "16",
+                "--voxel-res",
+                "16",
+            ])
+            .args(["--passes", "1", "--energy-samples", "64"])
+            .args(["--runs", "1", "--warmup", "0"]),
+        out.path(),
+        &[
+            "terra 16² candidates",
+            "lazysolid gpu kernels (wall)",
+            "lazysolid host, pruned (wall)",
+            "lazysolid gpu synthesis (wall)",
+            "lazysolid end-to-end cold (wall)",
+            "lazysolid end-to-end warm (wall)",
+            "terra 16³ peak GPU MiB",
+            "own role",
+            "mean colour",
+            "keep current",
+            "crossbar only",
+            "no balance",
+            "no feature",
+            "extruded E_z",
+            "2d synth",
+            // The 64² pattern fitted to the 16² measured (--fit auto).
+            "terra: exemplar fit: terra.pat 64x64 RGB → Lanczos3 resample 16x16",
+        ],
+    );
+    let implementations = bench.column("implementation");
+    assert_eq!(implementations.len(), 5, "{implementations:?}");
+    let figures = bench
+        .entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(figures.join("quality.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        json[0]["exemplars"][0],
+        "terra.pat 64x64 RGB → Lanczos3 resample 16x16"
+    );
+    let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
+    // Nine variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 9 * 3, "{quality}");
+    assert!(
+        quality
+            .lines()
+            .next()
+            .unwrap()
+            .contains(",anisotropy,exemplar_anisotropy,"),
+        "{quality}"
+    );
+    for name in [
+        "terra-16-slices.png",
+        "terra-16-keep-current-slices.png",
+        "terra-16-no-balance-slices.png",
+        "terra-16-no-feature-slices.png",
+        "terra-slab.png",
+        "quality.json",
+    ] {
+        assert!(figures.join(name).exists(), "{name}");
+    }
+    assert!(bench.stdout.contains("quality table"), "{}", bench.stdout);
+}
+
+/// `bench solid --no-ablations`: the default synthesis, the colour rules, the extruded
+/// reference and the 2D synthesis are scored; none of the four ablation volumes is made.
+#[test]
+fn bench_solid_without_ablations_scores_the_default_only() {
+    let out = tempfile::tempdir().unwrap();
+    let bench = BenchRun::new(
+        lazysolid()
+            .args([
+                "bench",
+                "solid",
+                "--quick",
+                "--no-ablations",
+                "--exemplars",
+                "terra",
+            ])
+            .args(["--three", "", "--builders", "host"])
+            .args([
+                "--candidate-sides",
+                "16",
+                "--side",
+                "16",
+                "--voxel-res",
+                "16",
+            ])
+            .args(["--passes", "1", "--energy-samples", "64"])
+            .args(["--runs", "1", "--warmup", "0"]),
+        out.path(),
+        &["own role", "mean colour", "extruded E_z", "2d synth"],
+    );
+    for absent in ["keep current", "crossbar only", "no balance", "no feature"] {
+        assert!(
+            !bench.stdout.contains(absent),
+            "{absent}:\n{}",
+            bench.stdout
+        );
+    }
+    let figures = bench
+        .entries
+        .iter()
+        .find(|p| p.is_dir())
+        .expect("a figures folder");
+    let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
+    // Five variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 5 * 3, "{quality}");
+    assert!(figures.join("terra-16-slices.png").exists());
+    assert!(!figures.join("terra-16-keep-current-slices.png").exists());
+}

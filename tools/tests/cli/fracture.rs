@@ -1,0 +1,93 @@
+//! `lazysolid fracture`: closed OBJ pieces whose volumes add up to the mesh's, plane cuts, and
+//! bad input refused before anything is written.
+
+use crate::support::{lazysolid, repo, run};
+
+/// `lazysolid fracture` writes closed pieces (each OBJ read back and checked) with the cut faces
+/// in their own group and material and volumes that add up to the mesh's; plane cuts report a
+/// plane that misses; open meshes, bad piece counts and bad planes are refused clearly, and
+/// a refused run writes nothing.
+#[test]
+fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
+    use lazysolid_renderer::fracture::{check_closed, volume};
+    use lazysolid_renderer::mesh::Mesh;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("pieces");
+    let (ok, stdout, err) = run(lazysolid()
+        .args([
+            "fracture",
+            "elephant",
+            "--pieces",
+            "6",
+            "--seed",
+            "4",
+            "--out-dir",
+        ])
+        .arg(&out));
+    assert!(ok, "{err}");
+    assert!(stdout.contains("6 pieces of"), "{stdout}");
+    let whole = Mesh::load(repo("assets/meshes/elephant.off")).unwrap();
+    let mut sum = 0.0;
+    for i in 0..6 {
+        let path = out.join(format!("piece_{i:03}.obj"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.contains("mtllib fragments.mtl"), "{text:.200}");
+        assert!(text.contains("g interior\nusemtl interior\n"), "piece {i}");
+        assert!(text.contains("g surface\nusemtl surface\n"), "piece {i}");
+        let piece = Mesh::load(&path).unwrap();
+        check_closed(&piece).unwrap();
+        sum += volume(&piece.positions, &piece.triangles);
+    }
+    assert!(!out.join("piece_006.obj").exists());
+    let v = volume(&whole.positions, &whole.triangles);
+    assert!(((sum - v) / v).abs() < 1e-5, "{sum} vs {v}");
+    let mtl = std::fs::read_to_string(out.join("fragments.mtl")).unwrap();
+    assert!(mtl.contains("newmtl interior") && mtl.contains("newmtl surface"));
+
+    let cut = dir.path().join("cut");
+    let (ok, stdout, err) = run(lazysolid()
+        .args([
+            "fracture",
+            "cube",
+            "--plane",
+            "0,1,0,5",
+            "--plane",
+            "1,0,0,0.5",
+            "--out-dir",
+        ])
+        .arg(&cut));
+    assert!(ok, "{err}");
+    assert!(stdout.contains("(plane 1) misses the mesh"), "{stdout}");
+    assert!(
+        stdout.contains("75.0000 %") && stdout.contains("25.0000 %"),
+        "{stdout}"
+    );
+
+    let refused = dir.path().join("refused");
+    for (args, needles) in [
+        (
+            vec!["fracture", "ChineseDragon-10kv", "--pieces", "4"],
+            vec!["ChineseDragon-10kv.off", "not closed", "6 boundary edge"],
+        ),
+        (
+            vec!["fracture", "cube", "--pieces", "0"],
+            vec!["--pieces 0", "1 to 1024"],
+        ),
+        (
+            vec!["fracture", "cube", "--plane", "0,0,0,1"],
+            vec!["non-zero normal"],
+        ),
+        (vec!["fracture", "cube"], vec!["--pieces N", "--plane"]),
+        (
+            vec!["fracture", "no_such_mesh", "--pieces", "2"],
+            vec!["no_such_mesh"],
+        ),
+    ] {
+        let (ok, _, err) = run(lazysolid().args(&args).arg("--out-dir").arg(&refused));
+        assert!(!ok, "{args:?} must fail");
+        for n in needles {
+            assert!(err.contains(n), "{args:?}: {n:?} not in {err}");
+        }
+        assert!(!refused.exists(), "{args:?} wrote {}", refused.display());
+    }
+}

@@ -1,0 +1,131 @@
+//! `lazysolid render`: the PNG and EXR of a scene, the frames of an animated one, and bad scenes
+//! and arguments refused before anything is written.
+
+use crate::support::{lazysolid, repo, run};
+
+#[test]
+fn render_writes_png_and_exr_and_says_where() {
+    let out = tempfile::tempdir().unwrap();
+    let png = out.path().join("interior.png");
+    let (ok, stdout, err) = run(lazysolid()
+        .arg("render")
+        .arg(repo("scenes/test/interior.toml"))
+        .arg("-o")
+        .arg(&png)
+        .args(["--spp", "2", "--res", "40x30"])
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    assert!(stdout.contains(&png.display().to_string()), "{stdout}");
+    assert!(err.contains("Mrays/s"), "{err}");
+    let img = image::open(&png).unwrap();
+    assert_eq!((img.width(), img.height()), (40, 30));
+    assert!(out.path().join("interior.exr").exists());
+}
+
+#[test]
+fn render_refuses_bad_scenes_and_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("bad.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\nfov_y = 40\n\n[render]\nwidth = 8\nheight = 8\nspp = 1\nfocus = 2\n",
+    )
+    .unwrap();
+    let png = dir.path().join("out.png");
+    let (ok, _, err) = run(lazysolid().arg("render").arg(&scene).arg("-o").arg(&png));
+    assert!(!ok);
+    assert!(
+        err.contains("bad.toml:10") && err.contains("focus"),
+        "the unknown key is named with its line: {err}"
+    );
+    assert!(!png.exists(), "no image is written for a bad scene");
+    let (ok, _, err) = run(lazysolid()
+        .arg("render")
+        .arg(repo("scenes/test/interior.toml"))
+        .arg("-o")
+        .arg(&png)
+        .args(["--res", "40by30"]));
+    assert!(
+        !ok && err.contains("WxH") && err.contains("40by30"),
+        "{err}"
+    );
+    let (ok, _, err) = run(lazysolid()
+        .arg("render")
+        .arg(dir.path().join("missing.toml"))
+        .arg("-o")
+        .arg(&png));
+    assert!(!ok && err.contains("missing.toml"), "{err}");
+}
+
+/// `render --frame K --frames A..B` renders the still and the sequence from one bake: the still
+/// (PNG and EXR), numbered PNGs, and an animated GIF with one image per frame. A scene without
+/// [animation] and a frame past its last are refused before anything is rendered.
+#[test]
+fn render_frames_writes_a_still_numbered_frames_and_a_gif() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("boom.png");
+    let (ok, stdout, err) = run(lazysolid()
+        .arg("render")
+        .arg(repo("scenes/test/fracture.toml"))
+        .args([
+            "--frame", "1", "--frames", "0..2", "--res", "32x24", "--spp", "2", "-o",
+        ])
+        .arg(&out)
+        .env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{err}");
+    for needle in [
+        "cut faces:",
+        "frame 1 (t = 0.250 s): 32x24, 2 spp",
+        "frame 2 (t = 0.500 s)",
+        "total",
+    ] {
+        assert!(err.contains(needle), "{needle:?} not in {err}");
+    }
+    assert!(
+        stdout.contains("animation:") && stdout.contains("boom.gif"),
+        "{stdout}"
+    );
+    for f in [
+        "boom.png",
+        "boom.exr",
+        "boom_0000.png",
+        "boom_0001.png",
+        "boom_0002.png",
+    ] {
+        assert!(dir.path().join(f).is_file(), "{f} missing");
+    }
+    assert!(!dir.path().join("boom_0003.png").exists());
+    let gif = std::fs::read(dir.path().join("boom.gif")).unwrap();
+    assert!(gif.starts_with(b"GIF89a"));
+    // One graphic control extension (the frame delay) per frame.
+    let frames = gif.windows(2).filter(|w| w == &[0x21, 0xf9]).count();
+    assert_eq!(frames, 3, "GIF frames");
+
+    let refused = dir.path().join("refused.png");
+    for (scene, args, needle) in [
+        (
+            "scenes/test/synthesized.toml",
+            vec!["--frames", "0..1"],
+            "has no [animation]",
+        ),
+        (
+            "scenes/test/fracture.toml",
+            vec!["--frame", "4"],
+            "frame 4 is past the scene's last frame 3",
+        ),
+        (
+            "scenes/test/fracture.toml",
+            vec!["--frames", "2..1"],
+            "the first frame is after the last",
+        ),
+    ] {
+        let (ok, _, err) = run(lazysolid()
+            .arg("render")
+            .arg(repo(scene))
+            .args(&args)
+            .arg("-o")
+            .arg(&refused));
+        assert!(!ok && err.contains(needle), "{args:?}: {err}");
+        assert!(!refused.exists());
+    }
+}
