@@ -14,6 +14,7 @@
 
 pub mod accel;
 pub mod assets;
+mod bake;
 pub mod diff;
 pub mod fracture;
 pub mod glint;

@@ -1,6 +1,7 @@
 //! Lazy solid synthesis: the dependency sets and the sparse synthesizer against the full-volume
 //! synthesizer (bit for bit on every requested voxel, for scattered voxels, a sphere's surface
-//! voxels, a planar slab, and a union requested in two batches in either order).
+//! voxels, a planar slab, and a union requested in two batches in either order), and matter in
+//! a store growing by a new surface.
 
 use glam::{Vec3, Vec4};
 use lazysolid_compute::hash::morton_decode;
@@ -12,7 +13,8 @@ use lazysolid_compute::store::{
 };
 use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_synth::solid::lazy::{
-    dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MAX_LAZY_COORD,
+    dependencies_cpu, lazy_key, sorted_difference, sorted_union, GpuLazySolid, LazySolidCpu,
+    MatterColours, MatterVoxels, StoredMatter, MAX_LAZY_COORD,
 };
 use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
@@ -23,7 +25,7 @@ use lazysolid_synth::{SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, unit_mesh, with_gpu};
 use rand::Rng;
 use std::collections::BTreeSet;
-use std::sync::OnceLock;
+use std::sync::{Arc, Mutex, OnceLock};
 
 type Case = (SolidExemplars, SolidAnalysis, SolidCandidates, SynthParams);
 
@@ -380,5 +382,94 @@ fn stores_filled_by_lazy_synthesis_hold_the_full_volume_colours() {
         let map = tree.map_words().unwrap();
         let bad = map.iter().zip(&texels).filter(|(a, b)| a != b).count();
         assert_eq!(bad, 0, "tiletree: {bad} of {} words differ", map.len());
+    });
+}
+
+/// Matter in a store (`StoredMatter`) grows by a new surface through the store's insert:
+/// exactly the new surface's voxels the store lacked are synthesized and inserted, every
+/// stored voxel holds the full volume's colour, and growing by the same surface again
+/// synthesizes and inserts nothing.
+#[test]
+fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
+    let (exemplars, analysis, candidates, params) = case();
+    let m = unit_mesh("bunny00.off");
+    let r = RESOLUTION;
+    with_gpu(|gpu| {
+        let window = VolumeBox {
+            origin: [0; 3],
+            size: [r; 3],
+        };
+        let full = GpuSolidSynthesizer::new(gpu, analysis, candidates)
+            .unwrap()
+            .synthesize(analysis, candidates, params, window, false, &mut |_| {})
+            .unwrap()
+            .0;
+        let colours = full.colours(exemplars);
+        let want = |p: [u32; 3]| -> u32 {
+            pack_rgb(colours[window.index(p.map(|v| v as i32))]) | 0xff00_0000
+        };
+        let kernels = StoreKernels::new(gpu).unwrap();
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
+        let shared = Arc::new(Mutex::new(lazy));
+        let (mut matter, built) = StoredMatter::build(
+            &mut v,
+            MatterColours::Lazy(shared.clone()),
+            MatterVoxels::Surface,
+            r,
+            &m.positions,
+            &m.triangles,
+            |keys, source| HashStore::build(&kernels, r, keys.unwrap(), source, Default::default()),
+        )
+        .unwrap();
+        let outer = v
+            .surface(&m.positions, &m.triangles, r)
+            .unwrap()
+            .read()
+            .unwrap();
+        assert_eq!(matter.held(), &outer[..]);
+        assert!(built.unwrap().versions > 0);
+        // A cap: the square y = 0.47 over [0.2, 0.8]², as a cut through the bunny gives.
+        let cap_positions = [
+            Vec3::new(0.2, 0.47, 0.2),
+            Vec3::new(0.8, 0.47, 0.2),
+            Vec3::new(0.8, 0.47, 0.8),
+            Vec3::new(0.2, 0.47, 0.8),
+        ];
+        let cap_triangles = [[0, 2, 1], [0, 3, 2]];
+        let cap = v
+            .surface(&cap_positions, &cap_triangles, r)
+            .unwrap()
+            .read()
+            .unwrap();
+        let lacking = sorted_difference(&cap, &outer);
+        assert!(!lacking.is_empty() && lacking.len() < cap.len());
+        let grown = matter
+            .grow(gpu, &mut v, &cap_positions, &cap_triangles)
+            .unwrap();
+        assert_eq!(grown.requested_voxels, cap.len() as u64);
+        assert_eq!(grown.new_voxels, lacking.len() as u64);
+        assert_eq!(grown.texels_added, lacking.len() as u64);
+        assert!(grown.synthesis.is_some_and(|s| s.versions > 0));
+        let union = sorted_union(&outer, &cap);
+        assert_eq!(matter.held(), &union[..]);
+        assert_eq!(matter.store().len(), union.len() as u64);
+        let centres: Vec<Vec3> = union
+            .iter()
+            .map(|&k| (glam::UVec3::from(morton_decode(k, 3)).as_vec3() + 0.5) / r as f32)
+            .collect();
+        let got = matter.store().lookup(&centres, Filter::Nearest).unwrap();
+        let bad = union
+            .iter()
+            .zip(&got)
+            .filter(|(&k, c)| unpack_rgba8(want(morton_decode(k, 3))) != **c)
+            .count();
+        assert_eq!(bad, 0, "{bad} of {} stored voxels differ", union.len());
+        let again = matter
+            .grow(gpu, &mut v, &cap_positions, &cap_triangles)
+            .unwrap();
+        assert_eq!((again.new_voxels, again.texels_added), (0, 0));
+        assert!(again.synthesis.is_none());
+        assert_eq!(matter.state_bytes(), shared.lock().unwrap().bytes());
     });
 }

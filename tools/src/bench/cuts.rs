@@ -20,13 +20,14 @@ use clap::Args;
 use glam::{DVec3, Vec3};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::hash::RobinHoodConfig;
-use lazysolid_compute::store::{ColourSource, HashStore, SparseStore, StoreKernels};
-use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
+use lazysolid_compute::store::{HashStore, StoreKernels};
+use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
-use lazysolid_synth::solid::lazy::GpuLazySolid;
+use lazysolid_synth::solid::lazy::{GpuLazySolid, MatterColours, MatterVoxels, StoredMatter};
 use lazysolid_synth::solid::SolidExemplars;
+use std::sync::{Arc, Mutex};
 
 /// What to measure.
 #[derive(Args)]
@@ -61,12 +62,9 @@ const CUTS: [[f64; 3]; 4] = [
 const THESIS: &str = "thesis (2008 GPU): 8 ms and 14.4 MB of temporary memory per new 256² cut; \
                       storage 1.3 MB for the equivalent of 256³";
 
-/// A lazy state holding the outer surface, and a store over it.
+/// Synthesized matter over the outer surface in a coherent-hash store: what every cut grows.
 struct Holder {
-    lazy: GpuLazySolid,
-    store: HashStore,
-    /// Stored voxel keys, sorted (to request only what the store lacks).
-    stored: Vec<u64>,
+    matter: StoredMatter<HashStore>,
 }
 
 /// What one cut or fracture asked and cost.
@@ -96,7 +94,7 @@ struct Setup<'a> {
 impl Holder {
     /// A fresh state and store holding the outer surface at resolution `r`.
     fn new(setup: &Setup<'_>, voxelizer: &mut Voxelizer, r: u32) -> anyhow::Result<Holder> {
-        let mut lazy = GpuLazySolid::with_defaults(
+        let lazy = GpuLazySolid::with_defaults(
             setup.gpu,
             setup.exemplars,
             setup.seed,
@@ -105,24 +103,19 @@ impl Holder {
         )
         .context("the lazy synthesis state")?;
         let mesh = setup.mesh;
-        let keys = voxelizer.surface(&mesh.positions, &mesh.triangles, r)?;
-        let (colours, _) = lazy.colours(&keys)?;
-        let source = ColourSource::Buffer {
-            keys: &keys,
-            colours: &colours,
-        };
-        let store = HashStore::build(
-            &setup.kernels,
+        let (matter, _) = StoredMatter::build(
+            voxelizer,
+            MatterColours::Lazy(Arc::new(Mutex::new(lazy))),
+            MatterVoxels::Surface,
             r,
-            &keys,
-            &source,
-            RobinHoodConfig::default(),
+            &mesh.positions,
+            &mesh.triangles,
+            |keys, source| {
+                let keys = keys.expect("surface voxels");
+                HashStore::build(&setup.kernels, r, keys, source, RobinHoodConfig::default())
+            },
         )?;
-        Ok(Holder {
-            lazy,
-            store,
-            stored: keys.read()?,
-        })
+        Ok(Holder { matter })
     }
 
     /// Requests, synthesizes and inserts the surface voxels of `caps` the store lacks.
@@ -131,51 +124,23 @@ impl Holder {
         gpu: &Gpu,
         voxelizer: &mut Voxelizer,
         caps: &(Vec<Vec3>, Vec<[u32; 3]>),
-        r: u32,
     ) -> anyhow::Result<CutCost> {
-        let state_before = self.lazy.bytes();
-        let store_before = self.store.bytes();
-        let mut cost = None;
-        let (result, wall_ms) = time_cpu(|| -> anyhow::Result<()> {
-            let cap = voxelizer.surface(&caps.0, &caps.1, r)?.read()?;
-            let new: Vec<u64> = cap
-                .iter()
-                .copied()
-                .filter(|k| self.stored.binary_search(k).is_err())
-                .collect();
-            let keys = VoxelKeys::from_sorted(gpu, "cut voxels", &new)?;
-            let mut versions = 0;
-            let mut device_ms = 0.0;
-            if !new.is_empty() {
-                let (colours, report) = self.lazy.colours(&keys)?;
-                let source = ColourSource::Buffer {
-                    keys: &keys,
-                    colours: &colours,
-                };
-                self.store.insert(&keys, &source)?;
-                versions = report.computed.iter().sum();
-                device_ms = report.gpu_ms;
-            }
-            cost = Some((cap.len(), new, versions, device_ms));
-            Ok(())
-        });
-        result?;
-        let (cap_voxels, new, versions, device_ms) = cost.context("the cut ran")?;
-        let new_voxels = new.len();
-        self.stored.extend(new);
-        self.stored.sort_unstable();
+        let state_before = self.matter.state_bytes();
+        let (grown, wall_ms) = time_cpu(|| self.matter.grow(gpu, voxelizer, &caps.0, &caps.1));
+        let grown = grown?;
+        let synthesis = grown.synthesis;
         Ok(CutCost {
             cap_triangles: caps.1.len(),
-            cap_voxels,
-            new_voxels,
-            versions,
+            cap_voxels: grown.requested_voxels as usize,
+            new_voxels: grown.new_voxels as usize,
+            versions: synthesis.map_or(0, |s| s.versions),
             wall_ms,
-            device_ms,
-            state_growth: self.lazy.bytes() - state_before,
+            device_ms: synthesis.map_or(0.0, |s| s.gpu_ms),
+            state_growth: self.matter.state_bytes() - state_before,
             // The request's own buffers: keys (8 B) and colours (4 B) per new voxel.
-            request_bytes: 12 * new_voxels as u64,
-            store_before,
-            store_after: self.store.bytes(),
+            request_bytes: 12 * grown.new_voxels,
+            store_before: grown.bytes_before,
+            store_after: grown.bytes_after,
         })
     }
 }
@@ -240,13 +205,13 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
         notes.push((
             format!("{r}³: outer surface voxels"),
-            holder.stored.len() as f64,
+            holder.matter.held().len() as f64,
         ));
         notes.push((
             format!("{r}³: state MB after the outer surface"),
-            holder.lazy.bytes() as f64 / 1e6,
+            holder.matter.state_bytes() as f64 / 1e6,
         ));
-        holder.cut(&gpu, &mut voxelizer, &warm_up, r)?;
+        holder.cut(&gpu, &mut voxelizer, &warm_up)?;
         for (k, n) in CUTS.iter().enumerate() {
             let plane = Plane::through(centre, DVec3::from_array(*n));
             let (pieces, _) = cut_pieces(vec![whole.clone()], plane, &mesh.source)?;
@@ -254,7 +219,6 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             let cut = Measured {
                 case: &case,
                 cap: &caps(&pieces[..1]),
-                r,
             };
             cut.run(&gpu, &mut bench, &mut holder, &mut voxelizer, &mut notes)?;
         }
@@ -262,7 +226,7 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             let case = format!("{r}³ fracture {n} pieces");
             bench.status(format!("{case}: the outer surface"));
             let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
-            holder.cut(&gpu, &mut voxelizer, &warm_up, r)?;
+            holder.cut(&gpu, &mut voxelizer, &warm_up)?;
             let sites = random_sites(&mesh, n, args.seed as u64)?;
             let (pieces, fracture_ms) = time_cpu(|| fracture(&mesh, &sites));
             let pieces = pieces?;
@@ -270,7 +234,6 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             let cut = Measured {
                 case: &case,
                 cap: &caps(&pieces),
-                r,
             };
             cut.run(&gpu, &mut bench, &mut holder, &mut voxelizer, &mut notes)?;
         }
@@ -284,7 +247,6 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
 struct Measured<'a> {
     case: &'a str,
     cap: &'a (Vec<Vec3>, Vec<[u32; 3]>),
-    r: u32,
 }
 
 impl Measured<'_> {
@@ -306,7 +268,7 @@ impl Measured<'_> {
             Throughput::Elements,
             None,
             || {
-                let c = holder.cut(gpu, voxelizer, self.cap, self.r)?;
+                let c = holder.cut(gpu, voxelizer, self.cap)?;
                 let ms = c.wall_ms;
                 cost = Some(c);
                 Ok(ms)

@@ -16,17 +16,20 @@ use lazysolid_compute::hash::morton_decode;
 use lazysolid_compute::hash::perfect::PerfectAccess;
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{
-    ColourSource, HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore, StoreKernels,
-    TileTree, TileTreeConfig,
+    HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore, StoreKernels, TileTree,
+    TileTreeConfig,
 };
-use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
+use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
-use lazysolid_synth::solid::lazy::{GpuLazySolid, LazyReport};
+use lazysolid_synth::solid::lazy::{
+    GpuLazySolid, LazyReport, MatterColours, MatterVoxels, SharedLazy, StoredMatter,
+};
 use lazysolid_synth::solid::{voxel_colour, SolidExemplars};
 use lazysolid_synth::{load_solid, FitMode};
 use std::cell::RefCell;
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 
 /// What to measure.
 #[derive(Args)]
@@ -154,10 +157,11 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     Ok(ms)
                 },
             )?;
-            let (report, mut lazy) = last.into_inner().context("no measured run")?;
+            let (report, lazy) = last.into_inner().context("no measured run")?;
             let bytes = lazy.bytes();
             bench.status(format!("{name} {r}³: filling the stores"));
-            let stores = store_bytes(&gpu, &mut lazy, &mut voxelizer, &mesh, &interp, r)?;
+            let lazy = Arc::new(Mutex::new(lazy));
+            let stores = store_bytes(&gpu, &lazy, &mut voxelizer, &mesh, r)?;
             let full = (r as f64).powi(3);
             let computed: u64 = report.computed.iter().sum();
             let finest = *report.needed.last().unwrap_or(&0) as f64;
@@ -277,50 +281,52 @@ fn section_mask(mesh: &Mesh, r: u32, z: u32) -> Vec<bool> {
     mask
 }
 
-/// Bytes of each store filled from the lazy state's colours: the coherent hash, the N³ tree
-/// and the perfect hash over the interpolation voxels `interp` (trilinear reads), the TileTree
-/// over the mesh (its texels from the surface voxels, an incremental request).
+/// Bytes of each store of the matter the lazy state holds: the coherent hash, the N³ tree and
+/// the perfect hash over the interpolation voxels (trilinear reads), the TileTree over the mesh
+/// (its texels from the surface voxels, an incremental request). The state already holds the
+/// interpolation voxels, so the builds synthesize only what the TileTree adds.
 fn store_bytes(
     gpu: &Gpu,
-    lazy: &mut GpuLazySolid,
+    lazy: &SharedLazy,
     voxelizer: &mut Voxelizer,
     mesh: &Mesh,
-    interp: &VoxelKeys,
     r: u32,
 ) -> anyhow::Result<Vec<(&'static str, u64)>> {
     let kernels = StoreKernels::new(gpu)?;
-    let (colours, _) = lazy.colours(interp)?;
-    let source = ColourSource::Buffer {
-        keys: interp,
-        colours: &colours,
-    };
-    let hash = HashStore::build(&kernels, r, interp, &source, RobinHoodConfig::default())?;
-    let (octree, _) = OctreeStore::build(
-        &kernels,
-        r,
-        interp,
-        &source,
-        OctreeConfig::for_resolution(r)?,
-    )?;
-    let perfect = PerfectStore::build(&kernels, r, interp, &source, PerfectAccess::Constrained)?;
-    let surface = voxelizer.surface(&mesh.positions, &mesh.triangles, r)?;
-    let (texels, _) = lazy.colours(&surface)?;
-    let tiles = ColourSource::Buffer {
-        keys: &surface,
-        colours: &texels,
-    };
-    let (tree, _) = TileTree::build(
-        &kernels,
-        &mesh.positions,
-        &mesh.triangles,
-        r,
-        &tiles,
-        TileTreeConfig::default(),
-    )?;
+    let (p, t) = (&mesh.positions[..], &mesh.triangles[..]);
+    let colours = || MatterColours::Lazy(lazy.clone());
+    let trilinear = MatterVoxels::Interpolation;
+    let (hash, _) = StoredMatter::build(voxelizer, colours(), trilinear, r, p, t, |k, s| {
+        HashStore::build(
+            &kernels,
+            r,
+            k.expect("voxel stores are keyed"),
+            s,
+            RobinHoodConfig::default(),
+        )
+    })?;
+    let (octree, _) = StoredMatter::build(voxelizer, colours(), trilinear, r, p, t, |k, s| {
+        let config = OctreeConfig::for_resolution(r)?;
+        OctreeStore::build(&kernels, r, k.expect("voxel stores are keyed"), s, config)
+            .map(|(store, _)| store)
+    })?;
+    let (perfect, _) = StoredMatter::build(voxelizer, colours(), trilinear, r, p, t, |k, s| {
+        PerfectStore::build(
+            &kernels,
+            r,
+            k.expect("voxel stores are keyed"),
+            s,
+            PerfectAccess::Constrained,
+        )
+    })?;
+    let surface = MatterVoxels::Surface;
+    let (tree, _) = StoredMatter::build(voxelizer, colours(), surface, r, p, t, |_, s| {
+        TileTree::build(&kernels, p, t, r, s, TileTreeConfig::default()).map(|(tree, _)| tree)
+    })?;
     Ok(vec![
-        ("coherent hash (trilinear)", hash.bytes()),
-        ("octree (trilinear)", octree.bytes()),
-        ("perfect hash (trilinear)", perfect.bytes()),
-        ("tiletree", tree.bytes()),
+        ("coherent hash (trilinear)", hash.store().bytes()),
+        ("octree (trilinear)", octree.store().bytes()),
+        ("perfect hash (trilinear)", perfect.store().bytes()),
+        ("tiletree", tree.store().bytes()),
     ])
 }

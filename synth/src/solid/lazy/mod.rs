@@ -5,6 +5,7 @@
 mod deps;
 pub(crate) mod gpu;
 mod keys;
+mod matter;
 mod state_cpu;
 
 pub use deps::{
@@ -15,5 +16,9 @@ pub use gpu::{GpuLazySolid, LazyReport, LAZY_MARGIN};
 pub use keys::{
     check_request, lazy_key, lazy_position, tag, untag, LAZY_AXIS_BITS, LAZY_BIAS, MAX_LAZY_COORD,
     STAGE_BITS, STAGE_MAX,
+};
+pub use matter::{
+    sorted_difference, sorted_union, CutInfo, MatterColours, MatterError, MatterStore,
+    MatterVoxels, SharedLazy, StoredMatter, SynthesisInfo,
 };
 pub use state_cpu::LazySolidCpu;

@@ -1,0 +1,159 @@
+//! The bake: a scene's solid textures put into sparse stores. For every (mesh, material) pair
+//! whose texture asks for a store, the mesh's surface voxels (or interpolation voxels, for
+//! trilinear reads) get the texture's colours — synthesized lazily for a synthesized texture,
+//! per voxel for a procedural or volume one — through one owner of matter in a store
+//! ([`StoredMatter`]), which then grows by the cap faces of the pieces cut from the mesh.
+//! `render/stores.rs` turns the results into the records the path tracer reads.
+
+mod caps;
+mod colour;
+mod fill;
+
+pub(crate) use caps::caps_of;
+
+use crate::render::{RenderError, SceneStore};
+use crate::scene::{Material, Scene, StoreFilter, StoreKind, SynthesizedSpec};
+use colour::procedural_colour;
+use fill::fill;
+use glam::Vec3;
+use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::store::StoreKernels;
+use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_synth::cache::DiskCache;
+use lazysolid_synth::solid::lazy::{
+    CutInfo, GpuLazySolid, MatterColours, MatterVoxels, SharedLazy, StoredMatter, SynthesisInfo,
+};
+use lazysolid_synth::solid::SolidExemplars;
+use lazysolid_synth::{load_solid, FitMode, SynthError};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+/// A scene's store with what it was made from.
+pub(crate) type Matter = StoredMatter<SceneStore>;
+
+/// What the stores of one scene share while they are built: kernels, the voxelizer, and one
+/// lazy synthesis state per synthesized texture (exemplar, seed, resolution), so meshes that
+/// share a texture share its voxels and nothing is synthesized twice.
+pub(crate) struct Baker<'a> {
+    gpu: &'a Gpu,
+    kernels: Option<Arc<StoreKernels>>,
+    voxelizer: Option<Voxelizer>,
+    lazy: HashMap<(PathBuf, u32, u32), SharedLazy>,
+}
+
+/// The lazy synthesis state of exemplar `spec` at resolution `r`, with the solid defaults and
+/// the candidates through the user's cache.
+fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, SynthError> {
+    let image = load_solid(&spec.exemplar, FitMode::Auto, None)?.exemplar;
+    let exemplars = SolidExemplars::new(image, [None, None, None])?;
+    let cache = DiskCache::user().ok();
+    GpuLazySolid::with_defaults(gpu, &exemplars, spec.seed, r, cache.as_ref())
+}
+
+impl<'a> Baker<'a> {
+    /// A baker for `gpu`; kernels and the voxelizer are made at their first use.
+    pub(crate) fn new(gpu: &'a Gpu) -> Baker<'a> {
+        Baker {
+            gpu,
+            kernels: None,
+            voxelizer: None,
+            lazy: HashMap::new(),
+        }
+    }
+
+    fn kernels(&mut self) -> Result<Arc<StoreKernels>, RenderError> {
+        Ok(match &self.kernels {
+            Some(k) => k.clone(),
+            None => self.kernels.insert(StoreKernels::new(self.gpu)?).clone(),
+        })
+    }
+
+    fn voxelizer(&mut self) -> Result<&mut Voxelizer, RenderError> {
+        if self.voxelizer.is_none() {
+            self.voxelizer = Some(
+                Voxelizer::new(self.gpu)
+                    .map_err(|e| RenderError::Settings(format!("voxelizer: {e}")))?,
+            );
+        }
+        Ok(self.voxelizer.as_mut().expect("made above"))
+    }
+
+    /// Where the colours of `material`'s texture come from at resolution `r`: the texture's
+    /// shared lazy state (made at its first use), or its procedural colour per voxel.
+    fn colours(&mut self, material: &Material, r: u32) -> Result<MatterColours, SynthError> {
+        let synth = material
+            .texture
+            .as_ref()
+            .and_then(|t| t.synthesized.as_ref());
+        let Some(synth) = synth else {
+            return Ok(MatterColours::Voxel(Arc::new(procedural_colour(
+                material, r,
+            ))));
+        };
+        let key = (synth.exemplar.clone(), synth.seed, r);
+        if let Some(lazy) = self.lazy.get(&key) {
+            return Ok(MatterColours::Lazy(lazy.clone()));
+        }
+        let lazy = Arc::new(Mutex::new(lazy_state(self.gpu, synth, r)?));
+        self.lazy.insert(key, lazy.clone());
+        Ok(MatterColours::Lazy(lazy))
+    }
+
+    /// Bakes the texture of `material` on `mesh` into the store `spec` asks for, and grows it
+    /// by the cap faces of the pieces cut from it (`caps`: positions and triangles in the
+    /// mesh's coordinates), which a second request synthesizes.
+    pub(crate) fn bake(
+        &mut self,
+        scene: &Scene,
+        mesh: usize,
+        material: usize,
+        caps: Option<(&[Vec3], &[[u32; 3]])>,
+    ) -> Result<(Matter, Option<SynthesisInfo>, Option<CutInfo>), RenderError> {
+        let material = &scene.materials[material];
+        let mesh = &scene.meshes[mesh];
+        let spec = material
+            .texture
+            .as_ref()
+            .and_then(|t| t.store)
+            .expect("only textures with a store are baked");
+        let kernels = self.kernels()?;
+        let r = spec.resolution;
+        let (positions, triangles) = (&mesh.mesh.positions, &mesh.mesh.triangles);
+        let context = |what: &str, e: &dyn std::fmt::Display| {
+            RenderError::Settings(format!(
+                "{}: baking material {:?} on mesh {:?}{what}: {e}",
+                scene.source.display(),
+                material.name,
+                mesh.name
+            ))
+        };
+        let colours = self.colours(material, r).map_err(|e| context("", &e))?;
+        let voxels = match (spec.kind, spec.filter, &colours) {
+            (StoreKind::TileTree, _, MatterColours::Voxel(_)) => MatterVoxels::Unkeyed,
+            (StoreKind::TileTree, _, _) | (_, StoreFilter::Nearest, _) => MatterVoxels::Surface,
+            (_, StoreFilter::Trilinear, _) => MatterVoxels::Interpolation,
+        };
+        let gpu = self.gpu;
+        let voxelizer = self.voxelizer()?;
+        let (mut matter, stats) = StoredMatter::build(
+            voxelizer,
+            colours,
+            voxels,
+            r,
+            positions,
+            triangles,
+            |keys, source| fill(&kernels, spec, positions, triangles, keys, source),
+        )
+        .map_err(|e| context("", &e))?;
+        let cut = match caps {
+            Some((cap_positions, cap_triangles)) if !cap_triangles.is_empty() => Some(
+                matter
+                    .grow(gpu, voxelizer, cap_positions, cap_triangles)
+                    .map_err(|e| context(" (cut faces)", &e))?,
+            ),
+            _ => None,
+        };
+        Ok((matter, stats, cut))
+    }
+}
