@@ -9,7 +9,7 @@ use crate::kernels::{hash, prims, store, voxel};
 use crate::prims::push as prims_push;
 use crate::prims::segments;
 use crate::store::{colours, hash_store, octree, perfect_store, tiletree};
-use crate::voxel::{gpu as voxel_gpu, keys};
+use crate::voxel::{gpu as voxel_gpu, key_sets, keys};
 
 fn of<P: PushBlock>(kernel: &'static crate::gpu::KernelDef) -> PushRegistration {
     PushRegistration::of::<P>(kernel)
@@ -68,6 +68,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<voxel_gpu::ColumnsPush>(&voxel::COLUMNS),
         of::<voxel_gpu::DilatePush>(&voxel::DILATE),
         of::<voxel_gpu::HitsPush>(&voxel::HITS),
+        of::<key_sets::KeySetPush>(&voxel::KEY_SETS),
         of::<keys::UniquePush>(&voxel::UNIQUE),
     ]
 }

@@ -107,3 +107,8 @@ pub const COHERENT_OFFSETS: [u32; 16] = [
 pub const TILETREE_LEAF_WORDS: u32 = 14;
 /// Words of a TileTree tile record of the fill kernels (`store/tiletree_build.glsl`).
 pub const TILETREE_TILE_WORDS: u32 = 12;
+
+/// Key-set operations of `glsl/voxel/key_sets.comp` (`voxel::KeySets`): a ∪ b.
+pub const KEY_SET_UNION: u32 = 0;
+/// See [`KEY_SET_UNION`]: a \ b.
+pub const KEY_SET_DIFFERENCE: u32 = 1;

@@ -11,10 +11,10 @@ use lazysolid_compute::store::{
     unpack_rgba8, ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, PerfectStore,
     SparseStore, StoreKernels, TileTree, TileTreeConfig,
 };
-use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_compute::voxel::{difference_cpu, union_cpu, Voxelizer};
 use lazysolid_synth::solid::lazy::{
-    dependencies_cpu, lazy_key, sorted_difference, sorted_union, GpuLazySolid, LazySolidCpu,
-    MatterColours, MatterVoxels, StoredMatter, MAX_LAZY_COORD,
+    dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MatterColours, MatterSpec,
+    MatterVoxels, StoredMatter, MAX_LAZY_COORD,
 };
 use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
@@ -413,10 +413,13 @@ fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
         let lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
         let shared = Arc::new(Mutex::new(lazy));
         let (mut matter, built) = StoredMatter::build(
+            gpu,
             &mut v,
-            MatterColours::Lazy(shared.clone()),
-            MatterVoxels::Surface,
-            r,
+            MatterSpec {
+                colours: MatterColours::Lazy(shared.clone()),
+                voxels: MatterVoxels::Surface,
+                resolution: r,
+            },
             &m.positions,
             &m.triangles,
             |keys, source| HashStore::build(&kernels, r, keys.unwrap(), source, Default::default()),
@@ -427,7 +430,7 @@ fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
             .unwrap()
             .read()
             .unwrap();
-        assert_eq!(matter.held(), &outer[..]);
+        assert_eq!(matter.held().unwrap().read().unwrap(), outer);
         assert!(built.unwrap().versions > 0);
         // A cap: the square y = 0.47 over [0.2, 0.8]², as a cut through the bunny gives.
         let cap_positions = [
@@ -442,17 +445,15 @@ fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
             .unwrap()
             .read()
             .unwrap();
-        let lacking = sorted_difference(&cap, &outer);
+        let lacking = difference_cpu(&cap, &outer);
         assert!(!lacking.is_empty() && lacking.len() < cap.len());
-        let grown = matter
-            .grow(gpu, &mut v, &cap_positions, &cap_triangles)
-            .unwrap();
+        let grown = matter.grow(&mut v, &cap_positions, &cap_triangles).unwrap();
         assert_eq!(grown.requested_voxels, cap.len() as u64);
         assert_eq!(grown.new_voxels, lacking.len() as u64);
         assert_eq!(grown.texels_added, lacking.len() as u64);
         assert!(grown.synthesis.is_some_and(|s| s.versions > 0));
-        let union = sorted_union(&outer, &cap);
-        assert_eq!(matter.held(), &union[..]);
+        let union = union_cpu(&outer, &cap);
+        assert_eq!(matter.held().unwrap().read().unwrap(), union);
         assert_eq!(matter.store().len(), union.len() as u64);
         let centres: Vec<Vec3> = union
             .iter()
@@ -465,9 +466,7 @@ fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
             .filter(|(&k, c)| unpack_rgba8(want(morton_decode(k, 3))) != **c)
             .count();
         assert_eq!(bad, 0, "{bad} of {} stored voxels differ", union.len());
-        let again = matter
-            .grow(gpu, &mut v, &cap_positions, &cap_triangles)
-            .unwrap();
+        let again = matter.grow(&mut v, &cap_positions, &cap_triangles).unwrap();
         assert_eq!((again.new_voxels, again.texels_added), (0, 0));
         assert!(again.synthesis.is_none());
         assert_eq!(matter.state_bytes(), shared.lock().unwrap().bytes());

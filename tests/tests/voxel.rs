@@ -167,3 +167,48 @@ fn interpolation_voxels_cover_every_trilinear_footprint_on_the_surface() {
         }
     }
 }
+
+/// Union and difference of key sets on the device equal their CPU references: overlapping,
+/// disjoint, nested, empty and equal sets, and keys using the top bit the tag leaves.
+#[test]
+fn key_set_union_and_difference_equal_the_cpu_references() {
+    use rand::Rng;
+    let mut r = lazysolid_tests::rng(17);
+    let mut set = |n: usize, bits: u32| -> Vec<u64> {
+        let mut v: Vec<u64> = (0..n).map(|_| r.random::<u64>() >> (64 - bits)).collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let a = set(5000, 18);
+    let b = set(4000, 18);
+    let wide = set(300, 63);
+    let cases: Vec<(&str, Vec<u64>, Vec<u64>, u32)> = vec![
+        ("overlapping", a.clone(), b.clone(), 18),
+        ("disjoint", vec![1, 3, 5], vec![2, 4, 6], 3),
+        ("nested", a.clone(), a[100..900].to_vec(), 18),
+        ("a empty", vec![], b.clone(), 18),
+        ("b empty", a.clone(), vec![], 18),
+        ("both empty", vec![], vec![], 18),
+        ("equal", b.clone(), b.clone(), 18),
+        ("63 bits", wide.clone(), wide[..150].to_vec(), 63),
+    ];
+    with_gpu(|gpu| {
+        let mut sets = KeySets::new(gpu).unwrap();
+        for (name, a, b, bits) in &cases {
+            let ka = VoxelKeys::from_sorted(gpu, "a", a).unwrap();
+            let kb = VoxelKeys::from_sorted(gpu, "b", b).unwrap();
+            let u = sets.union(&ka, &kb, *bits).unwrap().read().unwrap();
+            assert_eq!(u, union_cpu(a, b), "{name}: union");
+            let d = sets.difference(&ka, &kb, *bits).unwrap().read().unwrap();
+            assert_eq!(d, difference_cpu(a, b), "{name}: a \\ b");
+            let d = sets.difference(&kb, &ka, *bits).unwrap().read().unwrap();
+            assert_eq!(d, difference_cpu(b, a), "{name}: b \\ a");
+        }
+        let k = VoxelKeys::from_sorted(gpu, "k", &[1]).unwrap();
+        assert!(
+            sets.union(&k, &k, 64).is_err(),
+            "64-bit keys leave no tag bit"
+        );
+    });
+}

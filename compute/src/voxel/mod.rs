@@ -13,6 +13,7 @@
 mod error;
 pub(crate) mod gpu;
 mod grid;
+pub(crate) mod key_sets;
 pub(crate) mod keys;
 mod surface_cpu;
 mod triangle_box;
@@ -20,6 +21,7 @@ mod triangle_box;
 pub use error::VoxelError;
 pub use gpu::Voxelizer;
 pub use grid::{VoxelGrid, MAX_RESOLUTION};
+pub use key_sets::{difference_cpu, union_cpu, KeySets};
 pub use keys::{SortUnique, VoxelKeys};
 pub use surface_cpu::{
     check_triangles, dilate_cells_cpu, grid_cells_cpu, interpolation_voxels_cpu, surface_voxels_cpu,

@@ -21,7 +21,8 @@ use lazysolid_compute::store::StoreKernels;
 use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    CutInfo, GpuLazySolid, MatterColours, MatterVoxels, SharedLazy, StoredMatter, SynthesisInfo,
+    CutInfo, GpuLazySolid, MatterColours, MatterSpec, MatterVoxels, SharedLazy, StoredMatter,
+    SynthesisInfo,
 };
 use lazysolid_synth::solid::SolidExemplars;
 use lazysolid_synth::{load_solid, FitMode, SynthError};
@@ -137,10 +138,13 @@ impl<'a> Baker<'a> {
         let gpu = self.gpu;
         let voxelizer = self.voxelizer()?;
         let (mut matter, stats) = StoredMatter::build(
+            gpu,
             voxelizer,
-            colours,
-            voxels,
-            r,
+            MatterSpec {
+                colours,
+                voxels,
+                resolution: r,
+            },
             positions,
             triangles,
             |keys, source| fill(&kernels, spec, positions, triangles, keys, source),
@@ -149,7 +153,7 @@ impl<'a> Baker<'a> {
         let cut = match caps {
             Some((cap_positions, cap_triangles)) if !cap_triangles.is_empty() => Some(
                 matter
-                    .grow(gpu, voxelizer, cap_positions, cap_triangles)
+                    .grow(voxelizer, cap_positions, cap_triangles)
                     .map_err(|e| context(" (cut faces)", &e))?,
             ),
             _ => None,

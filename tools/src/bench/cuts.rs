@@ -25,7 +25,9 @@ use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
-use lazysolid_synth::solid::lazy::{GpuLazySolid, MatterColours, MatterVoxels, StoredMatter};
+use lazysolid_synth::solid::lazy::{
+    GpuLazySolid, MatterColours, MatterSpec, MatterVoxels, StoredMatter,
+};
 use lazysolid_synth::solid::SolidExemplars;
 use std::sync::{Arc, Mutex};
 
@@ -104,10 +106,13 @@ impl Holder {
         .context("the lazy synthesis state")?;
         let mesh = setup.mesh;
         let (matter, _) = StoredMatter::build(
+            setup.gpu,
             voxelizer,
-            MatterColours::Lazy(Arc::new(Mutex::new(lazy))),
-            MatterVoxels::Surface,
-            r,
+            MatterSpec {
+                colours: MatterColours::Lazy(Arc::new(Mutex::new(lazy))),
+                voxels: MatterVoxels::Surface,
+                resolution: r,
+            },
             &mesh.positions,
             &mesh.triangles,
             |keys, source| {
@@ -121,12 +126,11 @@ impl Holder {
     /// Requests, synthesizes and inserts the surface voxels of `caps` the store lacks.
     fn cut(
         &mut self,
-        gpu: &Gpu,
         voxelizer: &mut Voxelizer,
         caps: &(Vec<Vec3>, Vec<[u32; 3]>),
     ) -> anyhow::Result<CutCost> {
         let state_before = self.matter.state_bytes();
-        let (grown, wall_ms) = time_cpu(|| self.matter.grow(gpu, voxelizer, &caps.0, &caps.1));
+        let (grown, wall_ms) = time_cpu(|| self.matter.grow(voxelizer, &caps.0, &caps.1));
         let grown = grown?;
         let synthesis = grown.synthesis;
         Ok(CutCost {
@@ -205,13 +209,13 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
         notes.push((
             format!("{r}³: outer surface voxels"),
-            holder.matter.held().len() as f64,
+            holder.matter.held().map_or(0, |k| k.len()) as f64,
         ));
         notes.push((
             format!("{r}³: state MB after the outer surface"),
             holder.matter.state_bytes() as f64 / 1e6,
         ));
-        holder.cut(&gpu, &mut voxelizer, &warm_up)?;
+        holder.cut(&mut voxelizer, &warm_up)?;
         for (k, n) in CUTS.iter().enumerate() {
             let plane = Plane::through(centre, DVec3::from_array(*n));
             let (pieces, _) = cut_pieces(vec![whole.clone()], plane, &mesh.source)?;
@@ -220,13 +224,13 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 case: &case,
                 cap: &caps(&pieces[..1]),
             };
-            cut.run(&gpu, &mut bench, &mut holder, &mut voxelizer, &mut notes)?;
+            cut.run(&mut bench, &mut holder, &mut voxelizer, &mut notes)?;
         }
         for &n in &args.pieces {
             let case = format!("{r}³ fracture {n} pieces");
             bench.status(format!("{case}: the outer surface"));
             let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
-            holder.cut(&gpu, &mut voxelizer, &warm_up)?;
+            holder.cut(&mut voxelizer, &warm_up)?;
             let sites = random_sites(&mesh, n, args.seed as u64)?;
             let (pieces, fracture_ms) = time_cpu(|| fracture(&mesh, &sites));
             let pieces = pieces?;
@@ -235,7 +239,7 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 case: &case,
                 cap: &caps(&pieces),
             };
-            cut.run(&gpu, &mut bench, &mut holder, &mut voxelizer, &mut notes)?;
+            cut.run(&mut bench, &mut holder, &mut voxelizer, &mut notes)?;
         }
     }
     println!("{THESIS}");
@@ -253,7 +257,6 @@ impl Measured<'_> {
     /// Times the cut once on `holder` as the case's row and notes what it cost.
     fn run(
         &self,
-        gpu: &Gpu,
         bench: &mut Bench,
         holder: &mut Holder,
         voxelizer: &mut Voxelizer,
@@ -268,7 +271,7 @@ impl Measured<'_> {
             Throughput::Elements,
             None,
             || {
-                let c = holder.cut(gpu, voxelizer, self.cap)?;
+                let c = holder.cut(voxelizer, self.cap)?;
                 let ms = c.wall_ms;
                 cost = Some(c);
                 Ok(ms)

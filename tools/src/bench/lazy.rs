@@ -23,7 +23,7 @@ use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    GpuLazySolid, LazyReport, MatterColours, MatterVoxels, SharedLazy, StoredMatter,
+    GpuLazySolid, LazyReport, MatterColours, MatterSpec, MatterVoxels, SharedLazy, StoredMatter,
 };
 use lazysolid_synth::solid::{voxel_colour, SolidExemplars};
 use lazysolid_synth::{load_solid, FitMode};
@@ -294,9 +294,13 @@ fn store_bytes(
 ) -> anyhow::Result<Vec<(&'static str, u64)>> {
     let kernels = StoreKernels::new(gpu)?;
     let (p, t) = (&mesh.positions[..], &mesh.triangles[..]);
-    let colours = || MatterColours::Lazy(lazy.clone());
+    let spec = |voxels| MatterSpec {
+        colours: MatterColours::Lazy(lazy.clone()),
+        voxels,
+        resolution: r,
+    };
     let trilinear = MatterVoxels::Interpolation;
-    let (hash, _) = StoredMatter::build(voxelizer, colours(), trilinear, r, p, t, |k, s| {
+    let (hash, _) = StoredMatter::build(gpu, voxelizer, spec(trilinear), p, t, |k, s| {
         HashStore::build(
             &kernels,
             r,
@@ -305,12 +309,12 @@ fn store_bytes(
             RobinHoodConfig::default(),
         )
     })?;
-    let (octree, _) = StoredMatter::build(voxelizer, colours(), trilinear, r, p, t, |k, s| {
+    let (octree, _) = StoredMatter::build(gpu, voxelizer, spec(trilinear), p, t, |k, s| {
         let config = OctreeConfig::for_resolution(r)?;
         OctreeStore::build(&kernels, r, k.expect("voxel stores are keyed"), s, config)
             .map(|(store, _)| store)
     })?;
-    let (perfect, _) = StoredMatter::build(voxelizer, colours(), trilinear, r, p, t, |k, s| {
+    let (perfect, _) = StoredMatter::build(gpu, voxelizer, spec(trilinear), p, t, |k, s| {
         PerfectStore::build(
             &kernels,
             r,
@@ -320,7 +324,7 @@ fn store_bytes(
         )
     })?;
     let surface = MatterVoxels::Surface;
-    let (tree, _) = StoredMatter::build(voxelizer, colours(), surface, r, p, t, |_, s| {
+    let (tree, _) = StoredMatter::build(gpu, voxelizer, spec(surface), p, t, |_, s| {
         TileTree::build(&kernels, p, t, r, s, TileTreeConfig::default()).map(|(tree, _)| tree)
     })?;
     Ok(vec![

@@ -10,7 +10,7 @@ use crate::SynthError;
 use glam::Vec3;
 use lazysolid_compute::gpu::{Gpu, GpuBuffer, GpuError};
 use lazysolid_compute::store::{ColourSource, InsertUnit, SparseStore, StoreError, StoreReport};
-use lazysolid_compute::voxel::{VoxelError, VoxelKeys, Voxelizer};
+use lazysolid_compute::voxel::{KeySets, VoxelError, VoxelGrid, VoxelKeys, Voxelizer};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -146,34 +146,52 @@ pub enum MatterError {
     Cells,
 }
 
+/// What matter is made of and at which grid.
+#[derive(Clone)]
+pub struct MatterSpec {
+    /// Where its colours come from.
+    pub colours: MatterColours,
+    /// The voxels its store's texels are made from.
+    pub voxels: MatterVoxels,
+    /// Voxels per unit of the grid.
+    pub resolution: u32,
+}
+
 /// A solid texture in a store, and what it was made from.
 pub struct StoredMatter<S> {
     colours: MatterColours,
     store: S,
     voxels: MatterVoxels,
     resolution: u32,
-    /// The voxels the store's texels were made from, sorted (empty when unkeyed).
-    held: Vec<u64>,
+    /// The voxels the store's texels were made from, sorted, on the device (`None` when
+    /// unkeyed).
+    held: Option<VoxelKeys>,
+    /// Union and difference of key sets on the device.
+    sets: KeySets,
 }
 
 impl<S: MatterStore> StoredMatter<S> {
-    /// Builds the matter over the surface `positions`/`triangles` (unit-cube coordinates) at
-    /// `resolution` voxels per unit: voxelizes it as `voxels` says, takes the voxels' colours
-    /// from `colours` (synthesizing them, for lazy matter) and lets `build` make the store from
+    /// Builds the matter `spec` over the surface `positions`/`triangles` (unit-cube
+    /// coordinates): voxelizes it as the spec says, takes the voxels' colours from the spec's
+    /// source (synthesizing them, for lazy matter) and lets `build` make the store from
     /// the keys (`None` when unkeyed) and the colours.
     ///
     /// # Errors
     /// Voxelization, synthesis and store failures; [`MatterError::Cells`] for a store that
     /// grows by cells.
     pub fn build(
+        gpu: &Gpu,
         voxelizer: &mut Voxelizer,
-        colours: MatterColours,
-        voxels: MatterVoxels,
-        resolution: u32,
+        spec: MatterSpec,
         positions: &[Vec3],
         triangles: &[[u32; 3]],
         build: impl FnOnce(Option<&VoxelKeys>, &ColourSource<'_>) -> Result<S, StoreError>,
     ) -> Result<(StoredMatter<S>, Option<SynthesisInfo>), MatterError> {
+        let MatterSpec {
+            colours,
+            voxels,
+            resolution,
+        } = spec;
         let keys = voxelize(voxelizer, voxels, positions, triangles, resolution)?;
         let synthesized = match (&colours, &keys) {
             (MatterColours::Lazy(lazy), Some(keys)) => Some(synthesize(lazy, keys)?),
@@ -186,17 +204,14 @@ impl<S: MatterStore> StoredMatter<S> {
         if store.insert_unit() == InsertUnit::Cells {
             return Err(MatterError::Cells);
         }
-        let held = match &keys {
-            Some(keys) if !keys.is_empty() => keys.read()?,
-            _ => Vec::new(),
-        };
         Ok((
             StoredMatter {
                 colours,
                 store,
                 voxels,
                 resolution,
-                held,
+                held: keys,
+                sets: KeySets::new(gpu)?,
             },
             synthesized.map(|(_, info)| info),
         ))
@@ -211,7 +226,6 @@ impl<S: MatterStore> StoredMatter<S> {
     /// As [`StoredMatter::build`].
     pub fn grow(
         &mut self,
-        gpu: &Gpu,
         voxelizer: &mut Voxelizer,
         positions: &[Vec3],
         triangles: &[[u32; 3]],
@@ -226,22 +240,16 @@ impl<S: MatterStore> StoredMatter<S> {
             self.resolution,
         )?;
         let requested = cap.as_ref().map_or(0, |k| k.len() as u64);
-        let cap = match &cap {
-            Some(keys) if !keys.is_empty() => keys.read()?,
-            _ => Vec::new(),
-        };
+        let bits = VoxelGrid::voxels(self.resolution)?.key_bits();
         // A voxel store gets only the voxels it lacks; a surface store's colour buffer must
-        // hold every voxel its refilled texels meet, which the held and new voxels do.
-        let wanted: Option<Vec<u64>> = match (self.voxels, unit) {
-            (MatterVoxels::Unkeyed, _) => None,
-            (_, InsertUnit::Surface) => Some(sorted_union(&self.held, &cap)),
-            (_, InsertUnit::Voxels) => Some(sorted_difference(&cap, &self.held)),
-            (_, InsertUnit::Cells) => return Err(MatterError::Cells),
+        // hold every voxel its refilled texels meet, which the held and new voxels do. The
+        // keys stay on the device.
+        let keys = match (&cap, &self.held, unit) {
+            (_, _, InsertUnit::Cells) => return Err(MatterError::Cells),
+            (Some(cap), Some(held), InsertUnit::Surface) => Some(self.sets.union(held, cap, bits)?),
+            (Some(cap), Some(held), _) => Some(self.sets.difference(cap, held, bits)?),
+            _ => None,
         };
-        let keys = wanted
-            .as_ref()
-            .map(|w| VoxelKeys::from_sorted(gpu, "new surface voxels", w))
-            .transpose()?;
         let synthesized = match (&self.colours, &keys) {
             (MatterColours::Lazy(lazy), Some(keys)) if !keys.is_empty() => {
                 Some(synthesize(lazy, keys)?)
@@ -262,14 +270,22 @@ impl<S: MatterStore> StoredMatter<S> {
                 }
             }
         }
-        if self.voxels != MatterVoxels::Unkeyed {
-            self.held = sorted_union(&self.held, &cap);
+        let new_voxels = keys.as_ref().map_or(0, |k| k.len() as u64);
+        // The held voxels grow by the new surface's: a surface store's keys already are the
+        // union.
+        let grown = match (unit, keys, &cap, &self.held) {
+            (InsertUnit::Surface, Some(union), _, _) => Some(union),
+            (_, _, Some(cap), Some(held)) => Some(self.sets.union(held, cap, bits)?),
+            _ => None,
+        };
+        if grown.is_some() {
+            self.held = grown;
         }
         let (texels_after, bytes_after) = self.store.size();
         Ok(CutInfo {
             cap_triangles: triangles.len() as u64,
             requested_voxels: requested,
-            new_voxels: keys.as_ref().map_or(0, |k| k.len() as u64),
+            new_voxels,
             synthesis: synthesized.map(|(_, info)| info),
             texels_added: texels_after.saturating_sub(texels_before),
             bytes_before,
@@ -288,9 +304,10 @@ impl<S: MatterStore> StoredMatter<S> {
         &mut self.store
     }
 
-    /// The voxels the store's texels were made from, sorted Morton keys.
-    pub fn held(&self) -> &[u64] {
-        &self.held
+    /// The voxels the store's texels were made from: sorted Morton keys on the device, `None`
+    /// for a store made from a surface alone.
+    pub fn held(&self) -> Option<&VoxelKeys> {
+        self.held.as_ref()
     }
 
     /// Bytes of the kept lazy synthesis state (0 for matter of a voxel function).
@@ -357,33 +374,4 @@ fn source<'a>(
 
 fn no_colour(_: [u32; 3]) -> u32 {
     0
-}
-
-/// The sorted union of two sorted, distinct key lists.
-pub fn sorted_union(a: &[u64], b: &[u64]) -> Vec<u64> {
-    let mut all: Vec<u64> = a.iter().chain(b).copied().collect();
-    all.sort_unstable();
-    all.dedup();
-    all
-}
-
-/// The keys of sorted `a` that sorted `b` lacks.
-pub fn sorted_difference(a: &[u64], b: &[u64]) -> Vec<u64> {
-    a.iter()
-        .copied()
-        .filter(|k| b.binary_search(k).is_err())
-        .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn union_and_difference_of_key_sets() {
-        assert_eq!(sorted_union(&[1, 4, 9], &[2, 4, 10]), [1, 2, 4, 9, 10]);
-        assert_eq!(sorted_difference(&[1, 2, 4, 10], &[2, 4, 9]), [1, 10]);
-        assert!(sorted_difference(&[], &[1]).is_empty());
-        assert_eq!(sorted_union(&[], &[3]), [3]);
-    }
 }

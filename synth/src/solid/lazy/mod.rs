@@ -18,7 +18,7 @@ pub use keys::{
     STAGE_BITS, STAGE_MAX,
 };
 pub use matter::{
-    sorted_difference, sorted_union, CutInfo, MatterColours, MatterError, MatterStore,
-    MatterVoxels, SharedLazy, StoredMatter, SynthesisInfo,
+    CutInfo, MatterColours, MatterError, MatterSpec, MatterStore, MatterVoxels, SharedLazy,
+    StoredMatter, SynthesisInfo,
 };
 pub use state_cpu::LazySolidCpu;
