@@ -286,6 +286,24 @@ fn gpu_lazy_equals_the_full_volume_and_the_cpu_reference() {
     });
 }
 
+/// The RGBA8 colour of every voxel of the full `[0, R)³` volume of [`case`], synthesized on
+/// the GPU in one box: what every lazily filled store must hold.
+fn full_cube_colours(gpu: &lazysolid_compute::gpu::Gpu) -> impl Fn([u32; 3]) -> u32 {
+    let (exemplars, analysis, candidates, params) = case();
+    let r = RESOLUTION;
+    let window = VolumeBox {
+        origin: [0; 3],
+        size: [r; 3],
+    };
+    let full = GpuSolidSynthesizer::new(gpu, analysis, candidates)
+        .unwrap()
+        .synthesize(analysis, candidates, params, window, false, &mut |_| {})
+        .unwrap()
+        .0;
+    let colours = full.colours(exemplars);
+    move |p: [u32; 3]| -> u32 { pack_rgb(colours[window.index(p.map(|v| v as i32))]) | 0xff00_0000 }
+}
+
 /// Colours of the interpolation voxels of the bunny at 16³ and of its surface voxels (a second,
 /// incremental request), synthesized lazily on the GPU, equal the full volume's; the coherent
 /// hash, the N³ tree and the perfect hash built from them return those colours at every voxel
@@ -296,19 +314,7 @@ fn stores_filled_by_lazy_synthesis_hold_the_full_volume_colours() {
     let m = unit_mesh("bunny00.off");
     let r = RESOLUTION;
     with_gpu(|gpu| {
-        let window = VolumeBox {
-            origin: [0; 3],
-            size: [r; 3],
-        };
-        let full = GpuSolidSynthesizer::new(gpu, analysis, candidates)
-            .unwrap()
-            .synthesize(analysis, candidates, params, window, false, &mut |_| {})
-            .unwrap()
-            .0;
-        let colours = full.colours(exemplars);
-        let want = move |p: [u32; 3]| -> u32 {
-            pack_rgb(colours[window.index(p.map(|v| v as i32))]) | 0xff00_0000
-        };
+        let want = full_cube_colours(gpu);
         let kernels = StoreKernels::new(gpu).unwrap();
         let mut v = Voxelizer::new(gpu).unwrap();
         let interp = v.interpolation(&m.positions, &m.triangles, r).unwrap();
@@ -395,19 +401,7 @@ fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
     let m = unit_mesh("bunny00.off");
     let r = RESOLUTION;
     with_gpu(|gpu| {
-        let window = VolumeBox {
-            origin: [0; 3],
-            size: [r; 3],
-        };
-        let full = GpuSolidSynthesizer::new(gpu, analysis, candidates)
-            .unwrap()
-            .synthesize(analysis, candidates, params, window, false, &mut |_| {})
-            .unwrap()
-            .0;
-        let colours = full.colours(exemplars);
-        let want = |p: [u32; 3]| -> u32 {
-            pack_rgb(colours[window.index(p.map(|v| v as i32))]) | 0xff00_0000
-        };
+        let want = full_cube_colours(gpu);
         let kernels = StoreKernels::new(gpu).unwrap();
         let mut v = Voxelizer::new(gpu).unwrap();
         let lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
