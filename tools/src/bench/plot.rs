@@ -10,7 +10,13 @@ use std::sync::OnceLock;
 /// The font every plot uses: Debian's DejaVu Sans (package fonts-dejavu-core).
 pub const FONT_PATH: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
-fn ensure_font() -> anyhow::Result<()> {
+/// Loads the plots' font once. Suites that draw charts call it before they measure anything,
+/// so a machine without the font fails at once instead of after minutes of measurements
+/// whose results it could then not write.
+///
+/// # Errors
+/// The font file is missing (the message names the package) or unusable.
+pub fn ensure_font() -> anyhow::Result<()> {
     static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {

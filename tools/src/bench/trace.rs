@@ -42,6 +42,7 @@ pub struct TraceArgs {
 
 /// Runs the suite.
 pub fn run(args: &TraceArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    crate::bench::plot::ensure_font()?;
     args.res.check("--res", 16..=4096)?;
     ensure!(args.cpu_threads >= 1, "--cpu-threads must be at least 1");
     let mesh_path = assets::mesh("--mesh", &args.mesh)?;

@@ -99,6 +99,7 @@ pub struct GlintsArgs {
 
 /// Runs the suite.
 pub fn run(args: &GlintsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    crate::bench::plot::ensure_font()?;
     let res = if args.quick {
         &args.res[..args.res.len().min(1)]
     } else {

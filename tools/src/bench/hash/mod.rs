@@ -256,6 +256,7 @@ pub(crate) struct Sweep {
 
 /// Runs the suite.
 pub fn run(args: &HashArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    crate::bench::plot::ensure_font()?;
     ensure!(
         args.load_factors.iter().all(|&lf| lf > 0.0 && lf <= 1.0),
         "--load-factors must lie in (0, 1]"

@@ -87,6 +87,7 @@ struct Summary {
 
 /// Runs the suite.
 pub fn run(args: &PshArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    crate::bench::plot::ensure_font()?;
     let image_side = args.image_res.side("--image-res", "the image dataset")?;
     let (random_universe, random_keys, image_size, resolutions, blocked_res) = if args.quick {
         (512, 1 << 14, 256, vec![128], 64)

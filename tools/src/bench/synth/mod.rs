@@ -161,6 +161,7 @@ impl EndToEnd<'_> {
 
 /// Runs the suite.
 pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    crate::bench::plot::ensure_font()?;
     ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
     ensure!(!args.res.is_empty(), "--res names no size");
     let all_sizes = args

@@ -121,6 +121,7 @@ struct Measured {
 
 /// Runs the suite.
 pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
+    crate::bench::plot::ensure_font()?;
     args.res.check("--res", 16..=4096)?;
     let view_side = args.res.side("--res", "the viewpoint")?;
     let res = args.voxel_res;
