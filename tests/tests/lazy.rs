@@ -13,7 +13,7 @@ use lazysolid_compute::store::{
 };
 use lazysolid_compute::voxel::{difference_cpu, union_cpu, Voxelizer};
 use lazysolid_synth::solid::lazy::{
-    dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MatterColours, MatterSpec,
+    dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MatterColours, MatterError, MatterSpec,
     MatterVoxels, StoredMatter, MAX_LAZY_COORD,
 };
 use lazysolid_synth::solid::{
@@ -464,5 +464,19 @@ fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
         assert_eq!((again.new_voxels, again.texels_added), (0, 0));
         assert!(again.synthesis.is_none());
         assert_eq!(matter.state_bytes(), shared.lock().unwrap().bytes());
+        let unkeyed = MatterSpec {
+            colours: MatterColours::Lazy(shared.clone()),
+            voxels: MatterVoxels::Unkeyed,
+            resolution: r,
+        };
+        let refused = StoredMatter::<HashStore>::build(
+            gpu,
+            &mut v,
+            unkeyed,
+            &m.positions,
+            &m.triangles,
+            |_, _| unreachable!("refused before any store is built"),
+        );
+        assert!(matches!(refused, Err(MatterError::UnkeyedLazy)));
     });
 }

@@ -144,6 +144,9 @@ pub enum MatterError {
     /// from voxels cannot give it.
     #[error("the store grows by interpolation cells; matter in it grows by voxels or surfaces")]
     Cells,
+    /// Lazy matter without voxels: nothing would say which voxels to synthesize.
+    #[error("synthesized matter needs voxels (surface or interpolation), not an unkeyed store")]
+    UnkeyedLazy,
 }
 
 /// What matter is made of and at which grid.
@@ -178,7 +181,7 @@ impl<S: MatterStore> StoredMatter<S> {
     ///
     /// # Errors
     /// Voxelization, synthesis and store failures; [`MatterError::Cells`] for a store that
-    /// grows by cells.
+    /// grows by cells, [`MatterError::UnkeyedLazy`] for lazy matter without voxels.
     pub fn build(
         gpu: &Gpu,
         voxelizer: &mut Voxelizer,
@@ -192,6 +195,9 @@ impl<S: MatterStore> StoredMatter<S> {
             voxels,
             resolution,
         } = spec;
+        if matches!(colours, MatterColours::Lazy(_)) && voxels == MatterVoxels::Unkeyed {
+            return Err(MatterError::UnkeyedLazy);
+        }
         let keys = voxelize(voxelizer, voxels, positions, triangles, resolution)?;
         let synthesized = match (&colours, &keys) {
             (MatterColours::Lazy(lazy), Some(keys)) => Some(synthesize(lazy, keys)?),
@@ -367,7 +373,8 @@ fn source<'a>(
             colours: buffer,
         },
         (MatterColours::Voxel(f), _, _) => ColourSource::Fn(f.as_ref()),
-        // Lazy matter with no voxels to synthesize inserts nothing by key.
+        // Lazy matter is always keyed (`build` refuses it unkeyed): this is an empty request,
+        // which inserts nothing by key.
         (MatterColours::Lazy(_), _, _) => ColourSource::Fn(&no_colour),
     }
 }
