@@ -1101,6 +1101,41 @@ fn synthesized_textures_name_their_exemplar_and_store() {
         15,
         "material \"white\".texture.seed",
     );
+    // The synthesis state's memory policy: "keep" or a budget in MB; anything else, or the
+    // field on another kind, is refused with the field.
+    let s = Scene::parse(
+        &texture("exemplar = \"leather\", resolution = 64, store = \"octree\", memory = \"keep\""),
+        &scene,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let spec = s.materials[0].texture.as_ref().unwrap();
+    assert_eq!(
+        spec.synthesized.as_ref().unwrap().policy,
+        lazysolid_synth::solid::lazy::MemoryPolicy::Keep
+    );
+    for bad in ["lots", "0MB", "12"] {
+        let e = Scene::parse(
+            &texture(&format!(
+                "exemplar = \"leather\", resolution = 64, store = \"octree\", memory = \"{bad}\""
+            )),
+            &scene,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains(":15: material \"white\".texture.memory: ")
+                && e.contains("\"keep\" or a budget in whole MB"),
+            "{bad}: {e}"
+        );
+    }
+    expect(
+        &edit(
+            15,
+            "texture = { kind = \"marble\", color_a = [1, 1, 1], color_b = [0, 0, 0], memory = \"keep\" }",
+        ),
+        15,
+        "material \"white\".texture.memory",
+    );
 }
 
 /// BASE with its box named `b`, followed by `more` (which starts on line 20).

@@ -111,6 +111,10 @@ pub struct SynthParams {
     /// rectangles (`docs/solid.md`, "Correction"). On reproduces the rule before 2026-12-03,
     /// an ablation of `bench solid`.
     pub keep_current: bool,
+    /// Solid synthesis only: how many of the finest levels correct every voxel at once per
+    /// pass (Jacobi) instead of in eight ordered parity subpasses (`solid/schedule.rs`). A
+    /// parallel finest level makes lazy synthesis correct exactly the requested voxels.
+    pub parallel_levels: u32,
 }
 
 impl SynthParams {
@@ -162,6 +166,7 @@ impl SynthParams {
             jitter,
             period_penalty: DEFAULT_PERIOD_PENALTY,
             keep_current: false,
+            parallel_levels: 0,
         })
     }
 
@@ -190,5 +195,24 @@ impl SynthParams {
             keep_current,
             ..self
         }
+    }
+
+    /// The same parameters with the `levels` finest levels corrected in parallel passes: see
+    /// [`SynthParams::parallel_levels`].
+    ///
+    /// # Errors
+    /// [`SynthError::Parameter`] for more levels than the pyramid has.
+    pub fn with_parallel_levels(self, levels: u32) -> SynthResult<SynthParams> {
+        if levels as usize > self.passes.len() {
+            return Err(SynthError::Parameter {
+                name: "parallel levels",
+                value: levels.to_string(),
+                limit: format!("the pyramid has {} levels", self.passes.len()),
+            });
+        }
+        Ok(SynthParams {
+            parallel_levels: levels,
+            ..self
+        })
     }
 }

@@ -14,12 +14,13 @@ use lazysolid_compute::store::{
 use lazysolid_compute::voxel::{difference_cpu, union_cpu, Voxelizer};
 use lazysolid_synth::solid::lazy::{
     dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MatterColours, MatterError, MatterSpec,
-    MatterVoxels, StoredMatter, MAX_LAZY_COORD,
+    MatterVoxels, MemoryPolicy, StoredMatter, MAX_LAZY_COORD,
 };
 use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
-    pack_rgb, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, SolidAnalysis,
-    SolidCandidates, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_BALANCE,
+    level_schedules, pack_rgb, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer,
+    SolidAnalysis, SolidCandidates, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_BALANCE,
+    DEFAULT_SOLID_PARALLEL_LEVELS,
 };
 use lazysolid_synth::{SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, unit_mesh, with_gpu};
@@ -50,9 +51,23 @@ fn case() -> &'static Case {
             &default_solid_passes(levels),
             &default_solid_jitter(levels),
         )
+        .unwrap()
+        .with_parallel_levels(DEFAULT_SOLID_PARALLEL_LEVELS)
         .unwrap();
         (exemplars, analysis, candidates, params)
     })
+}
+
+/// The parameters of [`case`] with the finest level's correction in either order: the default
+/// first, then the other one (ordered subpasses or one parallel pass).
+fn orders() -> [&'static SynthParams; 2] {
+    static OTHER: OnceLock<SynthParams> = OnceLock::new();
+    let default = &case().3;
+    let other = OTHER.get_or_init(|| {
+        let flipped = if default.parallel_levels > 0 { 0 } else { 1 };
+        default.clone().with_parallel_levels(flipped).unwrap()
+    });
+    [default, other]
 }
 
 /// The resolution of the GPU state: the texture `[0, 16)³` holds [`BOX`].
@@ -64,17 +79,21 @@ const BOX: VolumeBox = VolumeBox {
     size: [14, 13, 12],
 };
 
-/// The full volume over [`BOX`]: the oracle.
-fn full() -> &'static SolidSynthesis {
-    static CELL: OnceLock<SolidSynthesis> = OnceLock::new();
-    CELL.get_or_init(|| {
-        let (_, analysis, candidates, params) = case();
+/// The full volume over [`BOX`] with `params` (one of [`orders`]): the oracle.
+fn full(params: &SynthParams) -> &'static SolidSynthesis {
+    static CELLS: [OnceLock<SolidSynthesis>; 2] = [OnceLock::new(), OnceLock::new()];
+    let i = orders()
+        .iter()
+        .position(|o| *o == params)
+        .expect("one of the orders");
+    CELLS[i].get_or_init(|| {
+        let (_, analysis, candidates, _) = case();
         synthesize_solid_cpu(analysis, candidates, params, BOX).unwrap()
     })
 }
 
-fn oracle(p: [i32; 3]) -> [u32; 3] {
-    let f = full();
+fn oracle(params: &SynthParams, p: [i32; 3]) -> [u32; 3] {
+    let f = full(params);
     f.window_triples()[f.window.index(p)]
 }
 
@@ -108,16 +127,17 @@ fn slab() -> Vec<[i32; 3]> {
         .collect()
 }
 
-fn check(name: &str, got: &[[u32; 3]], requested: &[[i32; 3]]) {
+fn check(params: &SynthParams, name: &str, got: &[[u32; 3]], requested: &[[i32; 3]]) {
     assert_eq!(got.len(), requested.len());
     let differ: Vec<_> = requested
         .iter()
         .zip(got)
-        .filter(|(&p, &t)| oracle(p) != t)
+        .filter(|(&p, &t)| oracle(params, p) != t)
         .collect();
     assert!(
         differ.is_empty(),
-        "{name}: {} of {} voxels differ, first {:?}",
+        "{name} (parallel levels {}): {} of {} voxels differ, first {:?}",
+        params.parallel_levels,
         differ.len(),
         requested.len(),
         differ[0]
@@ -126,16 +146,19 @@ fn check(name: &str, got: &[[u32; 3]], requested: &[[i32; 3]]) {
 
 #[test]
 fn lazy_equals_the_full_volume_on_every_request_set() {
-    let (_, analysis, candidates, params) = case();
+    let (_, analysis, candidates, _) = case();
     let sets = [
         ("scattered", scattered()),
         ("sphere", sphere()),
         ("slab", slab()),
     ];
-    for (name, set) in &sets {
+    for (params, (name, set)) in orders()
+        .into_iter()
+        .flat_map(|p| sets.iter().map(move |s| (p, s)))
+    {
         let mut lazy = LazySolidCpu::new();
         let got = lazy.request(analysis, candidates, params, set).unwrap();
-        check(name, &got, set);
+        check(params, name, &got, set);
         // Far less than the full volume's work at the finest level.
         let finest = *lazy.computed().last().unwrap();
         let box_versions =
@@ -151,57 +174,81 @@ fn lazy_equals_the_full_volume_on_every_request_set() {
 
 #[test]
 fn two_batches_equal_one_request_of_their_union_in_either_order() {
-    let (_, analysis, candidates, params) = case();
+    let (_, analysis, candidates, _) = case();
     let a = scattered();
     let b = slab();
     let union: Vec<[i32; 3]> = a.iter().chain(&b).copied().collect();
-    let mut once = LazySolidCpu::new();
-    check(
-        "union",
-        &once.request(analysis, candidates, params, &union).unwrap(),
-        &union,
-    );
-    for (first, second) in [(&a, &b), (&b, &a)] {
-        let mut lazy = LazySolidCpu::new();
-        let got1 = lazy.request(analysis, candidates, params, first).unwrap();
-        let after_first = lazy.computed().to_vec();
-        let got2 = lazy.request(analysis, candidates, params, second).unwrap();
-        check("first batch", &got1, first);
-        check("second batch", &got2, second);
-        // Nothing computed twice: the two batches together did exactly the union's work.
-        assert_eq!(lazy.computed(), once.computed());
-        assert_eq!(lazy.bytes(), once.bytes());
-        assert!(after_first.iter().sum::<u64>() < once.computed().iter().sum::<u64>());
-        // A repeated request computes nothing.
-        lazy.request(analysis, candidates, params, second).unwrap();
-        assert_eq!(lazy.computed(), once.computed());
+    for params in orders() {
+        let mut once = LazySolidCpu::new();
+        check(
+            params,
+            "union",
+            &once.request(analysis, candidates, params, &union).unwrap(),
+            &union,
+        );
+        for (first, second) in [(&a, &b), (&b, &a)] {
+            let mut lazy = LazySolidCpu::new();
+            let got1 = lazy.request(analysis, candidates, params, first).unwrap();
+            let after_first = lazy.computed().to_vec();
+            let got2 = lazy.request(analysis, candidates, params, second).unwrap();
+            check(params, "first batch", &got1, first);
+            check(params, "second batch", &got2, second);
+            // Nothing computed twice: the two batches together did exactly the union's work.
+            assert_eq!(lazy.computed(), once.computed());
+            assert_eq!(lazy.bytes(), once.bytes());
+            assert!(after_first.iter().sum::<u64>() < once.computed().iter().sum::<u64>());
+            // A repeated request computes nothing.
+            lazy.request(analysis, candidates, params, second).unwrap();
+            assert_eq!(lazy.computed(), once.computed());
+        }
     }
 }
 
 #[test]
 fn dependency_sets_cover_only_what_is_needed() {
-    let (_, _, _, params) = case();
-    assert_eq!(
-        *params.passes.last().unwrap(),
-        1,
-        "one pass at the finest level"
-    );
-    let sizes = |p: [i32; 3]| -> Vec<usize> {
-        let deps = dependencies_cpu(&[lazy_key(p)], &params.passes, &|_, _| 0);
-        let finest: BTreeSet<u64> = deps.levels.last().unwrap().keys.iter().copied().collect();
-        assert!(finest.contains(&lazy_key(p)));
-        deps.levels.iter().map(|d| d.len()).collect()
-    };
-    // Class [0, 0, 0] is corrected first: it reads its 18 plane neighbours as upsampled.
-    let first = sizes([0, 0, 0]);
-    assert_eq!(*first.last().unwrap(), 19, "{first:?}");
-    // Class [0, 0, 1] is corrected last: its neighbours are corrected before it, and theirs.
-    let last = sizes([4, 2, -1]);
-    assert!(*last.last().unwrap() > 19 * 3, "{last:?}");
-    // Every level needs the parents of the next one, and fewer voxels than a dense box of its
-    // own extent.
-    for s in [first, last] {
-        assert!(s.iter().all(|&n| n > 0), "{s:?}");
+    for params in orders() {
+        assert_eq!(
+            *params.passes.last().unwrap(),
+            1,
+            "one pass at the finest level"
+        );
+        let schedules = level_schedules(params);
+        let finest_parallel = schedules.last().unwrap().parallel;
+        // Per level the voxels needed, and at the finest level those needed after its pass
+        // (corrected).
+        let sizes = |p: [i32; 3]| -> (Vec<usize>, usize) {
+            let deps = dependencies_cpu(&[lazy_key(p)], &schedules, &|_, _| 0);
+            let finest = deps.levels.last().unwrap();
+            let set: BTreeSet<u64> = finest.keys.iter().copied().collect();
+            assert!(set.contains(&lazy_key(p)));
+            let corrected = finest.need.iter().filter(|&&n| n > 0).count();
+            (deps.levels.iter().map(|d| d.len()).collect(), corrected)
+        };
+        let (first, first_corrected) = sizes([0, 0, 0]);
+        let (last, last_corrected) = sizes([4, 2, -1]);
+        if finest_parallel {
+            // One parallel pass: the voxel alone is corrected, from its 18 plane neighbours
+            // as upsampled, whatever its class.
+            assert_eq!(
+                (*first.last().unwrap(), first_corrected),
+                (19, 1),
+                "{first:?}"
+            );
+            assert_eq!((*last.last().unwrap(), last_corrected), (19, 1), "{last:?}");
+        } else {
+            // Class [0, 0, 0] is corrected first: it reads its 18 plane neighbours as
+            // upsampled.
+            assert_eq!(*first.last().unwrap(), 19, "{first:?}");
+            assert_eq!(first_corrected, 1);
+            // Class [0, 0, 1] is corrected last: its neighbours are corrected before it, and
+            // theirs.
+            assert!(*last.last().unwrap() > 19 * 3, "{last:?}");
+            assert!(last_corrected > 19, "{last_corrected}");
+        }
+        // Every level needs the parents of the next one.
+        for s in [first, last] {
+            assert!(s.iter().all(|&n| n > 0), "{s:?}");
+        }
     }
 }
 
@@ -230,59 +277,142 @@ fn requests_outside_the_key_range_are_refused() {
 
 #[test]
 fn gpu_lazy_equals_the_full_volume_and_the_cpu_reference() {
-    let (_, analysis, candidates, params) = case();
+    let (_, analysis, candidates, _) = case();
     let sets = [
         ("scattered", scattered()),
         ("sphere", sphere()),
         ("slab", slab()),
     ];
     with_gpu(|gpu| {
-        for (name, set) in &sets {
-            let mut lazy =
-                GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION)
-                    .unwrap();
-            let (got, report) = lazy.request(set).unwrap();
-            check(name, &got, set);
-            let mut cpu = LazySolidCpu::new();
-            cpu.request(analysis, candidates, params, set).unwrap();
-            assert_eq!(
-                report.computed,
-                cpu.computed(),
-                "{name}: versions computed per level"
-            );
+        for params in orders() {
+            for (name, set) in &sets {
+                let mut lazy =
+                    GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION)
+                        .unwrap();
+                let (got, report) = lazy.request(set).unwrap();
+                check(params, name, &got, set);
+                // The dependency walk on the device equals the reference.
+                let mut fresh =
+                    GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION)
+                        .unwrap();
+                assert_eq!(
+                    fresh.dependencies(set).unwrap(),
+                    dependencies_cpu(
+                        &set.iter().map(|&p| lazy_key(p)).collect::<Vec<_>>(),
+                        &level_schedules(params),
+                        &|_, _| 0
+                    ),
+                    "{name}: dependency sets"
+                );
+                let mut cpu = LazySolidCpu::new();
+                cpu.request(analysis, candidates, params, set).unwrap();
+                assert_eq!(
+                    report.computed,
+                    cpu.computed(),
+                    "{name}: versions computed per level"
+                );
+            }
+            // Two batches in either order: the same triples, and together exactly the union's work.
+            let (a, b) = (scattered(), slab());
+            let union: Vec<[i32; 3]> = a.iter().chain(&b).copied().collect();
+            let mut once = LazySolidCpu::new();
+            once.request(analysis, candidates, params, &union).unwrap();
+            for (first, second) in [(&a, &b), (&b, &a)] {
+                let mut lazy =
+                    GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION)
+                        .unwrap();
+                let (got1, r1) = lazy.request(first).unwrap();
+                let (got2, r2) = lazy.request(second).unwrap();
+                check(params, "first batch", &got1, first);
+                check(params, "second batch", &got2, second);
+                let total: Vec<u64> = r1
+                    .computed
+                    .iter()
+                    .zip(&r2.computed)
+                    .map(|(x, y)| x + y)
+                    .collect();
+                assert_eq!(total, once.computed());
+                let (_, r3) = lazy.request(second).unwrap();
+                assert!(
+                    r3.computed.iter().all(|&c| c == 0),
+                    "a repeated request computes nothing"
+                );
+                assert!(lazy.bytes() > 0);
+            }
         }
-        // Two batches in either order: the same triples, and together exactly the union's work.
-        let (a, b) = (scattered(), slab());
-        let union: Vec<[i32; 3]> = a.iter().chain(&b).copied().collect();
-        let mut once = LazySolidCpu::new();
-        once.request(analysis, candidates, params, &union).unwrap();
-        for (first, second) in [(&a, &b), (&b, &a)] {
-            let mut lazy =
-                GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION)
-                    .unwrap();
-            let (got1, r1) = lazy.request(first).unwrap();
-            let (got2, r2) = lazy.request(second).unwrap();
-            check("first batch", &got1, first);
-            check("second batch", &got2, second);
-            let total: Vec<u64> = r1
-                .computed
-                .iter()
-                .zip(&r2.computed)
-                .map(|(x, y)| x + y)
-                .collect();
-            assert_eq!(total, once.computed());
-            let (_, r3) = lazy.request(second).unwrap();
-            assert!(
-                r3.computed.iter().all(|&c| c == 0),
-                "a repeated request computes nothing"
-            );
-            assert!(lazy.bytes() > 0);
-        }
+        let params = &case().3;
         // Outside the texture: refused with the limit.
         let mut lazy =
             GpuLazySolid::new(gpu, &case().0, analysis, candidates, params, RESOLUTION).unwrap();
         let err = lazy.request(&[[0, 16, 0]]).unwrap_err();
         assert!(err.to_string().contains("0..16"), "{err}");
+    });
+}
+
+#[test]
+fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() {
+    let (exemplars, analysis, candidates, _) = case();
+    let (sphere, scattered) = (sphere(), scattered());
+    with_gpu(|gpu| {
+        // The default order only: the policies act on levels, whatever their schedule.
+        for params in [&case().3] {
+            let fresh = || {
+                GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, RESOLUTION).unwrap()
+            };
+            // The reference: every version kept, one chunk.
+            let mut whole = fresh();
+            whole.set_policy(MemoryPolicy::Keep);
+            let (_, once) = whole.request(&sphere).unwrap();
+            assert_eq!(once.chunks, 1);
+            // A budget that holds the three coarsest levels and not the fourth.
+            let level_bytes = whole.level_bytes();
+            let three = MemoryPolicy::Budget(level_bytes[..3].iter().sum());
+            for (policy, chunk) in [
+                (MemoryPolicy::Keep, 64),
+                (MemoryPolicy::Budget(1), 64),
+                (three, 150),
+            ] {
+                let what = format!("{policy:?}, chunks of {chunk}");
+                let mut lazy = fresh();
+                lazy.set_policy(policy);
+                lazy.set_chunk_voxels(chunk);
+                let (got, r) = lazy.request(&sphere).unwrap();
+                check(params, &what, &got, &sphere);
+                assert_eq!(r.chunks as usize, sphere.len().div_ceil(chunk), "{what}");
+                let stored = lazy.stored();
+                match policy {
+                    MemoryPolicy::Keep => {
+                        // Nothing computed twice across chunks, and the same voxels held.
+                        assert_eq!(r.computed, once.computed, "{what}");
+                        assert_eq!(stored, whole.stored(), "{what}");
+                    }
+                    MemoryPolicy::Budget(budget) => {
+                        assert!(r.dropped_levels > 0, "{what}");
+                        let kept = stored.iter().take_while(|&&n| n > 0).count();
+                        assert!(stored[kept..].iter().all(|&n| n == 0), "{what}: {stored:?}");
+                        let held: u64 = lazy.level_bytes()[..kept].iter().sum();
+                        assert!(held <= budget, "{what}: {held} bytes held");
+                        if budget > 1 {
+                            assert_eq!(kept, 3, "{what}: {stored:?}");
+                        } else {
+                            assert_eq!(kept, 0, "{what}: {stored:?}");
+                        }
+                        assert!(r.peak_state_bytes > held, "{what}");
+                    }
+                }
+                // A later request after eviction: the same triples, recomputed where dropped.
+                let (again, r2) = lazy.request(&sphere).unwrap();
+                check(params, &what, &again, &sphere);
+                let recomputed: u64 = r2.computed.iter().sum();
+                assert_eq!(
+                    recomputed == 0,
+                    policy == MemoryPolicy::Keep,
+                    "{what}: {recomputed} versions recomputed"
+                );
+                let (other, _) = lazy.request(&scattered).unwrap();
+                check(params, &what, &other, &scattered);
+            }
+        }
     });
 }
 

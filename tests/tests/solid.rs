@@ -5,10 +5,10 @@
 use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cached, candidates_cpu, candidates_host,
-    candidates_key, decode_candidates, encode_candidates, plan_boxes, synthesize_solid_cpu,
-    triple_consistency, voxel_colour, CandidateParams, GpuCandidates, GpuSolidSynthesizer,
-    SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND,
-    DEFAULT_BALANCE, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
+    candidates_key, decode_candidates, encode_candidates, level_schedules, plan_boxes,
+    synthesize_solid_cpu, triple_consistency, voxel_colour, CandidateParams, GpuCandidates,
+    GpuSolidSynthesizer, SolidAnalysis, SolidCandidates, SolidExemplars, VolumeBox,
+    CANDIDATES_CACHE_KIND, DEFAULT_BALANCE, LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
 use lazysolid_synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, with_gpu};
@@ -160,13 +160,17 @@ fn synthesis_gpu_equals_cpu_on_every_level() {
         // reference pays for on 2 cores.
         let passes: Vec<u32> = (0..levels).map(|l| (levels - l) % 2).collect();
         let window = boxed([-5, 7, 2], [16, 16, 16]);
-        // The default rule, then the ablation in which the current triple always competes.
+        // The default rule, then the ablation in which the current triple always competes,
+        // then the default rule with the two finest levels in parallel passes (the finest
+        // corrected once, the next one not at all).
         let mut shares = Vec::new();
         let mut gpu = None;
-        for keep_current in [false, true] {
+        for (keep_current, parallel) in [(false, 0), (true, 0), (false, 2)] {
             let params = SynthParams::new(levels, 11, &passes, &[0.5])
                 .unwrap()
-                .with_keep_current(keep_current);
+                .with_keep_current(keep_current)
+                .with_parallel_levels(parallel)
+                .unwrap();
             let cpu = synthesize_solid_cpu(analysis, candidates, &params, window).unwrap();
             let g = with_gpu(|gpu| {
                 let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
@@ -177,7 +181,10 @@ fn synthesis_gpu_equals_cpu_on_every_level() {
             });
             assert_eq!(g.levels.len(), levels as usize);
             for (l, (c, g)) in cpu.levels.iter().zip(&g.levels).enumerate() {
-                assert_eq!(c.region, g.region, "{name} level {l} keep {keep_current}");
+                assert_eq!(
+                    c.region, g.region,
+                    "{name} level {l} keep {keep_current} parallel {parallel}"
+                );
                 let differ = c
                     .triples
                     .iter()
@@ -186,7 +193,7 @@ fn synthesis_gpu_equals_cpu_on_every_level() {
                     .count();
                 assert_eq!(
                     differ, 0,
-                    "{name} level {l} keep {keep_current}: {differ} triples differ"
+                    "{name} level {l} keep {keep_current} parallel {parallel}: {differ} triples differ"
                 );
             }
             shares.push(triple_consistency(&three().0, candidates, &g).candidate_share);
@@ -196,6 +203,10 @@ fn synthesis_gpu_equals_cpu_on_every_level() {
         // candidate, i.e. one of its own pixel's candidates in some role; the ablation keeps
         // merely translated triples that are none.
         assert_eq!(shares[0], 1.0, "{name}: every triple a candidate");
+        assert_eq!(
+            shares[2], 1.0,
+            "{name}: every triple a candidate (parallel)"
+        );
         assert!(
             shares[1] < 1.0,
             "{name}: the ablation keeps translated triples ({shares:?})"
@@ -224,38 +235,49 @@ fn overlapping_boxes_agree() {
     // One pass at the three finest levels: their boxes are padded, and the coarser ones
     // follow as their parents.
     let passes: Vec<u32> = (0..levels).map(|l| (l + 3 >= levels) as u32).collect();
-    let params = SynthParams::new(levels, 3, &passes, &[0.5]).unwrap();
-    let (a, b) = (boxed([0, 0, 0], [12, 10, 8]), boxed([5, -3, 4], [9, 9, 9]));
-    let (sa, sb) = with_gpu(|gpu| {
-        let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
-        let run = |w| {
-            synth
-                .synthesize(analysis, candidates, &params, w, false, &mut |_| {})
-                .unwrap()
-                .0
-        };
-        (run(a), run(b))
-    });
-    let (ta, tb) = (sa.window_triples(), sb.window_triples());
-    let mut compared = 0;
-    for (i, t) in ta.iter().enumerate() {
-        let p = a.position(i);
-        let inside = (0..3).all(|k| p[k] >= b.origin[k] && p[k] < b.origin[k] + b.size[k] as i32);
-        if inside {
-            assert_eq!(*t, tb[b.index(p)], "voxel {p:?}");
-            compared += 1;
+    // Ordered subpasses, then the two finest levels in parallel passes (each pads the box by
+    // one voxel a side).
+    for parallel in [0, 2] {
+        let params = SynthParams::new(levels, 3, &passes, &[0.5])
+            .unwrap()
+            .with_parallel_levels(parallel)
+            .unwrap();
+        let (a, b) = (boxed([0, 0, 0], [12, 10, 8]), boxed([5, -3, 4], [9, 9, 9]));
+        let (sa, sb) = with_gpu(|gpu| {
+            let synth = GpuSolidSynthesizer::new(gpu, analysis, candidates).unwrap();
+            let run = |w| {
+                synth
+                    .synthesize(analysis, candidates, &params, w, false, &mut |_| {})
+                    .unwrap()
+                    .0
+            };
+            (run(a), run(b))
+        });
+        let (ta, tb) = (sa.window_triples(), sb.window_triples());
+        let mut compared = 0;
+        for (i, t) in ta.iter().enumerate() {
+            let p = a.position(i);
+            let inside =
+                (0..3).all(|k| p[k] >= b.origin[k] && p[k] < b.origin[k] + b.size[k] as i32);
+            if inside {
+                assert_eq!(*t, tb[b.index(p)], "voxel {p:?}");
+                compared += 1;
+            }
         }
+        assert_eq!(compared, 7 * 6 * 4);
+        // The CPU reference agrees on a third, small box.
+        let c = boxed([6, 2, 5], [3, 2, 2]);
+        let tc = synthesize_solid_cpu(analysis, candidates, &params, c)
+            .unwrap()
+            .window_triples();
+        for (i, t) in tc.iter().enumerate() {
+            assert_eq!(*t, ta[a.index(c.position(i))]);
+        }
+        assert_eq!(
+            plan_boxes(a, &level_schedules(&params)).len(),
+            levels as usize
+        );
     }
-    assert_eq!(compared, 7 * 6 * 4);
-    // The CPU reference agrees on a third, small box.
-    let c = boxed([6, 2, 5], [3, 2, 2]);
-    let tc = synthesize_solid_cpu(analysis, candidates, &params, c)
-        .unwrap()
-        .window_triples();
-    for (i, t) in tc.iter().enumerate() {
-        assert_eq!(*t, ta[a.index(c.position(i))]);
-    }
-    assert_eq!(plan_boxes(a, &params.passes).len(), levels as usize);
 }
 
 /// A 16-periodic lattice volume whose red channel varies along x only, green along y only and

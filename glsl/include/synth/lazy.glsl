@@ -10,7 +10,7 @@
 #include "morton.glsl"
 #include "hash/robin_hood_lookup.glsl"
 
-// Must match `LazyLevelRecord` in synth/src/solid/lazy/gpu.rs (scalar layout, 56 bytes).
+// Must match `LazyLevelRecord` in synth/src/solid/lazy/gpu.rs (scalar layout, 60 bytes).
 struct LazyLevel {
     uint64_t cells;        // the table's cells (unused while table_size is 0)
     uint64_t fastmod_m;    // the table size's reciprocal
@@ -22,6 +22,7 @@ struct LazyLevel {
     uint stride;           // versions per slot: the level's passes + 1
     int margin;            // added to positions before the Morton key
     uint extent;           // table positions lie in [0, extent) per axis
+    uint parallel;         // 1: every stage corrects every voxel (synth/src/solid/schedule.rs)
 };
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) buffer LazyLevels { LazyLevel v[]; };
@@ -102,9 +103,24 @@ uint lazy_class(ivec3 p) {
     return g ^ (g >> 1u) ^ (g >> 2u);
 }
 
-// The version a voxel of class place `c` holds after stage `stage`.
-uint lazy_version_at(uint stage, uint c) {
-    return (stage + 7u - c) >> 3;
+// The first stage at which a needed voxel of level l is stored: 1, so that a voxel read only
+// as upsampled (needed at stage 0) is computed in place by its readers instead; 0 on a level
+// without passes, whose requested voxels are needed at stage 0.
+uint lazy_store_from(LazyLevel l) {
+    return l.stride == 1u ? 0u : 1u;
+}
+
+// Marks a stage that corrects every class (ALL_CLASSES in synth/src/solid/schedule.rs).
+const uint LAZY_ALL_CLASSES = 8u;
+
+// The version a voxel of class place `c` of level l holds after stage `stage`.
+uint lazy_version_at(LazyLevel l, uint stage, uint c) {
+    return l.parallel != 0u ? stage : (stage + 7u - c) >> 3;
+}
+
+// Whether a stage that corrects class place `cls` (or LAZY_ALL_CLASSES) corrects class `c`.
+bool lazy_corrects(uint cls, uint c) {
+    return cls == LAZY_ALL_CLASSES || cls == c;
 }
 
 #endif

@@ -9,12 +9,16 @@
 // keep_current). Ties keep the current triple, then go to the smallest triple.
 // Each distinct shifted-back pixel of a role is evaluated once (a repeat gives the same
 // candidates, so it cannot change the choice), and a candidate's distance stops once its
-// partial sum exceeds the best (it cannot win). CPU reference: synth/src/solid/cpu.rs.
+// partial sum exceeds the best (it cannot win). A parallel pass (step 1) updates every voxel
+// of the box, reading the state before the pass from `source` (a copy); an ordered subpass
+// (step 2) reads and writes `triples`, since a class reads only other classes.
+// CPU reference: synth/src/solid/cpu.rs.
 #include "common.glsl"
 #include "synth/solid_correct.glsl"
 
 layout(push_constant, scalar) uniform Push {
-    uint64_t triples;          // 3 packed coordinates per voxel, updated in place
+    uint64_t triples;          // 3 packed coordinates per voxel, written
+    uint64_t source;           // the same layout, read (triples itself in an ordered subpass)
     // 15 addresses (push constants hold only 128 bytes on lavapipe), per role r:
     // [r] appearance, 2 words (8 x i8) per exemplar pixel; [3 + r] 4-diagonal records, 8 words
     // per pixel; [6 + r] SOLID_MAX_CANDIDATES x 3 packed coordinates per pixel; [9 + r] valid
@@ -27,6 +31,7 @@ layout(push_constant, scalar) uniform Push {
     uint side;
     uint spacing;
     uint keep_current;         // the current triple competes even when not gathered
+    uint step;                 // 2: one parity class (ordered subpass), 1: every voxel (parallel)
 } pc;
 
 void main() {
@@ -35,7 +40,7 @@ void main() {
         return;
     }
     uvec3 local = pc.first
-        + 2u * uvec3(i % pc.count.x, (i / pc.count.x) % pc.count.y, i / (pc.count.x * pc.count.y));
+        + pc.step * uvec3(i % pc.count.x, (i / pc.count.x) % pc.count.y, i / (pc.count.x * pc.count.y));
     // The 19 voxels of the three planes through the voxel; the 8 corners (no zero offset)
     // lie in none of them and are never read.
     uvec3 around[27];
@@ -46,8 +51,8 @@ void main() {
         }
         uvec3 q = uvec3(ivec3(local) + d);
         uint vi = (q.z * pc.size.y + q.y) * pc.size.x + q.x;
-        around[n] = uvec3(U32Ptr(pc.triples).v[vi * 3u], U32Ptr(pc.triples).v[vi * 3u + 1u],
-                          U32Ptr(pc.triples).v[vi * 3u + 2u]);
+        around[n] = uvec3(U32Ptr(pc.source).v[vi * 3u], U32Ptr(pc.source).v[vi * 3u + 1u],
+                          U32Ptr(pc.source).v[vi * 3u + 2u]);
     }
     uvec3 best_t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current);
     uint vi = (local.z * pc.size.y + local.y) * pc.size.x + local.x;

@@ -22,6 +22,9 @@ void main() {
         return;
     }
     LazyLevel l = LazyLevels(pc.levels).v[pc.level];
+    if (lazy_untag_stage(U64Ptr(pc.keys).v[i]) < lazy_store_from(l)) {
+        return;
+    }
     uint rank = U32Ptr(pc.offsets).v[i];
     uint s = pc.base + rank;
     U32Ptr(pc.slots).v[i] = s;

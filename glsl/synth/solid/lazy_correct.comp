@@ -1,13 +1,15 @@
 #version 460
-// Lazy synthesis, subpass `stage` of a level: every needed voxel of the subpass's class that
-// is needed at this stage and lacks the version the subpass produces reads its 18 plane
-// neighbours at the versions they hold after the previous stage (through the level's table),
-// decides as correct.comp does (synth/solid_correct.glsl), and stores the new version. Voxels
-// of one class read only other classes, so the subpass updates them independently. CPU
+// Lazy synthesis, stage `stage` of a level: every needed voxel of the class the stage corrects
+// (every class on a parallel level) that is needed at this stage and lacks the version the
+// stage produces reads its 18 plane neighbours at the versions they hold after the previous
+// stage (through the level's table; a neighbour read only as upsampled is not stored and is
+// upsampled in place from its parent), decides as correct.comp does (synth/solid_correct.glsl),
+// and stores the new version beside the ones it read, so the voxels update independently. CPU
 // reference: LazySolidCpu::request in synth/src/solid/lazy/state_cpu.rs.
 #include "common.glsl"
 #include "synth/lazy.glsl"
 #include "synth/solid_correct.glsl"
+#include "synth/lazy_upsample.glsl"
 
 layout(push_constant, scalar) uniform Push {
     uint64_t levels;
@@ -18,11 +20,13 @@ layout(push_constant, scalar) uniform Push {
     uint n;
     uint level;
     uint stage;        // 1-based subpass
-    uint cls;          // its class place
+    uint cls;          // its class place, or LAZY_ALL_CLASSES
     uint version;      // the version it produces
     uint side;
     uint spacing;
     uint keep_current; // the current triple competes even when not gathered
+    uint seed;         // the jitter's, for neighbours read only as upsampled
+    uint strength;
 } pc;
 
 void main() {
@@ -35,7 +39,7 @@ void main() {
         return;
     }
     ivec3 p = lazy_position(lazy_untag_key(tk));
-    if (lazy_class(p) != pc.cls) {
+    if (!lazy_corrects(pc.cls, lazy_class(p))) {
         return;
     }
     LazyLevel l = LazyLevels(pc.levels).v[pc.level];
@@ -51,11 +55,15 @@ void main() {
         }
         ivec3 q = p + d;
         uint sq = n == 13 ? s : lazy_slot(l, q);
-        if (sq == HASH_NOT_FOUND) {
+        uint v = lazy_version_at(l, pc.stage - 1u, lazy_class(q));
+        if (sq != HASH_NOT_FOUND) {
+            around[n] = lazy_version(l, sq, v);
+        } else if (v != 0u || !lazy_upsampled(pc.levels, pc.level, q, pc.side, pc.spacing,
+                                               pc.seed, pc.strength, around[n])) {
+            // Only a voxel read as upsampled may be missing, and then its parent may not.
             atomicAdd(U32Ptr(pc.errors).v[0], 1u);
             return;
         }
-        around[n] = lazy_version(l, sq, lazy_version_at(pc.stage - 1u, lazy_class(q)));
     }
     uvec3 t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current);
     lazy_store(l, s, pc.version, t);

@@ -1,7 +1,8 @@
 #version 460
 // One backward step of the dependency walk (synth/src/solid/lazy/deps.rs), over the
-// stage-tagged keys of one level: a voxel needed after subpass `stage` of its own class whose
-// version from that subpass is not stored yet needs its 18 plane neighbours after stage − 1.
+// stage-tagged keys of one level: a voxel needed after a stage that corrects its class (cls,
+// or every class on a parallel level) whose version from that stage is not stored yet needs
+// its 18 plane neighbours after stage − 1.
 // write == 0: flags[i] = 1 for such a voxel. write == 1 (flags scanned into offsets): out[i]
 // = tagged[i], and the expanding voxel's neighbours go to out[n + 18 · offsets[i] + j],
 // tagged with stage − 1. A neighbour outside the table's extent counts an error.
@@ -17,7 +18,7 @@ layout(push_constant, scalar) uniform Push {
     uint n;
     uint level;
     uint stage;
-    uint cls;
+    uint cls;          // the class place the stage corrects, or LAZY_ALL_CLASSES
     uint version;      // the version subpass `stage` produces
     uint write;
 } pc;
@@ -36,7 +37,7 @@ void main() {
     uint64_t t = U64Ptr(pc.tagged).v[i];
     ivec3 p = lazy_position(lazy_untag_key(t));
     LazyLevel l = LazyLevels(pc.levels).v[pc.level];
-    bool expand = lazy_untag_stage(t) >= pc.stage && lazy_class(p) == pc.cls
+    bool expand = lazy_untag_stage(t) >= pc.stage && lazy_corrects(pc.cls, lazy_class(p))
         && lazy_known(l, p) <= pc.version;
     if (pc.write == 0u) {
         U32Ptr(pc.flags).v[i] = expand ? 1u : 0u;

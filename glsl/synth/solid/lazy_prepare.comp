@@ -1,6 +1,7 @@
 #version 460
 // Lazy synthesis, before a level: each needed voxel's slot in the level's table, and a flag
-// for the voxels not stored yet (scanned into their new slots by lazy_assign.comp).
+// for the voxels to store that are not stored yet (scanned into their new slots by
+// lazy_assign.comp); a voxel needed only upsampled is not stored (lazy_store_from).
 #include "common.glsl"
 #include "synth/lazy.glsl"
 
@@ -23,10 +24,13 @@ void main() {
     uint64_t t = U64Ptr(pc.keys).v[i];
     ivec3 p = lazy_position(lazy_untag_key(t));
     uint s = lazy_slot(l, p);
+    uint stage = lazy_untag_stage(t);
+    // A voxel needed only upsampled is not stored (lazy_store_from).
+    bool store = stage >= lazy_store_from(l);
     U32Ptr(pc.slots).v[i] = s;
-    U32Ptr(pc.flags).v[i] = s == HASH_NOT_FOUND ? 1u : 0u;
+    U32Ptr(pc.flags).v[i] = s == HASH_NOT_FOUND && store ? 1u : 0u;
     uint known = s == HASH_NOT_FOUND ? 0u : U32Ptr(l.counts).v[s];
-    uint needed = lazy_version_at(lazy_untag_stage(t), lazy_class(p)) + 1u;
+    uint needed = store ? lazy_version_at(l, stage, lazy_class(p)) + 1u : 0u;
     if (needed > known) {
         atomicAdd(U32Ptr(pc.work).v[0], needed - known);
     }

@@ -21,8 +21,8 @@ use lazysolid_compute::store::StoreKernels;
 use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    CutInfo, GpuLazySolid, MatterColours, MatterSpec, MatterVoxels, SharedLazy, StoredMatter,
-    SynthesisInfo,
+    CutInfo, GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy,
+    SharedLazy, StoredMatter, SynthesisInfo,
 };
 use lazysolid_synth::solid::SolidExemplars;
 use lazysolid_synth::{load_solid, FitMode, SynthError};
@@ -40,7 +40,7 @@ pub(crate) struct Baker<'a> {
     gpu: &'a Gpu,
     kernels: Option<Arc<StoreKernels>>,
     voxelizer: Option<Voxelizer>,
-    lazy: HashMap<(PathBuf, u32, u32), SharedLazy>,
+    lazy: HashMap<(PathBuf, u32, u32, MemoryPolicy), SharedLazy>,
 }
 
 /// The lazy synthesis state of exemplar `spec` at resolution `r`, with the solid defaults and
@@ -49,7 +49,11 @@ fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid,
     let image = load_solid(&spec.exemplar, FitMode::Auto, None)?.exemplar;
     let exemplars = SolidExemplars::new(image, [None, None, None])?;
     let cache = DiskCache::user().ok();
-    GpuLazySolid::with_defaults(gpu, &exemplars, spec.seed, r, cache.as_ref())
+    let options = LazyOptions {
+        policy: Some(spec.policy),
+        ..LazyOptions::new(spec.seed)
+    };
+    GpuLazySolid::with_options(gpu, &exemplars, &options, r, cache.as_ref())
 }
 
 impl<'a> Baker<'a> {
@@ -92,7 +96,7 @@ impl<'a> Baker<'a> {
                 material, r,
             ))));
         };
-        let key = (synth.exemplar.clone(), synth.seed, r);
+        let key = (synth.exemplar.clone(), synth.seed, r, synth.policy);
         if let Some(lazy) = self.lazy.get(&key) {
             return Ok(MatterColours::Lazy(lazy.clone()));
         }

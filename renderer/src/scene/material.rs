@@ -13,6 +13,7 @@ use super::{
     StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
 };
 use glam::Vec3;
+use lazysolid_synth::solid::lazy::MemoryPolicy;
 use lazysolid_synth::{load_solid, FitMode};
 use std::ops::Range;
 use std::path::Path;
@@ -462,6 +463,7 @@ fn texture(
     let why = "only kind = \"synthesized\" has it";
     doc.reject(&raw.exemplar, label, "exemplar", why)?;
     doc.reject(&raw.seed, label, "seed", why)?;
+    doc.reject(&raw.memory, label, "memory", why)?;
     doc.reject(
         &raw.path,
         label,
@@ -499,6 +501,12 @@ fn volume_texture(
         raw,
         label,
         "a volume texture has its colours in its file and spans the unit cube",
+    )?;
+    doc.reject(
+        &raw.memory,
+        label,
+        "memory",
+        "only kind = \"synthesized\" keeps a synthesis state",
     )?;
     let path = doc.require(
         &raw.path,
@@ -568,6 +576,13 @@ fn synthesized_texture(
         Some(s) => *s.get_ref(),
         None => 1,
     };
+    let policy = match &raw.memory {
+        Some(m) => m
+            .get_ref()
+            .parse::<MemoryPolicy>()
+            .map_err(|e| doc.invalid(m.span(), join(label, "memory"), e.to_string()))?,
+        None => MemoryPolicy::default(),
+    };
     Ok(SolidTexture {
         kind: SolidTextureKind::Synthesized,
         color_a: mean,
@@ -578,6 +593,7 @@ fn synthesized_texture(
             exemplar: file,
             fit: fitted.fit,
             seed,
+            policy,
         }),
         store,
     })

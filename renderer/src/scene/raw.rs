@@ -171,6 +171,7 @@ pub(super) struct RawTexture {
     pub path: Option<Spanned<String>>,
     pub exemplar: Option<Spanned<String>>,
     pub seed: Option<Spanned<u32>>,
+    pub memory: Option<Spanned<String>>,
     pub store: Option<Spanned<RawStoreKind>>,
     pub resolution: Option<Spanned<u32>>,
     pub filter: Option<Spanned<RawStoreFilter>>,

@@ -242,6 +242,8 @@ pub struct SynthesizedSpec {
     pub fit: lazysolid_synth::ExemplarFit,
     /// Seed of the synthesis's jitter.
     pub seed: u32,
+    /// What the synthesis state keeps between requests (`memory = "keep"` or `"32MB"`).
+    pub policy: lazysolid_synth::solid::lazy::MemoryPolicy,
 }
 
 /// Which sparse store holds a baked solid texture, at what resolution, read how.

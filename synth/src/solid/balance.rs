@@ -31,7 +31,7 @@
 use super::analysis::SolidAnalysis;
 use super::candidates::SolidCandidates;
 use super::cpu::{mean_final_distance, synthesize_solid_cpu};
-use super::defaults::{default_solid_jitter, default_solid_passes};
+use super::defaults::{default_solid_jitter, default_solid_passes, DEFAULT_SOLID_PARALLEL_LEVELS};
 use super::plan::VolumeBox;
 use super::roles::ROLES;
 use crate::coords::unpack;
@@ -176,7 +176,11 @@ pub fn balance_usage(
             reports: candidates.reports[..=l].to_vec(),
             balance: candidates.balance[..=l].to_vec(),
         };
-        let params = SynthParams::new(l as u32 + 1, PILOT_SEED, &passes[..=l], &jitter[..=l])?;
+        // Level l runs as it does in the full pyramid: parallel only if it is one of the
+        // default parallel levels there.
+        let first_parallel = levels.saturating_sub(DEFAULT_SOLID_PARALLEL_LEVELS as usize);
+        let params = SynthParams::new(l as u32 + 1, PILOT_SEED, &passes[..=l], &jitter[..=l])?
+            .with_parallel_levels((l + 1).saturating_sub(first_parallel) as u32)?;
         let pilot = synthesize_solid_cpu(&a, &c, &params, window)?;
         let finest = pilot.levels.last().expect("a finest level");
         let mean_distance = mean_final_distance(&a, &c, l as u32, finest);

@@ -24,8 +24,9 @@ pub const CANDIDATES_CACHE_KIND: &str = "solid-candidates";
 
 /// Version of the candidate construction and its payload: bumped whenever the strips, the
 /// crossbar ranking, the coherence filter, the usage balance or the encoding change (2: the
-/// balance's penalties after the levels).
-pub const CANDIDATES_FORMAT_VERSION: u32 = 2;
+/// balance's penalties after the levels; 3: the balance's pilot corrects the finest level in
+/// a parallel pass, as the synthesizer now does).
+pub const CANDIDATES_FORMAT_VERSION: u32 = 3;
 
 /// The cache key of the candidates of `exemplars` with `params`.
 pub fn candidates_key(exemplars: &SolidExemplars, params: &CandidateParams) -> CacheKey {

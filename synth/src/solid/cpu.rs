@@ -21,6 +21,7 @@ use super::candidates::{others, SolidCandidates};
 use super::jitter::jitter3;
 use super::plan::{plan_levels, Subpass, VolumeBox};
 use super::roles::{project, ROLES, ROLE_AXES};
+use super::schedule::level_schedules;
 use super::volume::{check_box, LevelTriples, SolidSynthesis};
 use crate::appearance::APPEARANCE_DIMS;
 use crate::coords::{pack, unpack};
@@ -191,7 +192,8 @@ pub(crate) fn plane_offsets(r: usize) -> [[i32; 3]; 9] {
 }
 
 /// One correction subpass over `region`'s triples, in place: the voxels of the subpass's
-/// class inside its update box.
+/// class inside its update box, or (a parallel pass) every voxel of the box, read from the
+/// state before the pass.
 pub fn correct_subpass_3d(
     analysis: &SolidAnalysis,
     candidates: &SolidCandidates,
@@ -201,29 +203,37 @@ pub fn correct_subpass_3d(
     subpass: Subpass,
     keep_current: bool,
 ) {
-    let span = subpass.update.class_span(subpass.class);
-    let class_voxels: Vec<usize> = (0..span[2].1 as i32)
+    let span = subpass.span();
+    let updated_voxels: Vec<usize> = (0..span[2].1 as i32)
         .flat_map(|z| {
             (0..span[1].1 as i32).flat_map(move |y| {
-                (0..span[0].1 as i32)
-                    .map(move |x| [span[0].0 + 2 * x, span[1].0 + 2 * y, span[2].0 + 2 * z])
+                (0..span[0].1 as i32).map(move |x| {
+                    [
+                        span[0].0 + span[0].2 as i32 * x,
+                        span[1].0 + span[1].2 as i32 * y,
+                        span[2].0 + span[2].2 as i32 * z,
+                    ]
+                })
             })
         })
         .map(|p| region.index(p))
         .collect();
-    // Voxels of one class only read voxels of other classes, so they update independently.
-    let updated: Vec<[u32; 3]> = class_voxels
+    // Voxels of one class only read voxels of other classes, so they update independently;
+    // a parallel pass reads every voxel as it was before the pass.
+    let before: Option<Vec<[u32; 3]>> = subpass.class.is_none().then(|| triples.to_vec());
+    let read: &[[u32; 3]] = before.as_deref().unwrap_or(triples);
+    let updated: Vec<[u32; 3]> = updated_voxels
         .par_iter()
         .map(|&i| {
             let p = region.position(i);
             let around: [[u32; 3]; 27] = std::array::from_fn(|n| {
                 let d = offset27(n);
-                triples[region.index([p[0] + d[0], p[1] + d[1], p[2] + d[2]])]
+                read[region.index([p[0] + d[0], p[1] + d[1], p[2] + d[2]])]
             });
             correct_voxel(analysis, candidates, level, keep_current, &around)
         })
         .collect();
-    for (i, t) in class_voxels.into_iter().zip(updated) {
+    for (i, t) in updated_voxels.into_iter().zip(updated) {
         triples[i] = t;
     }
 }
@@ -307,7 +317,7 @@ pub fn synthesize_solid_cpu(
     window: VolumeBox,
 ) -> SynthResult<SolidSynthesis> {
     check_solid(analysis, candidates, params, window)?;
-    let plans = plan_levels(window, &params.passes);
+    let plans = plan_levels(window, &level_schedules(params));
     let mut levels: Vec<LevelTriples> = Vec::with_capacity(plans.len());
     for (l, plan) in plans.iter().enumerate() {
         let l = l as u32;

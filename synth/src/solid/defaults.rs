@@ -49,6 +49,11 @@ pub const DEFAULT_SOLID_PASSES: u32 = 2;
 /// Correction passes of the finest level.
 pub const DEFAULT_SOLID_FINEST_PASSES: u32 = 1;
 
+/// Finest levels corrected in parallel passes (`schedule.rs`); the ordered subpasses'
+/// dependency chain is what made lazy synthesis compute several times the requested voxels
+/// at the finest level (`docs/lazy.md`, "Dependency chains").
+pub const DEFAULT_SOLID_PARALLEL_LEVELS: u32 = 1;
+
 /// The default pass counts of a volume pyramid of `levels` levels, coarsest first.
 pub fn default_solid_passes(levels: u32) -> Vec<u32> {
     pass_schedule(levels, DEFAULT_SOLID_PASSES, DEFAULT_SOLID_FINEST_PASSES)

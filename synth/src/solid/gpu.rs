@@ -6,6 +6,7 @@ use super::candidates::SolidCandidates;
 use super::cpu::check_solid;
 use super::plan::{plan_boxes, plan_levels, VolumeBox};
 use super::roles::ROLES;
+use super::schedule::{level_schedules, LevelSchedule};
 use super::volume::{LevelTriples, SolidSynthesis};
 use crate::kernels::synth_solid;
 use crate::neighbourhood::pack_i8_words;
@@ -36,6 +37,7 @@ lazysolid_compute::push_block! {
     #[derive(Clone, Copy)]
     pub(crate) struct CorrectPush<'a> {
         triples: DeviceAddress<'a>,
+        source: DeviceAddress<'a>,
         table: DeviceAddress<'a>,
         origin: [i32; 3],
         size: [u32; 3],
@@ -44,6 +46,7 @@ lazysolid_compute::push_block! {
         side: u32,
         spacing: u32,
         keep_current: u32,
+        step: u32,
     }
 }
 
@@ -158,7 +161,7 @@ impl GpuSolidSynthesizer {
     ) -> SynthResult<(SolidSynthesis, Vec<LevelTimes>)> {
         check_solid(analysis, candidates, params, window)?;
         let finest = self.levels.len() - 1;
-        let plans = plan_levels(window, &params.passes);
+        let plans = plan_levels(window, &level_schedules(params));
         let mut levels = Vec::new();
         let mut times = Vec::with_capacity(plans.len());
         let mut parent: Option<(VolumeBox, GpuBuffer<[u32; 3]>)> = None;
@@ -171,6 +174,16 @@ impl GpuSolidSynthesizer {
                 format!("solid triples level {l}"),
                 region.voxels(),
             )?;
+            // A parallel pass reads the state before it from a copy.
+            let before = if plan.subpasses.iter().any(|s| s.class.is_none()) {
+                Some(GpuBuffer::<[u32; 3]>::new(
+                    &self.gpu,
+                    format!("solid triples before a parallel pass, level {l}"),
+                    region.voxels(),
+                )?)
+            } else {
+                None
+            };
             let push = UpsamplePush {
                 parent: parent
                     .as_ref()
@@ -194,10 +207,18 @@ impl GpuSolidSynthesizer {
                 rec.dispatch(k, k.groups_for(region.voxels() as u64), &[], &push)?;
                 rec.timestamp()?;
                 for subpass in &plan.subpasses {
-                    let spans = subpass.update.class_span(subpass.class);
+                    let spans = subpass.span();
                     let n: u64 = spans.iter().map(|s| s.1 as u64).product();
+                    let source = match (&before, subpass.class) {
+                        (Some(before), None) => {
+                            rec.copy(&triples, 0, before, 0, region.voxels())?;
+                            before.address()
+                        }
+                        _ => triples.address(),
+                    };
                     let push = CorrectPush {
                         triples: triples.address(),
+                        source,
                         table: level.table.address(),
                         origin: region.origin,
                         size: region.size,
@@ -206,6 +227,7 @@ impl GpuSolidSynthesizer {
                         side: self.side,
                         spacing: *spacing,
                         keep_current: params.keep_current as u32,
+                        step: spans[0].2,
                     };
                     let k = &self.correct;
                     rec.dispatch(k, k.groups_for(n), &[], &push)?;
@@ -246,16 +268,16 @@ impl GpuSolidSynthesizer {
     }
 
     /// Bytes of the two largest consecutive level buffers (a level and its parent are alive
-    /// together), plus the uploaded analysis and candidates: the peak GPU memory of a
-    /// synthesis of `window` with `passes`.
-    pub fn peak_bytes(&self, window: VolumeBox, passes: &[u32]) -> u64 {
-        let boxes = plan_boxes(window, passes);
+    /// together; a parallel level also holds a copy of its own), plus the uploaded analysis
+    /// and candidates: the peak GPU memory of a synthesis of `window` with `schedules`.
+    pub fn peak_bytes(&self, window: VolumeBox, schedules: &[LevelSchedule]) -> u64 {
+        let boxes = plan_boxes(window, schedules);
         let triple = 12u64;
-        let levels = boxes
-            .windows(2)
-            .map(|w| (w[0].voxels() + w[1].voxels()) as u64 * triple)
+        let own = |l: usize| boxes[l].voxels() as u64 * (1 + schedules[l].parallel as u64);
+        let levels = (1..boxes.len())
+            .map(|l| (boxes[l - 1].voxels() as u64 + own(l)) * triple)
             .max()
-            .unwrap_or(boxes[0].voxels() as u64 * triple);
+            .unwrap_or(own(0) * triple);
         let resident: u64 = self
             .levels
             .iter()

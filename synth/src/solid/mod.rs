@@ -21,6 +21,7 @@ mod loop_budget;
 mod nrrd;
 mod plan;
 mod roles;
+mod schedule;
 mod slab;
 mod slices;
 mod strip_tree;
@@ -50,7 +51,7 @@ pub use cpu::{
 pub use defaults::{
     default_solid_jitter, default_solid_passes, solid_jitter_or_default, solid_passes_or_default,
     DEFAULT_SOLID_COARSE_JITTER, DEFAULT_SOLID_FINEST_PASSES, DEFAULT_SOLID_FINE_JITTER,
-    DEFAULT_SOLID_PASSES,
+    DEFAULT_SOLID_PARALLEL_LEVELS, DEFAULT_SOLID_PASSES,
 };
 pub use gpu::GpuSolidSynthesizer;
 pub use jitter::jitter3;
@@ -61,6 +62,7 @@ pub use roles::{
     image_axis, project, shared_axis, SolidExemplars, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLES,
     ROLE_AXES, ROLE_NAMES,
 };
+pub use schedule::{level_schedules, ordered_schedules, LevelSchedule, ALL_CLASSES};
 pub use slab::candidate_slab;
 pub use slices::{oblique, slice};
 pub use strips::{strip_distance, DEFAULT_STRIP, MAX_STRIP};

@@ -23,6 +23,11 @@
 //!
 //! Each subpass updates only the class voxels of its `R_after` (all of whose neighbours lie in
 //! `C_l`), so a box synthesized alone equals the same box inside a larger one, bit for bit.
+//!
+//! A parallel pass (`schedule.rs`) updates every voxel of `R_after` from the state before it,
+//! so it grows the box by one voxel on every side.
+
+use super::schedule::LevelSchedule;
 
 /// Parity subpasses of one 3D correction pass (2×2×2 classes).
 pub const SUBPASSES_3D: u32 = 8;
@@ -109,6 +114,14 @@ impl VolumeBox {
         }
     }
 
+    /// This box plus one voxel on every side (what a parallel pass reads).
+    fn grown_by_one(self) -> VolumeBox {
+        VolumeBox {
+            origin: self.origin.map(|o| o - 1),
+            size: self.size.map(|s| s + 2),
+        }
+    }
+
     fn parents(self) -> VolumeBox {
         let lo = self.origin.map(|o| o.div_euclid(2));
         let hi: [i32; 3] = std::array::from_fn(|a| self.last(a).div_euclid(2) + 1);
@@ -123,10 +136,29 @@ impl VolumeBox {
 /// updates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Subpass {
-    /// Parity `[x, y, z]` of the updated voxels' absolute positions.
-    pub class: [i32; 3],
+    /// Parity `[x, y, z]` of the updated voxels' absolute positions; `None` for a parallel
+    /// pass, which updates every voxel of the box from the state before it.
+    pub class: Option<[i32; 3]>,
     /// The box that must be exact after the subpass (its class voxels are updated).
     pub update: VolumeBox,
+}
+
+impl Subpass {
+    /// Voxels the subpass updates.
+    pub fn updates(&self) -> u64 {
+        match self.class {
+            Some(class) => self.update.class_voxels(class),
+            None => self.update.voxels() as u64,
+        }
+    }
+
+    /// Per axis, the first updated position, how many there are and their step.
+    pub fn span(&self) -> [(i32, u32, u32); 3] {
+        match self.class {
+            Some(class) => self.update.class_span(class).map(|(f, n)| (f, n, 2)),
+            None => std::array::from_fn(|a| (self.update.origin[a], self.update.size[a], 1)),
+        }
+    }
 }
 
 /// What one level computes.
@@ -141,25 +173,30 @@ pub struct LevelPlan {
 impl LevelPlan {
     /// Voxel updates of all the level's subpasses.
     pub fn updates(&self) -> u64 {
-        self.subpasses
-            .iter()
-            .map(|s| s.update.class_voxels(s.class))
-            .sum()
+        self.subpasses.iter().map(Subpass::updates).sum()
     }
 }
 
 /// What every level (coarsest first) computes for `window` of the finest level, given each
-/// level's correction passes.
-pub fn plan_levels(window: VolumeBox, passes: &[u32]) -> Vec<LevelPlan> {
-    let mut plans = Vec::with_capacity(passes.len());
+/// level's correction schedule.
+pub fn plan_levels(window: VolumeBox, schedules: &[LevelSchedule]) -> Vec<LevelPlan> {
+    let mut plans = Vec::with_capacity(schedules.len());
     let mut need = window;
-    for &p in passes.iter().rev() {
+    for s in schedules.iter().rev() {
         let mut subpasses = Vec::new();
-        for _ in 0..p {
+        for _ in 0..s.passes {
+            if s.parallel {
+                subpasses.push(Subpass {
+                    class: None,
+                    update: need,
+                });
+                need = need.grown_by_one();
+                continue;
+            }
             for &class in CLASSES_3D.iter().rev() {
                 if need.class_voxels(class) > 0 {
                     subpasses.push(Subpass {
-                        class,
+                        class: Some(class),
                         update: need,
                     });
                     need = need.grown_for(class);
@@ -178,8 +215,8 @@ pub fn plan_levels(window: VolumeBox, passes: &[u32]) -> Vec<LevelPlan> {
 }
 
 /// The boxes every level computes (coarsest first): [`plan_levels`]' regions.
-pub fn plan_boxes(window: VolumeBox, passes: &[u32]) -> Vec<VolumeBox> {
-    plan_levels(window, passes)
+pub fn plan_boxes(window: VolumeBox, schedules: &[LevelSchedule]) -> Vec<VolumeBox> {
+    plan_levels(window, schedules)
         .into_iter()
         .map(|p| p.region)
         .collect()
@@ -188,6 +225,7 @@ pub fn plan_boxes(window: VolumeBox, passes: &[u32]) -> Vec<VolumeBox> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solid::schedule::ordered_schedules;
 
     #[test]
     fn consecutive_classes_differ_along_one_axis() {
@@ -226,7 +264,9 @@ mod tests {
             origin: [-5, 3, 0],
             size: [20, 10, 4],
         };
-        let plans = plan_levels(w, &[1, 2, 2]);
+        let mut schedules = ordered_schedules(&[1, 2, 2, 1]);
+        schedules[3].parallel = true;
+        let plans = plan_levels(w, &schedules);
         for plan in &plans {
             let mut need_after: Option<VolumeBox> = None;
             for s in plan.subpasses.iter().rev() {
@@ -235,10 +275,9 @@ mod tests {
                     assert!((0..3).all(|a| after.origin[a] >= s.update.origin[a]
                         && after.last(a) <= s.update.last(a)));
                 }
-                let span = s.update.class_span(s.class);
-                for (a, &(first, count)) in span.iter().enumerate() {
+                for (a, &(first, count, step)) in s.span().iter().enumerate() {
                     if count > 0 {
-                        let last = first + 2 * (count as i32 - 1);
+                        let last = first + step as i32 * (count as i32 - 1);
                         // The neighbours first - 1 and last + 1 lie inside.
                         assert!(first > plan.region.origin[a]);
                         assert!(last < plan.region.last(a));
@@ -261,7 +300,7 @@ mod tests {
         };
         for origin in [[0, 0, 0], [1, 1, 1], [-7, 2, 5]] {
             let w = VolumeBox { origin, ..w };
-            let plan = &plan_levels(w, &[3])[0];
+            let plan = &plan_levels(w, &ordered_schedules(&[3]))[0];
             for (a, most) in [(0, 5), (1, 3), (2, 2)] {
                 let low = w.origin[a] - plan.region.origin[a];
                 let high = plan.region.last(a) - w.last(a);

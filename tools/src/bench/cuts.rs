@@ -77,7 +77,7 @@ struct CutCost {
     versions: u64,
     wall_ms: f64,
     device_ms: f64,
-    state_growth: u64,
+    state_growth: i64,
     request_bytes: u64,
     store_before: u64,
     store_after: u64,
@@ -140,7 +140,7 @@ impl Holder {
             versions: synthesis.map_or(0, |s| s.versions),
             wall_ms,
             device_ms: synthesis.map_or(0.0, |s| s.gpu_ms),
-            state_growth: self.matter.state_bytes() - state_before,
+            state_growth: self.matter.state_bytes() as i64 - state_before as i64,
             // The request's own buffers: keys (8 B) and colours (4 B) per new voxel.
             request_bytes: 12 * grown.new_voxels,
             store_before: grown.bytes_before,
@@ -290,6 +290,7 @@ fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {
     add("voxel versions synthesized", c.versions as f64);
     add("wall ms", c.wall_ms);
     add("synthesis device ms", c.device_ms);
+    // Negative when the memory policy dropped levels the state held before the cut.
     add("kept state growth MB", c.state_growth as f64 / 1e6);
     add(
         "request buffers MB (keys + colours)",

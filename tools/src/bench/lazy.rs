@@ -8,6 +8,7 @@
 use super::harness::{time_cpu, Bench, Throughput};
 use super::plot::rgb_image;
 use super::CommonArgs;
+use crate::cli::tuning::SolidOrder;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -23,9 +24,10 @@ use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    GpuLazySolid, LazyReport, MatterColours, MatterSpec, MatterVoxels, SharedLazy, StoredMatter,
+    finest_growth_cpu, lazy_key, GpuLazySolid, LazyOptions, LazyReport, MatterColours, MatterSpec,
+    MatterVoxels, MemoryPolicy, SharedLazy, StoredMatter,
 };
-use lazysolid_synth::solid::{voxel_colour, SolidExemplars};
+use lazysolid_synth::solid::{voxel_colour, LevelSchedule, SolidExemplars};
 use lazysolid_synth::{load_solid, FitMode};
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -61,6 +63,12 @@ pub struct LazyArgs {
     /// Only the first mesh at the first resolution.
     #[arg(long)]
     pub quick: bool,
+    /// What the synthesis state keeps between requests: "keep" (every version) or a budget
+    /// of whole levels, coarsest first, such as "32MB" [default: the synthesizer's].
+    #[arg(long, value_name = "keep|NMB")]
+    pub memory: Option<MemoryPolicy>,
+    #[command(flatten)]
+    pub order: SolidOrder,
 }
 
 /// The exemplar of the lazy suites (`lazy`, `cuts`): one image playing all three roles.
@@ -111,7 +119,12 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let exemplars = args.exemplar.load()?;
     let cache = DiskCache::user().ok();
     let state = |r: u32| {
-        GpuLazySolid::with_defaults(&gpu, &exemplars, args.seed, r, cache.as_ref())
+        let options = LazyOptions {
+            parallel_levels: args.order.parallel_levels,
+            policy: args.memory,
+            ..LazyOptions::new(args.seed)
+        };
+        GpuLazySolid::with_options(&gpu, &exemplars, &options, r, cache.as_ref())
             .context("the lazy synthesis state")
     };
     let side = exemplars.side();
@@ -164,7 +177,10 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             let stores = store_bytes(&gpu, &lazy, &mut voxelizer, &mesh, r)?;
             let full = (r as f64).powi(3);
             let computed: u64 = report.computed.iter().sum();
-            let finest = *report.needed.last().unwrap_or(&0) as f64;
+            // Voxels synthesized (stored: upsampled, then corrected) and those of the
+            // dependency sets read only as upsampled, computed in place by their readers.
+            let finest = *report.upsampled.last().unwrap_or(&0) as f64;
+            let finest_set = *report.needed.last().unwrap_or(&0) as f64;
             let add = |notes: &mut Vec<(String, f64)>, what: &str, v: f64| {
                 notes.push((format!("{case}: {what}"), v));
             };
@@ -181,7 +197,22 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             );
             add(
                 &mut notes,
+                "finest-level voxels synthesized / requested",
+                finest / requested.len().max(1) as f64,
+            );
+            add(
+                &mut notes,
+                "finest-level voxels read as upsampled only",
+                finest_set - finest,
+            );
+            add(
+                &mut notes,
                 "voxels synthesized, all levels",
+                report.upsampled.iter().sum::<u64>() as f64,
+            );
+            add(
+                &mut notes,
+                "voxels in the dependency sets, all levels",
                 report.needed.iter().sum::<u64>() as f64,
             );
             add(&mut notes, "voxel versions computed", computed as f64);
@@ -191,10 +222,50 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             add(&mut notes, "dependency walk ms", report.deps_ms);
             add(&mut notes, "synthesis device ms", report.gpu_ms);
             add(&mut notes, "kept state MB", bytes as f64 / 1e6);
+            add(
+                &mut notes,
+                "peak state MB during the request",
+                report.peak_state_bytes as f64 / 1e6,
+            );
+            add(&mut notes, "chunks", report.chunks as f64);
+            add(
+                &mut notes,
+                "device µs per voxel version",
+                1e3 * report.gpu_ms / computed.max(1) as f64,
+            );
             add(&mut notes, "full volume MB (RGB8)", full * 3.0 / 1e6);
             add(&mut notes, "voxelization ms", voxelize_ms);
-            for (l, n) in report.needed.iter().enumerate() {
-                add(&mut notes, &format!("level {l} voxels"), *n as f64);
+            for (l, n) in report.upsampled.iter().enumerate() {
+                add(
+                    &mut notes,
+                    &format!("level {l} voxels synthesized"),
+                    *n as f64,
+                );
+            }
+            // Where the finest level's voxels come from, per stage of the backward walk, for
+            // one ordered pass and one parallel pass (on the host; up to 256³, where it takes
+            // seconds).
+            if r <= 256 {
+                let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+                for (name, parallel) in [("ordered", false), ("parallel", true)] {
+                    let schedule = LevelSchedule {
+                        passes: 1,
+                        parallel,
+                    };
+                    let (growth, upsampled) = finest_growth_cpu(&keys, schedule);
+                    for (stage, added) in growth {
+                        add(
+                            &mut notes,
+                            &format!("finest walk, one {name} pass: stage {stage} adds"),
+                            added as f64,
+                        );
+                    }
+                    add(
+                        &mut notes,
+                        &format!("finest walk, one {name} pass: needed only upsampled"),
+                        upsampled as f64,
+                    );
+                }
             }
         }
         // The matter inside: the mid-z cross-section of the first resolution, synthesized as a

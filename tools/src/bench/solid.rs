@@ -39,7 +39,7 @@ use crate::cli::candidate_builder::Candidates;
 use crate::cli::fit_mode::Fit;
 use crate::cli::solid::{synthesize_cube, CubeRequest, SolidRun};
 use crate::cli::synth::write_png;
-use crate::cli::tuning::Schedule;
+use crate::cli::tuning::{Schedule, SolidOrder};
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -49,7 +49,7 @@ use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::solid::{
     analyze_solid, axis_quality, candidates_key, oblique, role_scorers, slice, AxisQuality,
     CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, SolidExemplars, SolidSynthesis,
-    TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, ROLE_NAMES,
+    TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, DEFAULT_SOLID_PARALLEL_LEVELS, ROLE_NAMES,
 };
 use lazysolid_synth::{
     analyze, default_jitter, default_passes, load_solid, pack, period_repetition, unpack,
@@ -119,12 +119,15 @@ pub struct SolidArgs {
     #[arg(long)]
     pub quick: bool,
     /// Score the default synthesis, the colour rules and the 2D synthesis only, without the
-    /// four ablation syntheses (keep current, crossbar only, no balance, no feature): a
+    /// five ablation syntheses (keep current, crossbar only, no balance, no feature, the
+    /// finest level's other correction order): a
     /// table of many exemplars at 128³ in minutes instead of an hour.
     #[arg(long)]
     pub no_ablations: bool,
     #[command(flatten)]
     pub schedule: Schedule,
+    #[command(flatten)]
+    pub order: SolidOrder,
 }
 
 /// One quality row: a variant of one case, per axis.
@@ -400,6 +403,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 seed: args.seed,
                 passes: &args.schedule.passes,
                 jitter: &args.schedule.jitter,
+                parallel_levels: args.order.parallel_levels,
                 ..CubeRequest::new(n)
             };
             let cube = |cache: Option<&DiskCache>| {
@@ -565,7 +569,40 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     q(&featureless.synthesis, &featureless.colours)?,
                     Some(featureless.consistency),
                 );
+                // The finest level's other correction order: ordered subpasses when the
+                // default is parallel, and the reverse.
+                let other_order = if DEFAULT_SOLID_PARALLEL_LEVELS > 0 {
+                    0
+                } else {
+                    1
+                };
+                let reordered = synthesize_cube(
+                    &gpu,
+                    exemplars.clone(),
+                    &CubeRequest {
+                        parallel_levels: Some(other_order),
+                        ..request.clone()
+                    },
+                    Some(&cache),
+                )?;
+                push(
+                    if other_order == 0 {
+                        "ordered finest"
+                    } else {
+                        "parallel finest"
+                    },
+                    q(&reordered.synthesis, &reordered.colours)?,
+                    Some(reordered.consistency),
+                );
                 drawn.push(("-keep-current", keep));
+                drawn.push((
+                    if other_order == 0 {
+                        "-ordered-finest"
+                    } else {
+                        "-parallel-finest"
+                    },
+                    reordered,
+                ));
                 drawn.push(("-no-balance", unbalanced));
                 drawn.push(("-no-feature", featureless));
             }

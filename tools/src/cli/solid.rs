@@ -9,7 +9,7 @@ use super::components::components;
 use super::fit_mode::Fit;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
-use super::tuning::{Features, Schedule};
+use super::tuning::{Features, Schedule, SolidOrder};
 use super::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -22,10 +22,11 @@ use lazysolid_synth::feature::feature_map;
 use lazysolid_synth::quality::reachable_gap;
 use lazysolid_synth::solid::{
     analyze_solid, axis_quality, candidate_slab, candidates_cached, check_box, encode_nrrd,
-    oblique, plan_levels, role_scorers, slice, solid_jitter_or_default, solid_passes_or_default,
-    triple_consistency, CandidateBuilder, CandidateParams, GpuSolidSynthesizer, SolidExemplars,
-    SolidSynthesis, TripleConsistency, VolumeBox, DEFAULT_BALANCE, DEFAULT_S, DEFAULT_STRIP,
-    MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLE_NAMES,
+    level_schedules, oblique, plan_levels, role_scorers, slice, solid_jitter_or_default,
+    solid_passes_or_default, triple_consistency, CandidateBuilder, CandidateParams,
+    GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency, VolumeBox,
+    DEFAULT_BALANCE, DEFAULT_S, DEFAULT_SOLID_PARALLEL_LEVELS, DEFAULT_STRIP, MAX_SOLID_SIDE,
+    MIN_SOLID_SIDE, ROLE_NAMES,
 };
 use lazysolid_synth::{load_solid, EnergyKernel, ExemplarFit, FitMode, SynthParams};
 use std::path::{Path, PathBuf};
@@ -101,6 +102,8 @@ pub struct SolidArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub schedule: Schedule,
+    #[command(flatten)]
+    pub order: SolidOrder,
     #[command(flatten)]
     pub features: Features,
 }
@@ -231,6 +234,8 @@ pub struct CubeRequest<'a> {
     pub jitter: &'a [f32],
     /// The correction's current triple always competes (`SynthParams::keep_current`).
     pub keep_current: bool,
+    /// Finest levels corrected in parallel passes (`None`: the default).
+    pub parallel_levels: Option<u32>,
     /// Cube side.
     pub n: u32,
     /// Absolute position of the cube's first voxel.
@@ -249,6 +254,7 @@ impl CubeRequest<'_> {
             passes: &[],
             jitter: &[],
             keep_current: false,
+            parallel_levels: None,
             n,
             offset: [0; 3],
             progress: false,
@@ -270,6 +276,7 @@ pub fn synthesize_cube(
         passes,
         jitter,
         keep_current,
+        parallel_levels,
         n,
         offset,
         progress,
@@ -284,7 +291,9 @@ pub fn synthesize_cube(
         &solid_passes_or_default(passes, levels),
         &solid_jitter_or_default(jitter, levels),
     )?
-    .with_keep_current(keep_current);
+    .with_keep_current(keep_current)
+    .with_parallel_levels(parallel_levels.unwrap_or(DEFAULT_SOLID_PARALLEL_LEVELS.min(levels)))
+    .context("--parallel-levels")?;
     let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };
     let start = Instant::now();
     // The sets, then the usage balance's pilot, one step per level each.
@@ -310,13 +319,14 @@ pub fn synthesize_cube(
     let synthesis_s = start.elapsed().as_secs_f64();
     b.finish_and_clear();
     let colours = synthesis.colours(&exemplars);
-    let plan = plan_levels(window, &params.passes);
+    let schedules = level_schedules(&params);
+    let plan = plan_levels(window, &schedules);
     let slab = candidate_slab(&exemplars, &candidates, 4);
     let consistency = triple_consistency(&exemplars, &candidates, &synthesis);
     Ok(SolidRun {
         builder: builder.resolve(gpu),
         consistency,
-        peak_bytes: synth.peak_bytes(window, &params.passes),
+        peak_bytes: synth.peak_bytes(window, &schedules),
         voxels: plan.iter().map(|p| p.region.voxels() as u64).sum(),
         voxel_updates: plan.iter().map(|p| p.updates()).sum(),
         fallbacks: candidates.reports.iter().map(|r| r.fallbacks).sum(),
@@ -392,6 +402,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             passes: &args.schedule.passes,
             jitter: &args.schedule.jitter,
             keep_current: false,
+            parallel_levels: args.order.parallel_levels,
             n,
             offset: args.offset,
             progress: true,

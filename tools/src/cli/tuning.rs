@@ -52,3 +52,15 @@ pub struct Features {
     #[arg(long, default_value_t = lazysolid_synth::feature::DEFAULT_FEATURE_WEIGHT)]
     pub feature_weight: u32,
 }
+
+/// How the volume synthesizer's finest levels run their correction passes.
+#[derive(Args, Clone, Debug, Default)]
+#[command(next_help_heading = "Synthesis tuning")]
+pub struct SolidOrder {
+    /// Finest levels whose correction passes update every voxel at once from the previous
+    /// pass (Jacobi) instead of in eight ordered parity subpasses: lazy synthesis then
+    /// corrects only the requested voxels at those levels (docs/lazy.md)
+    /// [default: lazysolid_synth's DEFAULT_SOLID_PARALLEL_LEVELS].
+    #[arg(long, value_name = "N")]
+    pub parallel_levels: Option<u32>,
+}

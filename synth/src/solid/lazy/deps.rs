@@ -2,22 +2,24 @@
 //! finest-level voxels needs (thesis 003 lines 1083–1096; `shared/notes/003A.md` §5.3.7).
 //!
 //! A level's stages are 0 (after upsampling and jitter) and `k = 1..=8P` (after subpass `k`,
-//! which updates the voxels of parity class `CLASSES_3D[(k − 1) mod 8]`). Walking the stages
-//! backwards from the voxels that must be final, a voxel needed after subpass `k` of its own
-//! class needs its 18 plane neighbours (the voxels the correction reads: the three planes
-//! through it, less itself) after stage `k − 1`; any other voxel needed after `k` is needed
-//! after `k − 1` unchanged. The sets are nested (needed after `k` implies after `k − 1`), so
+//! which updates the voxels of parity class `CLASSES_3D[(k − 1) mod 8]`), or `k = 1..=P` for
+//! a parallel level, whose every stage updates every voxel (`solid/schedule.rs`). Walking the
+//! stages backwards from the voxels that must be final, a voxel needed after a stage that
+//! corrects it needs its 18 plane neighbours (the voxels the correction reads: the three
+//! planes through it, less itself) after stage `k − 1`; any other voxel needed after `k` is
+//! needed after `k − 1` unchanged. The sets are nested (needed after `k` implies after `k − 1`), so
 //! one number per voxel says it all: the last stage it is needed at. A voxel needed at stage
 //! 0 needs its parent final at the level above.
 //!
 //! A voxel changes only at its class's subpass of each pass, so its value after stage `k` is
-//! its version `⌊(k + 7 − i) / 8⌋` (`i` its class's place in the subpass order): version 0
-//! upsampled, version `j` after pass `j`. Lazy synthesis keeps every version it computed,
+//! its version `⌊(k + 7 − i) / 8⌋` (`i` its class's place in the subpass order; `k` on a
+//! parallel level): version 0 upsampled, version `j` after pass `j`. Lazy synthesis keeps every version it computed,
 //! and the walk stops at a voxel whose needed version is already known, which is how a later
 //! request reuses an earlier one's work.
 
 use super::keys::{lazy_key, lazy_position};
-use crate::solid::plan::{CLASSES_3D, SUBPASSES_3D};
+use crate::solid::plan::CLASSES_3D;
+use crate::solid::schedule::LevelSchedule;
 use std::collections::HashMap;
 
 /// The 18 voxels a correction reads besides the voxel itself: offsets with at least one zero
@@ -48,21 +50,6 @@ pub fn class_index(p: [i32; 3]) -> u32 {
         .expect("every parity is a class") as u32
 }
 
-/// The version a voxel of class place `class` holds after stage `stage`.
-pub fn version_at(stage: u32, class: u32) -> u32 {
-    (stage + SUBPASSES_3D - 1 - class) / SUBPASSES_3D
-}
-
-/// The last stage of a level with `passes` correction passes.
-pub fn final_stage(passes: u32) -> u32 {
-    passes * SUBPASSES_3D
-}
-
-/// The class place updated by subpass `stage` (1-based).
-pub fn subpass_class(stage: u32) -> u32 {
-    (stage - 1) % SUBPASSES_3D
-}
-
 /// The voxels one level needs: sorted unique keys and, for each, the last stage it is needed
 /// at.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -84,9 +71,10 @@ impl LevelDeps {
         self.keys.is_empty()
     }
 
-    /// How many versions (0 up to the one at its last stage) voxel `i` needs.
-    pub fn versions_needed(&self, i: usize) -> u32 {
-        version_at(
+    /// How many versions (0 up to the one at its last stage) voxel `i` needs on a level
+    /// corrected by `schedule`.
+    pub fn versions_needed(&self, i: usize, schedule: &LevelSchedule) -> u32 {
+        schedule.version_at(
             self.need[i] as u32,
             class_index(lazy_position(self.keys[i])),
         ) + 1
@@ -102,13 +90,20 @@ pub struct Dependencies {
 
 impl Dependencies {
     /// Voxel versions the sets ask for beyond the `known` ones (the work of a request).
-    pub fn new_versions(&self, known: &dyn Fn(usize, u64) -> u32) -> u64 {
+    pub fn new_versions(
+        &self,
+        schedules: &[LevelSchedule],
+        known: &dyn Fn(usize, u64) -> u32,
+    ) -> u64 {
         self.levels
             .iter()
             .enumerate()
             .map(|(l, d)| {
                 (0..d.len())
-                    .map(|i| d.versions_needed(i).saturating_sub(known(l, d.keys[i])) as u64)
+                    .map(|i| {
+                        d.versions_needed(i, &schedules[l])
+                            .saturating_sub(known(l, d.keys[i])) as u64
+                    })
                     .sum::<u64>()
             })
             .sum()
@@ -116,41 +111,20 @@ impl Dependencies {
 }
 
 /// The dependency sets of the finest-level voxels `requested` (keys, any order, repeats
-/// allowed) for a pyramid with `passes[l]` correction passes at level `l`; `known(l, key)`
-/// says how many versions of a voxel are already computed (0 for none), and the walk stops
-/// where the needed version is known. The CPU reference of the GPU dependency walk.
+/// allowed) for a pyramid corrected by `schedules[l]` at level `l`; `known(l, key)` says how
+/// many versions of a voxel are already computed (0 for none), and the walk stops where the
+/// needed version is known. The CPU reference of the GPU dependency walk.
 pub fn dependencies_cpu(
     requested: &[u64],
-    passes: &[u32],
+    schedules: &[LevelSchedule],
     known: &dyn Fn(usize, u64) -> u32,
 ) -> Dependencies {
-    let mut levels = vec![LevelDeps::default(); passes.len()];
+    let mut levels = vec![LevelDeps::default(); schedules.len()];
     let mut target: Vec<u64> = requested.to_vec();
     target.sort_unstable();
     target.dedup();
-    for l in (0..passes.len()).rev() {
-        let last = final_stage(passes[l]);
-        let mut need: HashMap<u64, u32> = target.iter().map(|&k| (k, last)).collect();
-        for stage in (1..=last).rev() {
-            let class = subpass_class(stage);
-            let expand: Vec<[i32; 3]> = need
-                .iter()
-                .filter(|&(_, &n)| n >= stage)
-                .map(|(&k, _)| (k, lazy_position(k)))
-                .filter(|&(k, p)| {
-                    class_index(p) == class && known(l, k) <= version_at(stage, class)
-                })
-                .map(|(_, p)| p)
-                .collect();
-            for p in expand {
-                for d in PLANE_NEIGHBOURS {
-                    let e = need
-                        .entry(lazy_key([p[0] + d[0], p[1] + d[1], p[2] + d[2]]))
-                        .or_insert(stage - 1);
-                    *e = (*e).max(stage - 1);
-                }
-            }
-        }
+    for l in (0..schedules.len()).rev() {
+        let need = walk_level(&target, schedules[l], &|k| known(l, k), &mut |_, _| {});
         let mut set: Vec<(u64, u32)> = need.into_iter().collect();
         set.sort_unstable();
         target = set
@@ -167,6 +141,57 @@ pub fn dependencies_cpu(
     levels.into()
 }
 
+/// One level's backward walk from `target` (needed final): each voxel's last needed stage.
+/// `on_stage(stage, added)` hears how many voxels each stage's expansion added to the set.
+fn walk_level(
+    target: &[u64],
+    s: LevelSchedule,
+    known: &dyn Fn(u64) -> u32,
+    on_stage: &mut dyn FnMut(u32, usize),
+) -> HashMap<u64, u32> {
+    let last = s.final_stage();
+    let mut need: HashMap<u64, u32> = target.iter().map(|&k| (k, last)).collect();
+    for stage in (1..=last).rev() {
+        let expand: Vec<[i32; 3]> = need
+            .iter()
+            .filter(|&(_, &n)| n >= stage)
+            .map(|(&k, _)| (k, lazy_position(k)))
+            .filter(|&(k, p)| {
+                let class = class_index(p);
+                s.corrects(stage, class) && known(k) <= s.version_at(stage, class)
+            })
+            .map(|(_, p)| p)
+            .collect();
+        let before = need.len();
+        for p in expand {
+            for d in PLANE_NEIGHBOURS {
+                let e = need
+                    .entry(lazy_key([p[0] + d[0], p[1] + d[1], p[2] + d[2]]))
+                    .or_insert(stage - 1);
+                *e = (*e).max(stage - 1);
+            }
+        }
+        on_stage(stage, need.len() - before);
+    }
+    need
+}
+
+/// Where a fresh state's finest level gets its voxels from: for the finest-level voxels
+/// `requested` and the finest level's `schedule`, the voxels each stage of the backward walk
+/// adds (last stage first), and how many of the set are needed only upsampled (stage 0, read
+/// in place and not stored). What `bench lazy` prints to locate the dependency chain.
+pub fn finest_growth_cpu(requested: &[u64], schedule: LevelSchedule) -> (Vec<(u32, usize)>, usize) {
+    let mut target = requested.to_vec();
+    target.sort_unstable();
+    target.dedup();
+    let mut growth = Vec::new();
+    let need = walk_level(&target, schedule, &|_| 0, &mut |stage, added| {
+        growth.push((stage, added))
+    });
+    let upsampled_only = need.values().filter(|&&n| n == 0).count();
+    (growth, upsampled_only)
+}
+
 impl From<Vec<LevelDeps>> for Dependencies {
     fn from(levels: Vec<LevelDeps>) -> Dependencies {
         Dependencies { levels }
@@ -176,17 +201,10 @@ impl From<Vec<LevelDeps>> for Dependencies {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solid::schedule::ordered_schedules;
 
     #[test]
-    fn versions_follow_the_subpass_order() {
-        for class in 0..8 {
-            assert_eq!(version_at(0, class), 0);
-            assert_eq!(version_at(class, class), 0, "before its subpass");
-            assert_eq!(version_at(class + 1, class), 1, "after its subpass");
-            assert_eq!(version_at(8, class), 1);
-            assert_eq!(version_at(8 + class + 1, class), 2);
-            assert_eq!(version_at(16, class), 2);
-        }
+    fn class_places_follow_the_subpass_order() {
         for (i, c) in CLASSES_3D.iter().enumerate() {
             assert_eq!(class_index(*c), i as u32);
             assert_eq!(class_index([c[0] - 2, c[1] + 4, c[2] - 6]), i as u32);
@@ -198,8 +216,9 @@ mod tests {
         let requested: Vec<u64> = [[0, 0, 0], [5, -3, 2], [6, -3, 2], [-9, 9, 1]]
             .map(lazy_key)
             .to_vec();
-        let passes = [2, 1, 2];
-        let deps = dependencies_cpu(&requested, &passes, &|_, _| 0);
+        let mut schedules = ordered_schedules(&[2, 1, 2, 1]);
+        schedules[3].parallel = true;
+        let deps = dependencies_cpu(&requested, &schedules, &|_, _| 0);
         for (l, d) in deps.levels.iter().enumerate() {
             let need: HashMap<u64, u32> = d
                 .keys
@@ -211,7 +230,7 @@ mod tests {
             for (&k, &n) in &need {
                 let p = lazy_position(k);
                 for stage in 1..=n {
-                    if subpass_class(stage) == class_index(p) {
+                    if schedules[l].corrects(stage, class_index(p)) {
                         for dd in PLANE_NEIGHBOURS {
                             let q = lazy_key([p[0] + dd[0], p[1] + dd[1], p[2] + dd[2]]);
                             assert!(need.get(&q).is_some_and(|&m| m >= stage - 1));
@@ -222,33 +241,38 @@ mod tests {
                     let parent = lazy_key(p.map(|v| v.div_euclid(2)));
                     let above = &deps.levels[l - 1];
                     let i = above.keys.binary_search(&parent).expect("parent present");
-                    assert_eq!(above.need[i] as u32, final_stage(passes[l - 1]));
+                    assert_eq!(above.need[i] as u32, schedules[l - 1].final_stage());
                 }
             }
         }
         for k in requested {
             let fin = deps.levels.last().unwrap();
             let i = fin.keys.binary_search(&k).unwrap();
-            assert_eq!(fin.need[i] as u32, final_stage(2));
+            assert_eq!(fin.need[i] as u32, 1);
+            // A parallel finest pass corrects only the requested voxels.
+            let corrected = fin.need.iter().filter(|&&n| n == 1).count();
+            assert_eq!(corrected, 4);
         }
     }
 
     #[test]
     fn known_versions_stop_the_walk() {
         let requested = vec![lazy_key([1, 2, 3])];
-        let passes = [1, 1];
-        let all = dependencies_cpu(&requested, &passes, &|_, _| 0);
+        let schedules = ordered_schedules(&[1, 1]);
+        let all = dependencies_cpu(&requested, &schedules, &|_, _| 0);
         let known = |l: usize, k: u64| {
             let d = &all.levels[l];
-            d.keys.binary_search(&k).map_or(0, |i| d.versions_needed(i))
+            d.keys
+                .binary_search(&k)
+                .map_or(0, |i| d.versions_needed(i, &schedules[l]))
         };
-        let again = dependencies_cpu(&requested, &passes, &known);
-        assert_eq!(again.new_versions(&known), 0);
+        let again = dependencies_cpu(&requested, &schedules, &known);
+        assert_eq!(again.new_versions(&schedules, &known), 0);
         assert_eq!(
             again.levels[0].len(),
             0,
             "nothing above a known voxel is needed"
         );
-        assert!(all.new_versions(&|_, _| 0) > 0);
+        assert!(all.new_versions(&schedules, &|_, _| 0) > 0);
     }
 }

@@ -11,12 +11,14 @@
 //! requested voxels' final triples are gathered at the end (`lazy_gather.comp`). The CPU
 //! reference is [`LazySolidCpu`](super::LazySolidCpu); both equal the full volume.
 //!
-//! Memory policy: every version of every voxel is kept (the table, `12 · (passes + 1)` bytes
-//! of versions and 4 bytes of count per voxel), so no later request recomputes anything;
-//! [`GpuLazySolid::bytes`] reports it.
+//! A voxel costs the table's cell, `12 · (passes + 1)` bytes of versions and 4 bytes of count.
+//! What stays between requests is the state's [`MemoryPolicy`] (`policy.rs`): every version,
+//! or whole levels from the coarsest within a byte budget, applied after each chunk of
+//! [`LAZY_CHUNK_VOXELS`] requested voxels; [`GpuLazySolid::bytes`] reports what is kept.
 
-use super::deps::{final_stage, subpass_class, version_at, Dependencies, LevelDeps};
+use super::deps::{Dependencies, LevelDeps};
 use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
+use super::policy::{MemoryPolicy, LAZY_CHUNK_VOXELS};
 use crate::cache::DiskCache;
 use crate::kernels::synth_solid;
 use crate::solid::analysis::{analyze_solid, pack_rgb, SolidAnalysis};
@@ -25,9 +27,12 @@ use crate::solid::candidates::SolidCandidates;
 use crate::solid::candidates_cache::candidates_cached;
 use crate::solid::candidates_host::CandidateBuilder;
 use crate::solid::cpu::check_levels;
-use crate::solid::defaults::{default_solid_jitter, default_solid_passes};
+use crate::solid::defaults::{
+    default_solid_jitter, default_solid_passes, DEFAULT_SOLID_PARALLEL_LEVELS,
+};
 use crate::solid::gpu::GpuSolidSynthesizer;
 use crate::solid::roles::{SolidExemplars, ROLES};
+use crate::solid::schedule::{level_schedules, LevelSchedule};
 use crate::{SynthError, SynthParams, SynthResult};
 use lazysolid_compute::gpu::{DeviceAddress, DeviceRecords, Gpu, GpuBuffer, Kernel, PushValue};
 use lazysolid_compute::hash::{
@@ -103,6 +108,8 @@ lazysolid_compute::push_block! {
         side: u32,
         spacing: u32,
         keep_current: u32,
+        seed: u32,
+        strength: u32,
     }
 }
 
@@ -198,6 +205,7 @@ lazysolid_compute::push_block! {
         stride: u32,
         margin: i32,
         extent: u32,
+        parallel: u32,
     }
 }
 
@@ -209,6 +217,7 @@ struct LevelState {
     counts: GpuBuffer<u32>,
     stride: u32,
     len: u32,
+    schedule: LevelSchedule,
 }
 
 impl LevelState {
@@ -233,11 +242,48 @@ impl LevelState {
             stride: self.stride,
             margin: LAZY_MARGIN,
             extent: self.universe.dims[0],
+            parallel: self.schedule.parallel as u32,
         }
+    }
+
+    /// Forgets every voxel of level `l` (the memory policy), back to the initial buffers.
+    fn clear(&mut self, gpu: &Gpu, l: usize) -> SynthResult<()> {
+        self.table = None;
+        self.versions = GpuBuffer::zeroed(
+            gpu,
+            format!("lazy versions level {l}"),
+            INITIAL_SLOTS * 3 * self.stride as usize,
+        )?;
+        self.counts = GpuBuffer::zeroed(gpu, format!("lazy counts level {l}"), INITIAL_SLOTS)?;
+        self.len = 0;
+        Ok(())
     }
 
     fn bytes(&self) -> u64 {
         self.table.as_ref().map_or(0, |t| t.bytes()) + self.versions.bytes() + self.counts.bytes()
+    }
+}
+
+/// What a lazy state is made with besides its exemplars and resolution: the seed, and
+/// overrides of the synthesizer's defaults (`None`: the default).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LazyOptions {
+    /// Seed of the jitter.
+    pub seed: u32,
+    /// Finest levels corrected in parallel passes (`SynthParams::parallel_levels`).
+    pub parallel_levels: Option<u32>,
+    /// What the state keeps between requests.
+    pub policy: Option<MemoryPolicy>,
+}
+
+impl LazyOptions {
+    /// The defaults with `seed`.
+    pub fn new(seed: u32) -> LazyOptions {
+        LazyOptions {
+            seed,
+            parallel_levels: None,
+            policy: None,
+        }
     }
 }
 
@@ -248,12 +294,40 @@ pub struct LazyReport {
     pub needed: Vec<u64>,
     /// Voxel versions computed at each level (upsampled or corrected), coarsest first.
     pub computed: Vec<u64>,
+    /// Voxels new to the state at each level (each upsampled once; the rest of `computed`
+    /// are corrections), coarsest first.
+    pub upsampled: Vec<u64>,
     /// Device time of the synthesis kernels, milliseconds.
     pub gpu_ms: f64,
     /// Wall time of the dependency walk, milliseconds.
     pub deps_ms: f64,
     /// Wall time of the whole request, milliseconds.
     pub wall_ms: f64,
+    /// Chunks the request ran in (`policy.rs`).
+    pub chunks: u32,
+    /// The largest state alive during the request, before the policy applied (bytes).
+    pub peak_state_bytes: u64,
+    /// Levels the policy emptied after the request's last chunk.
+    pub dropped_levels: u32,
+}
+
+impl LazyReport {
+    /// Adds one chunk's report to this one.
+    fn add(&mut self, chunk: &LazyReport) {
+        let sum = |a: &mut Vec<u64>, b: &[u64]| {
+            a.resize(a.len().max(b.len()), 0);
+            for (x, y) in a.iter_mut().zip(b) {
+                *x += y;
+            }
+        };
+        sum(&mut self.needed, &chunk.needed);
+        sum(&mut self.computed, &chunk.computed);
+        sum(&mut self.upsampled, &chunk.upsampled);
+        self.gpu_ms += chunk.gpu_ms;
+        self.deps_ms += chunk.deps_ms;
+        self.chunks += 1;
+        self.peak_state_bytes = self.peak_state_bytes.max(chunk.peak_state_bytes);
+    }
 }
 
 /// Lazy synthesis of one volume texture of resolution `R` (finest-level voxels `[0, R)³`) on
@@ -281,7 +355,15 @@ pub struct GpuLazySolid {
     records: DeviceRecords,
     /// The three roles' exemplar colours, packed RGB, role after role.
     rgb: GpuBuffer<u32>,
+    /// What stays between requests.
+    policy: MemoryPolicy,
+    /// Requested voxels synthesized together before the policy applies.
+    chunk_voxels: usize,
 }
+
+/// What a chunked request does with each chunk while its final versions are stored:
+/// `(state, index of the chunk's first key, the chunk's keys)`.
+type ChunkExtract<'a> = dyn FnMut(&mut GpuLazySolid, usize, &[u64]) -> SynthResult<()> + 'a;
 
 /// Initial slots per level.
 const INITIAL_SLOTS: usize = 1024;
@@ -310,8 +392,9 @@ impl GpuLazySolid {
             });
         }
         let n_levels = analysis.levels.len();
+        let schedules = level_schedules(params);
         let mut levels = Vec::with_capacity(n_levels);
-        for l in 0..n_levels {
+        for (l, &schedule) in schedules.iter().enumerate() {
             let shift = (n_levels - 1 - l) as u32;
             let extent = resolution.div_ceil(1 << shift) + 2 * LAZY_MARGIN as u32;
             let universe = Universe::new_3d([extent; 3], KeyLayout::Morton).map_err(|e| {
@@ -333,6 +416,7 @@ impl GpuLazySolid {
                 counts: GpuBuffer::zeroed(gpu, format!("lazy counts level {l}"), INITIAL_SLOTS)?,
                 stride,
                 len: 0,
+                schedule,
             });
         }
         let records: Vec<LazyLevelRecord<'_>> = levels.iter().map(LevelState::record).collect();
@@ -365,13 +449,76 @@ impl GpuLazySolid {
             levels,
             records,
             rgb: GpuBuffer::from_slice(gpu, "lazy exemplar colours", &rgb)?,
+            policy: MemoryPolicy::default(),
+            chunk_voxels: LAZY_CHUNK_VOXELS,
         };
         Ok(me)
     }
 
+    /// What the state keeps between requests from now on (applied after the next chunk).
+    pub fn set_policy(&mut self, policy: MemoryPolicy) {
+        self.policy = policy;
+    }
+
+    /// What the state keeps between requests.
+    pub fn policy(&self) -> MemoryPolicy {
+        self.policy
+    }
+
+    /// Requested voxels synthesized together before the policy applies (at least 1; the
+    /// default is [`LAZY_CHUNK_VOXELS`]; tests use small chunks to exercise the policy).
+    pub fn set_chunk_voxels(&mut self, voxels: usize) {
+        self.chunk_voxels = voxels.max(1);
+    }
+
+    /// Empties the levels the policy does not keep; returns how many held voxels.
+    fn apply_policy(&mut self) -> SynthResult<u32> {
+        let bytes: Vec<u64> = self.levels.iter().map(LevelState::bytes).collect();
+        let kept = self.policy.levels_kept(&bytes);
+        let mut dropped = 0;
+        for l in kept..self.levels.len() {
+            if self.levels[l].len > 0 {
+                self.levels[l].clear(&self.gpu, l)?;
+                dropped += 1;
+            }
+        }
+        if dropped > 0 {
+            self.write_records()?;
+        }
+        Ok(dropped)
+    }
+
+    /// Runs lazy `keys` (in the order given) in chunks of [`GpuLazySolid::set_chunk_voxels`]:
+    /// per chunk the dependency walk and every level's synthesis, then `extract(self, first,
+    /// chunk)` while the chunk's final versions are stored, then the policy.
+    fn run_chunks(
+        &mut self,
+        keys: &[u64],
+        extract: &mut ChunkExtract<'_>,
+    ) -> SynthResult<LazyReport> {
+        let chunks: Vec<&[u64]> = if keys.is_empty() {
+            vec![keys]
+        } else {
+            keys.chunks(self.chunk_voxels).collect()
+        };
+        let mut report = LazyReport::default();
+        let mut first = 0;
+        for chunk in chunks {
+            let mut r = self.synthesize(chunk, std::time::Instant::now())?;
+            r.peak_state_bytes = self.bytes();
+            if !chunk.is_empty() {
+                extract(self, first, chunk)?;
+            }
+            report.add(&r);
+            first += chunk.len();
+            report.dropped_levels = self.apply_policy()?;
+        }
+        Ok(report)
+    }
+
     /// The lazy state of `exemplars` at `resolution` with the solid synthesizer's defaults and
     /// `seed`: the analysis, and the candidates through `cache` (computed on the GPU on a
-    /// miss). How scenes and `bench lazy` make one.
+    /// miss). How scenes make one.
     ///
     /// # Errors
     /// As [`GpuLazySolid::new`], and candidate or cache failures.
@@ -379,6 +526,21 @@ impl GpuLazySolid {
         gpu: &Gpu,
         exemplars: &SolidExemplars,
         seed: u32,
+        resolution: u32,
+        cache: Option<&DiskCache>,
+    ) -> SynthResult<GpuLazySolid> {
+        GpuLazySolid::with_options(gpu, exemplars, &LazyOptions::new(seed), resolution, cache)
+    }
+
+    /// As [`GpuLazySolid::with_defaults`], with `options` overriding them (how `bench lazy`
+    /// and `bench cuts` measure the alternatives).
+    ///
+    /// # Errors
+    /// As [`GpuLazySolid::with_defaults`], and options that do not fit the pyramid.
+    pub fn with_options(
+        gpu: &Gpu,
+        exemplars: &SolidExemplars,
+        options: &LazyOptions,
         resolution: u32,
         cache: Option<&DiskCache>,
     ) -> SynthResult<GpuLazySolid> {
@@ -391,11 +553,19 @@ impl GpuLazySolid {
         let levels = analysis.levels.len() as u32;
         let synth = SynthParams::new(
             levels,
-            seed,
+            options.seed,
             &default_solid_passes(levels),
             &default_solid_jitter(levels),
+        )?
+        .with_parallel_levels(
+            options
+                .parallel_levels
+                .unwrap_or(DEFAULT_SOLID_PARALLEL_LEVELS.min(levels)),
         )?;
-        GpuLazySolid::new(gpu, exemplars, &analysis, &candidates, &synth, resolution)
+        let mut state =
+            GpuLazySolid::new(gpu, exemplars, &analysis, &candidates, &synth, resolution)?;
+        state.set_policy(options.policy.unwrap_or_default());
+        Ok(state)
     }
 
     /// Rewrites the records the kernels read (they keep the buffers they point into alive).
@@ -410,6 +580,11 @@ impl GpuLazySolid {
     pub fn bytes(&self) -> u64 {
         let record = <LazyLevelRecord<'_> as PushValue>::SIZE as u64;
         self.levels.iter().map(LevelState::bytes).sum::<u64>() + record * self.levels.len() as u64
+    }
+
+    /// Bytes of the kept state per level, coarsest first.
+    pub fn level_bytes(&self) -> Vec<u64> {
+        self.levels.iter().map(LevelState::bytes).collect()
     }
 
     /// Voxels stored per level, coarsest first.
@@ -480,26 +655,31 @@ impl GpuLazySolid {
         };
         self.check_requested(&positions)?;
         let lazy: Vec<u64> = positions.iter().map(|&p| lazy_key(p)).collect();
-        let mut report = self.synthesize(&lazy, start)?;
         let n = keys.len();
         let colours = GpuBuffer::<u32>::new(&self.gpu, "lazy colours", n.max(1))?;
-        if n > 0 {
-            let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy colour errors", 1)?;
-            self.gpu.submit(|rec| {
-                let push = ColoursPush {
-                    levels: self.records.address(),
-                    keys: keys.keys.address(),
-                    rgb: self.rgb.address(),
-                    colours: colours.address(),
-                    errors: errors.address(),
-                    n: n as u32,
-                    level: (self.levels.len() - 1) as u32,
-                    side: self.synth.side(),
-                };
-                rec.dispatch(&self.colour, self.colour.groups_for(n as u64), &[], &push)
+        let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy colour errors", 1)?;
+        let mut report = self.run_chunks(&lazy, &mut |me, first, chunk| {
+            let push = ColoursPush {
+                levels: me.records.address(),
+                keys: keys.keys.address_at(first)?,
+                rgb: me.rgb.address(),
+                colours: colours.address_at(first)?,
+                errors: errors.address(),
+                n: chunk.len() as u32,
+                level: (me.levels.len() - 1) as u32,
+                side: me.synth.side(),
+            };
+            me.gpu.submit(|rec| {
+                rec.dispatch(
+                    &me.colour,
+                    me.colour.groups_for(chunk.len() as u64),
+                    &[],
+                    &push,
+                )
             })?;
-            check_errors(&errors, "voxels missing or not final")?;
-        }
+            Ok(())
+        })?;
+        check_errors(&errors, "voxels missing or not final")?;
         report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
         Ok((colours, report))
     }
@@ -513,12 +693,13 @@ impl GpuLazySolid {
         };
         for (l, set) in sets.iter().enumerate() {
             report.needed.push(set.len as u64);
-            let (work, ms) = if set.len == 0 {
-                (0, 0.0)
+            let (work, fresh, ms) = if set.len == 0 {
+                (0, 0, 0.0)
             } else {
                 self.level(l, set)?
             };
             report.computed.push(work);
+            report.upsampled.push(fresh);
             report.gpu_ms += ms;
         }
         Ok(report)
@@ -550,7 +731,8 @@ impl GpuLazySolid {
                 sets.push(empty()?);
                 continue;
             };
-            let last = final_stage(self.params.passes[l]);
+            let schedule = self.levels[l].schedule;
+            let last = schedule.final_stage();
             let mut tagged = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), n)?;
             gpu.submit(|rec| {
                 let push = ParentsPush {
@@ -566,7 +748,7 @@ impl GpuLazySolid {
             })?;
             let mut len = n;
             for stage in (1..=last).rev() {
-                let cls = subpass_class(stage);
+                let cls = schedule.stage_class(stage);
                 let flags = GpuBuffer::<u32>::new(&gpu, "lazy walk flags", len)?;
                 let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk count", 1)?;
                 let count = ExpandPush {
@@ -579,7 +761,7 @@ impl GpuLazySolid {
                     level: l as u32,
                     stage,
                     cls,
-                    version: version_at(stage, cls),
+                    version: schedule.version_at(stage, cls),
                     write: 0,
                 };
                 gpu.submit(|rec| {
@@ -699,26 +881,33 @@ impl GpuLazySolid {
         let start = std::time::Instant::now();
         self.check_requested(requested)?;
         let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
-        let mut report = self.synthesize(&keys, start)?;
-        let finest = self.levels.len() - 1;
         let n = keys.len();
         if n == 0 {
+            let mut report = self.run_chunks(&keys, &mut |_, _, _| Ok(()))?;
             report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
             return Ok((Vec::new(), report));
         }
         let keys_buf = GpuBuffer::from_slice(&self.gpu, "lazy requested keys", &keys)?;
         let out = GpuBuffer::<[u32; 3]>::new(&self.gpu, "lazy requested triples", n)?;
         let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy gather errors", 1)?;
-        self.gpu.submit(|rec| {
+        let mut report = self.run_chunks(&keys, &mut |me, first, chunk| {
             let push = GatherPush {
-                levels: self.records.address(),
-                keys: keys_buf.address(),
-                triples: out.address(),
+                levels: me.records.address(),
+                keys: keys_buf.address_at(first)?,
+                triples: out.address_at(first)?,
                 errors: errors.address(),
-                n: n as u32,
-                level: finest as u32,
+                n: chunk.len() as u32,
+                level: (me.levels.len() - 1) as u32,
             };
-            rec.dispatch(&self.gather, self.gather.groups_for(n as u64), &[], &push)
+            me.gpu.submit(|rec| {
+                rec.dispatch(
+                    &me.gather,
+                    me.gather.groups_for(chunk.len() as u64),
+                    &[],
+                    &push,
+                )
+            })?;
+            Ok(())
         })?;
         check_errors(&errors, "requested voxels missing or not final")?;
         let triples = out.read()?;
@@ -726,9 +915,9 @@ impl GpuLazySolid {
         Ok((triples, report))
     }
 
-    /// Synthesizes level `l`'s dependency set; returns the versions computed and the device
-    /// time in milliseconds.
-    fn level(&mut self, l: usize, set: &LevelSet) -> SynthResult<(u64, f64)> {
+    /// Synthesizes level `l`'s dependency set; returns the versions computed, the voxels
+    /// upsampled (new to the state) and the device time in milliseconds.
+    fn level(&mut self, l: usize, set: &LevelSet) -> SynthResult<(u64, u64, f64)> {
         let gpu = self.gpu.clone();
         let n = set.len;
         let keys_buf = &set.tagged;
@@ -752,7 +941,7 @@ impl GpuLazySolid {
         let fresh = total.read()?[0] as usize;
         let work = work.read()?[0] as u64;
         if work == 0 {
-            return Ok((0, 0.0));
+            return Ok((0, 0, 0.0));
         }
         if fresh > 0 {
             self.reserve(l, self.levels[l].len as usize + fresh)?;
@@ -803,7 +992,7 @@ impl GpuLazySolid {
         let side = self.synth.side();
         let spacing = self.synth.spacing(l);
         let table = self.synth.level_table(l);
-        let passes = self.params.passes[l];
+        let schedule = self.levels[l].schedule;
         let ((), stamps) = gpu.submit_timed(|rec| {
             rec.timestamp()?;
             let push = LazyUpsamplePush {
@@ -824,8 +1013,8 @@ impl GpuLazySolid {
                 &[],
                 &push,
             )?;
-            for stage in 1..=final_stage(passes) {
-                let cls = subpass_class(stage);
+            for stage in 1..=schedule.final_stage() {
+                let cls = schedule.stage_class(stage);
                 let push = LazyCorrectPush {
                     levels: self.records.address(),
                     table: table.address(),
@@ -836,17 +1025,19 @@ impl GpuLazySolid {
                     level: l as u32,
                     stage,
                     cls,
-                    version: version_at(stage, cls),
+                    version: schedule.version_at(stage, cls),
                     side,
                     spacing,
                     keep_current: self.params.keep_current as u32,
+                    seed: self.params.seed,
+                    strength: self.params.jitter[l],
                 };
                 rec.dispatch(&self.correct, self.correct.groups_for(n as u64), &[], &push)?;
             }
             rec.timestamp()
         })?;
         check_errors(&errors, "dependencies missing during synthesis")?;
-        Ok((work, (stamps[1] - stamps[0]) * 1e-6))
+        Ok((work, fresh as u64, (stamps[1] - stamps[0]) * 1e-6))
     }
 
     /// Grows level `l`'s versions and counts to hold `slots` voxels.

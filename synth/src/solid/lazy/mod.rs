@@ -6,13 +6,13 @@ mod deps;
 pub(crate) mod gpu;
 mod keys;
 mod matter;
+mod policy;
 mod state_cpu;
 
 pub use deps::{
-    class_index, dependencies_cpu, final_stage, subpass_class, version_at, Dependencies, LevelDeps,
-    PLANE_NEIGHBOURS,
+    class_index, dependencies_cpu, finest_growth_cpu, Dependencies, LevelDeps, PLANE_NEIGHBOURS,
 };
-pub use gpu::{GpuLazySolid, LazyReport, LAZY_MARGIN};
+pub use gpu::{GpuLazySolid, LazyOptions, LazyReport, LAZY_MARGIN};
 pub use keys::{
     check_request, lazy_key, lazy_position, tag, untag, LAZY_AXIS_BITS, LAZY_BIAS, MAX_LAZY_COORD,
     STAGE_BITS, STAGE_MAX,
@@ -21,4 +21,5 @@ pub use matter::{
     CutInfo, MatterColours, MatterError, MatterSpec, MatterStore, MatterVoxels, SharedLazy,
     StoredMatter, SynthesisInfo,
 };
+pub use policy::{MemoryPolicy, DEFAULT_STATE_BUDGET_MB, LAZY_CHUNK_VOXELS};
 pub use state_cpu::LazySolidCpu;

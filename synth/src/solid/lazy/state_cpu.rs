@@ -7,13 +7,12 @@
 //! synthesizer's on every requested voxel, and a sequence of requests equals one request of
 //! their union.
 
-use super::deps::{
-    class_index, dependencies_cpu, final_stage, subpass_class, version_at, Dependencies,
-};
+use super::deps::{class_index, dependencies_cpu, Dependencies};
 use super::keys::{check_request, lazy_key, lazy_position};
 use crate::solid::analysis::SolidAnalysis;
 use crate::solid::candidates::SolidCandidates;
 use crate::solid::cpu::{check_levels, correct_voxel, offset27, upsample_voxel};
+use crate::solid::schedule::level_schedules;
 use crate::{SynthParams, SynthResult};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -55,7 +54,9 @@ impl LazySolidCpu {
 
     /// The dependency sets of `requested` given what is already computed.
     pub fn dependencies(&self, requested: &[u64], params: &SynthParams) -> Dependencies {
-        dependencies_cpu(requested, &params.passes, &|l, k| self.versions(l, k))
+        dependencies_cpu(requested, &level_schedules(params), &|l, k| {
+            self.versions(l, k)
+        })
     }
 
     /// Synthesizes the finest-level voxels at `requested` (absolute positions) and returns
@@ -80,14 +81,18 @@ impl LazySolidCpu {
         self.computed.resize(levels, 0);
         let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
         let deps = self.dependencies(&keys, params);
+        let schedules = level_schedules(params);
         for (l, d) in deps.levels.iter().enumerate() {
+            let schedule = schedules[l];
             let l32 = l as u32;
-            // Stage 0: upsample the voxels with no version yet from their final parents.
-            let fresh: Vec<(u64, [u32; 3])> = d
-                .keys
-                .par_iter()
-                .filter(|&&k| self.versions(l, k) == 0)
-                .map(|&k| {
+            // Stage 0: upsample the voxels to store with no version yet from their final
+            // parents. A voxel needed only upsampled is not stored: its readers upsample it.
+            let store_from = schedule.final_stage().min(1);
+            let fresh: Vec<(u64, [u32; 3])> = (0..d.len())
+                .into_par_iter()
+                .filter(|&i| d.need[i] as u32 >= store_from && self.versions(l, d.keys[i]) == 0)
+                .map(|i| d.keys[i])
+                .map(|k| {
                     let p = lazy_position(k);
                     let parent = (l > 0).then(|| {
                         let up = lazy_key(p.map(|v| v.div_euclid(2)));
@@ -100,16 +105,17 @@ impl LazySolidCpu {
             for (k, t) in fresh {
                 self.levels[l].insert(k, vec![t]);
             }
-            for stage in 1..=final_stage(params.passes[l]) {
-                let class = subpass_class(stage);
-                let version = version_at(stage, class) as usize;
+            for stage in 1..=schedule.final_stage() {
                 let state = &self.levels[l];
+                let above = l.checked_sub(1).map(|a| &self.levels[a]);
                 let updated: Vec<(u64, [u32; 3])> = (0..d.len())
                     .into_par_iter()
                     .filter(|&i| d.need[i] as u32 >= stage)
                     .map(|i| d.keys[i])
                     .filter(|&k| {
-                        class_index(lazy_position(k)) == class && state[&k].len() == version
+                        let class = class_index(lazy_position(k));
+                        schedule.corrects(stage, class)
+                            && state[&k].len() == schedule.version_at(stage, class) as usize
                     })
                     .map(|k| {
                         let p = lazy_position(k);
@@ -119,8 +125,18 @@ impl LazySolidCpu {
                                 return [0; 3];
                             }
                             let q = [p[0] + o[0], p[1] + o[1], p[2] + o[2]];
-                            let v = version_at(stage - 1, class_index(q)) as usize;
-                            state[&lazy_key(q)][v]
+                            let v = schedule.version_at(stage - 1, class_index(q)) as usize;
+                            match state.get(&lazy_key(q)) {
+                                Some(versions) => versions[v],
+                                None => {
+                                    assert_eq!(v, 0, "only an upsampled read is not stored");
+                                    let parent = above.map(|a| {
+                                        let up = lazy_key(q.map(|c| c.div_euclid(2)));
+                                        a[&up][params.passes[l - 1] as usize]
+                                    });
+                                    upsample_voxel(analysis, params, l32, q, parent)
+                                }
+                            }
                         });
                         (
                             k,

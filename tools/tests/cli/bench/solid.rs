@@ -66,8 +66,8 @@ fn bench_solid_writes_times_quality_and_figures() {
         "terra.pat 64x64 RGB → Lanczos3 resample 16x16"
     );
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
-    // Nine variants, three axes each, plus the header.
-    assert_eq!(quality.lines().count(), 1 + 9 * 3, "{quality}");
+    // Ten variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 10 * 3, "{quality}");
     assert!(
         quality
             .lines()
@@ -81,6 +81,7 @@ fn bench_solid_writes_times_quality_and_figures() {
         "terra-16-keep-current-slices.png",
         "terra-16-no-balance-slices.png",
         "terra-16-no-feature-slices.png",
+        "terra-16-ordered-finest-slices.png",
         "terra-slab.png",
         "quality.json",
     ] {
@@ -90,7 +91,7 @@ fn bench_solid_writes_times_quality_and_figures() {
 }
 
 /// `bench solid --no-ablations`: the default synthesis, the colour rules, the extruded
-/// reference and the 2D synthesis are scored; none of the four ablation volumes is made.
+/// reference and the 2D synthesis are scored; none of the five ablation volumes is made.
 #[test]
 fn bench_solid_without_ablations_scores_the_default_only() {
     let out = tempfile::tempdir().unwrap();
