@@ -2,12 +2,13 @@
 # Puts real test data into git-ignored folders without committing third-party files:
 # - assets/meshes/: Debian's libcgal-demo package ships CGAL's data.tar.gz, whose data/meshes/
 #   holds the armadillo (26,002 vertices, 52,000 triangles), bunny, Chinese dragon and others
-#   as OFF files, which lazysolid reads directly.
+#   as OFF files, which lazysolid reads directly; cow.off (2,904 vertices, 5,804 triangles) is a
+#   closed scan whose surface intersects itself, the case fracture resolves.
 # - assets/exemplars/: Debian's gimp-data package ships GIMP's classic tileable patterns as
 #   .pat files (read directly by lazysolid synth); a handful of varied ones is extracted.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-meshes=(armadillo.off bunny00.off ChineseDragon-10kv.off elephant.off cube.off)
+meshes=(armadillo.off bunny00.off ChineseDragon-10kv.off elephant.off cube.off cow.off)
 # Stone, brick, wood, cloth, leather and paper, 64² to 128²; granite1 (100², grey) is the
 # fine-grained stone on which the synthesizer's period repetition is checked. The second line
 # holds stones of other sizes and channel counts, the "any photo as exemplar" cases (fit.rs).

@@ -40,10 +40,11 @@ pub enum FractureError {
         /// Index of the vertex.
         vertex: usize,
     },
-    /// The mesh is not a closed 2-manifold, so it does not bound a solid that can be cut.
+    /// The mesh is not closed (some edge is used more often in one direction than the other),
+    /// so it does not bound a solid that can be cut.
     #[error(
         "{}: mesh is not closed: {boundary_edges} boundary edge(s) (used by one triangle), \
-         {non_manifold_edges} non-manifold edge(s) (used by more than two triangles or twice in the same direction)",
+         {non_manifold_edges} non-manifold edge(s) (used by several triangles, more often in one direction than the other)",
         mesh.display()
     )]
     NotClosed {
@@ -51,7 +52,7 @@ pub enum FractureError {
         mesh: PathBuf,
         /// Undirected edges used by exactly one triangle.
         boundary_edges: usize,
-        /// Undirected edges used by more than two triangles, or by two with the same direction.
+        /// Undirected edges used by several triangles, more often in one direction.
         non_manifold_edges: usize,
     },
     /// The per-triangle interior flags do not match the triangles.

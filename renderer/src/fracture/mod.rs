@@ -40,6 +40,10 @@ pub struct Fragment {
     pub triangles: Vec<[u32; 3]>,
     /// Per triangle: `true` for cap faces made by a cut (here or in an earlier cut).
     pub interior: Vec<bool>,
+    /// Crossings of cut segments resolved in the caps that made this piece (here and in
+    /// earlier cuts): non-zero only where the input surface intersects itself, which scans
+    /// often do. Reported so a user knows the pieces inherit that self-intersection.
+    pub resolved_crossings: usize,
 }
 
 impl Fragment {
@@ -50,6 +54,7 @@ impl Fragment {
             positions: mesh.positions.clone(),
             triangles: mesh.triangles.clone(),
             interior: vec![false; mesh.triangles.len()],
+            resolved_crossings: 0,
         }
     }
 

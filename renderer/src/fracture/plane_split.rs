@@ -139,13 +139,18 @@ impl Fragment {
     /// # Errors
     /// As [`split_mesh`], naming `source` (the mesh the fragment came from).
     pub fn split(&self, plane: Plane, source: &Path) -> Result<SplitResult, FractureError> {
-        split_surface(
+        let mut result = split_surface(
             &self.positions,
             &self.triangles,
             Some(&self.interior),
             source,
             plane,
-        )
+        )?;
+        if let SplitResult::Split { below, above } = &mut result {
+            below.resolved_crossings += self.resolved_crossings;
+            above.resolved_crossings += self.resolved_crossings;
+        }
+        Ok(result)
     }
 }
 
@@ -365,14 +370,33 @@ pub(crate) fn cut(
         .first()
         .map(|&(u, _)| exact(u))
         .unwrap_or(DVec3::ZERO);
-    let cap = cap::triangulate(&segments, |id| {
-        let d = exact(id) - origin;
-        [d.dot(e1), d.dot(e2)]
-    })
+    let first_new = base + cut_exact.len() as u32;
+    let cap = cap::triangulate(
+        &segments,
+        |id| {
+            let d = exact(id) - origin;
+            [d.dot(e1), d.dot(e2)]
+        },
+        first_new,
+    )
     .map_err(|reason| FractureError::Cap {
         mesh: source.to_path_buf(),
         reason,
     })?;
+    // Vertices the cap added (where crossing segments were split, and interior points), in
+    // id order, each on the line between two earlier vertices.
+    for v in &cap.new_vertices {
+        debug_assert_eq!(v.id, base + cut_exact.len() as u32);
+        let at = |id: u32| {
+            if id < base {
+                positions[id as usize].as_dvec3()
+            } else {
+                cut_exact[(id - base) as usize]
+            }
+        };
+        let p = at(v.from) + (at(v.to) - at(v.from)) * v.t;
+        cut_exact.push(p);
+    }
 
     let new_positions: Vec<Vec3> = cut_exact.iter().map(|p| p.as_vec3()).collect();
     let vertex = |id: u32| {
@@ -389,7 +413,7 @@ pub(crate) fn cut(
     for tri in &cap.triangles {
         below.push(*tri, true);
     }
-    let below = Some(below.compact(vertex));
+    let below = Some(below.compact(vertex, cap.crossings));
     let above = if keep == Keep::Both {
         let above_splits: HashMap<(u32, u32), Vec<u32>> = cap
             .splits
@@ -401,7 +425,7 @@ pub(crate) fn cut(
         for &[a, b, c] in &cap.triangles {
             above.push([a, c, b], true);
         }
-        Some(above.compact(vertex))
+        Some(above.compact(vertex, cap.crossings))
     } else {
         None
     };
@@ -506,7 +530,7 @@ impl Part {
     }
 
     /// Renumbers the used vertices in order of first use.
-    fn compact(self, vertex: impl Fn(u32) -> Vec3) -> Fragment {
+    fn compact(self, vertex: impl Fn(u32) -> Vec3, resolved_crossings: usize) -> Fragment {
         let mut map: HashMap<u32, u32> = HashMap::new();
         let mut positions = Vec::new();
         let triangles = self
@@ -525,6 +549,7 @@ impl Part {
             positions,
             triangles,
             interior: self.interior,
+            resolved_crossings,
         }
     }
 }

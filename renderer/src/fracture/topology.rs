@@ -11,13 +11,19 @@ use std::path::Path;
 pub struct EdgeReport {
     /// Undirected edges used by exactly one triangle.
     pub boundary_edges: usize,
-    /// Undirected edges used by more than two triangles, or by two with the same direction
-    /// (inconsistent orientation).
+    /// Undirected edges used by two or more triangles but more often in one direction than
+    /// the other (inconsistent orientation, or a sheet ending at the edge).
     pub non_manifold_edges: usize,
+    /// Undirected edges used by four or more triangles, as often in each direction: where two
+    /// sheets of a self-intersecting surface meet (fracture of such a surface makes them where
+    /// its caps lie over each other). They leave the surface closed.
+    pub shared_edges: usize,
 }
 
 impl EdgeReport {
-    /// `true` when every edge is shared by exactly two oppositely oriented triangles.
+    /// `true` when every edge is used as often in each direction (a closed, consistently
+    /// oriented surface, which bounds a solid with a well-defined winding number). On a
+    /// surface without [`shared_edges`](Self::shared_edges) that is a closed 2-manifold.
     #[must_use]
     pub fn is_closed(&self) -> bool {
         self.boundary_edges == 0 && self.non_manifold_edges == 0
@@ -92,19 +98,21 @@ pub fn edge_report(triangles: &[[u32; 3]]) -> EdgeReport {
             forward += usize::from(edges[end].1);
             end += 1;
         }
-        match end - start {
+        let uses = end - start;
+        match uses {
             1 => report.boundary_edges += 1,
-            2 if forward == 1 => {}
-            _ => report.non_manifold_edges += 1,
+            _ if 2 * forward != uses => report.non_manifold_edges += 1,
+            2 => {}
+            _ => report.shared_edges += 1,
         }
         start = end;
     }
     report
 }
 
-/// Checks that `mesh` is valid ([`validate`]) and a closed, consistently oriented 2-manifold,
-/// which is what splitting needs: only then do the cut segments form closed loops and the two
-/// parts bound solids.
+/// Checks that `mesh` is valid ([`validate`]) and closed and consistently oriented (every edge
+/// used as often in each direction), which is what splitting needs: only then do the cut
+/// segments form closed loops and the two parts bound solids.
 ///
 /// # Errors
 /// The errors of [`validate`], or [`FractureError::NotClosed`] with the counts of boundary and

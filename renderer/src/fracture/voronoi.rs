@@ -124,13 +124,20 @@ fn cell(
         )? {
             Cut::AllBelow => {}
             Cut::AllAbove => return Ok(None),
-            Cut::Split { below, .. } => current = below,
+            Cut::Split { below, .. } => {
+                let before = current.as_ref().map_or(0, |f| f.resolved_crossings);
+                current = below.map(|mut b| {
+                    b.resolved_crossings += before;
+                    b
+                });
+            }
         }
     }
     Ok(Some(current.unwrap_or_else(|| Fragment {
         positions: mesh.positions.clone(),
         triangles: mesh.triangles.clone(),
         interior: flags.map_or_else(|| vec![false; mesh.triangles.len()], <[bool]>::to_vec),
+        resolved_crossings: 0,
     })))
 }
 

@@ -208,7 +208,10 @@ fn pieces(doc: &Doc, mesh: &Mesh, b: &Breaks) -> Result<Vec<Fragment>, SceneErro
         let as_mesh = piece.to_mesh(mesh.source.clone());
         let cells = fracture_cells_flagged(&as_mesh, Some(&piece.interior), &sites)
             .map_err(|e| fail(f.instance.span(), label.clone(), &e))?;
-        out.extend(cells.into_iter().flatten());
+        out.extend(cells.into_iter().flatten().map(|mut cell| {
+            cell.resolved_crossings += piece.resolved_crossings;
+            cell
+        }));
     }
     Ok(out)
 }

@@ -104,6 +104,13 @@ pub fn run(args: &FractureArgs) -> anyhow::Result<()> {
         path.display(),
         ((sum - whole) / whole).abs()
     );
+    let crossings: usize = pieces.iter().map(|p| p.resolved_crossings).sum();
+    if crossings > 0 {
+        println!(
+            "the surface intersects itself: {crossings} crossing(s) of cut segments resolved in the pieces' caps \
+             (counted per piece); the pieces are closed and intersect themselves where the mesh does"
+        );
+    }
     println!(
         "wrote {}/piece_*.obj and fragments.mtl",
         args.out_dir.display()

@@ -6,7 +6,8 @@ use crate::support::{lazysolid, repo, run};
 /// `lazysolid fracture` writes closed pieces (each OBJ read back and checked) with the cut faces
 /// in their own group and material and volumes that add up to the mesh's; plane cuts report a
 /// plane that misses; open meshes, bad piece counts and bad planes are refused clearly, and
-/// a refused run writes nothing.
+/// a refused run writes nothing. A self-intersecting scan (the cow) breaks into closed pieces
+/// with the resolved crossings reported.
 #[test]
 fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
     use lazysolid_renderer::fracture::{check_closed, volume};
@@ -43,6 +44,29 @@ fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
     assert!(((sum - v) / v).abs() < 1e-5, "{sum} vs {v}");
     let mtl = std::fs::read_to_string(out.join("fragments.mtl")).unwrap();
     assert!(mtl.contains("newmtl interior") && mtl.contains("newmtl surface"));
+
+    // A scan whose surface intersects itself: the crossings are resolved and reported.
+    let cow = dir.path().join("cow");
+    let (ok, stdout, err) = run(lazysolid()
+        .args([
+            "fracture",
+            "cow",
+            "--pieces",
+            "12",
+            "--seed",
+            "1",
+            "--out-dir",
+        ])
+        .arg(&cow));
+    assert!(ok, "{err}");
+    assert!(
+        stdout.contains("22 crossing(s) of cut segments resolved"),
+        "{stdout}"
+    );
+    for i in 0..12 {
+        let piece = Mesh::load(cow.join(format!("piece_{i:03}.obj"))).unwrap();
+        check_closed(&piece).unwrap();
+    }
 
     let cut = dir.path().join("cut");
     let (ok, stdout, err) = run(lazysolid()
