@@ -1281,6 +1281,98 @@ fn explosion_scene_loads() {
     assert_eq!(synthesized.kind, SolidTextureKind::Synthesized);
 }
 
+/// The lowest point of every piece, along the explosion's "up", in each frame of the scene's
+/// animation (sampled four times per frame): per frame, the minimum over pieces, and the
+/// minimum over pieces of their own lowest point at rest.
+fn lowest_per_frame(s: &Scene) -> (Vec<f32>, f32) {
+    let e = s.explosion.unwrap();
+    let up = e.up();
+    let a = s.animation.unwrap();
+    let lowest_at = |i: usize, t: f32| {
+        let m = s.instance_transform(i, t);
+        s.meshes[s.instances[i].mesh]
+            .mesh
+            .positions
+            .iter()
+            .map(|&p| up.dot(m.transform_point3(p)))
+            .fold(f32::INFINITY, f32::min)
+    };
+    let pieces: Vec<usize> = (0..s.instances.len())
+        .filter(|&i| s.instances[i].piece.is_some())
+        .collect();
+    let rest = pieces
+        .iter()
+        .map(|&i| lowest_at(i, 0.0))
+        .fold(f32::INFINITY, f32::min);
+    let frames = (0..a.frames * 4)
+        .map(|k| {
+            let t = k as f32 / (4.0 * a.fps);
+            pieces
+                .iter()
+                .map(|&i| lowest_at(i, t))
+                .fold(f32::INFINITY, f32::min)
+        })
+        .collect();
+    (frames, rest)
+}
+
+/// With `[explosion] ground`, no piece of the main job's scene or the fracture test scene goes
+/// below the ground (or below its own rest height, for pieces standing on it) in any frame;
+/// without it the same pieces do, so the check can fail. Pieces that touch it keep their pose.
+#[test]
+fn pieces_stop_on_the_ground() {
+    for name in ["explosion.toml", "test/fracture.toml"] {
+        let s = example(name);
+        let e = s.explosion.unwrap();
+        let ground = e.ground.expect("the scene has a ground");
+        let (frames, rest) = lowest_per_frame(&s);
+        let floor = ground.min(rest);
+        for (k, &h) in frames.iter().enumerate() {
+            assert!(
+                h >= floor - 1e-4,
+                "{name} sample {k}: lowest point {h} below {floor}"
+            );
+        }
+        let stopped = s
+            .instances
+            .iter()
+            .filter(|i| i.piece.is_some_and(|p| p.contact.is_some()))
+            .count();
+        println!("{name}: ground {ground}, rest {rest}, {stopped} piece(s) stop on it, lowest per frame {frames:?}");
+        assert!(stopped > 0, "{name}: no piece reaches the ground");
+        // A stopped piece keeps its pose.
+        for (i, inst) in s.instances.iter().enumerate() {
+            if let Some(c) = inst.piece.and_then(|p| p.contact) {
+                let t = e.start + c;
+                assert_eq!(
+                    s.instance_transform(i, t + 2.0),
+                    s.instance_transform(i, t + 0.5)
+                );
+            }
+        }
+        // Without the ground, pieces fall through it.
+        let mut free = s.clone();
+        for inst in &mut free.instances {
+            if let Some(p) = &mut inst.piece {
+                p.contact = None;
+            }
+        }
+        let (frames, _) = lowest_per_frame(&free);
+        let deepest = frames.iter().copied().fold(f32::INFINITY, f32::min);
+        assert!(
+            deepest < floor - 0.05,
+            "{name}: without a ground the lowest point is {deepest}"
+        );
+    }
+    expect(
+        &broken(
+            "[[fracture]]\ninstance = \"b\"\npieces = 2\n[explosion]\nspeed = 1\nground = 1e9\n",
+        ),
+        25,
+        "explosion.ground",
+    );
+}
+
 /// Names refer to the named instance wherever it stands among unnamed ones; a name used twice
 /// is refused at its second use.
 #[test]

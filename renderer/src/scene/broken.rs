@@ -105,6 +105,7 @@ pub(super) fn break_instances(
                     centre,
                     spin_axis: axis,
                     spin_share,
+                    contact: None,
                 }),
                 ..inst
             });
@@ -264,6 +265,18 @@ pub(super) fn explosion(
             Some(s) => doc.number(s, &f("start"), |v| v >= 0.0 && v.is_finite(), ">= 0")?,
             None => 0.0,
         },
+        ground: e
+            .ground
+            .as_ref()
+            .map(|g| {
+                doc.number(
+                    g,
+                    &f("ground"),
+                    |v| v.abs() <= 1e6,
+                    "a finite height in [-1e6, 1e6]",
+                )
+            })
+            .transpose()?,
     }))
 }
 

@@ -268,6 +268,7 @@ pub(super) struct RawExplosion {
     pub spin: Option<Spanned<f32>>,
     pub gravity: Option<SVec3>,
     pub start: Option<Spanned<f32>>,
+    pub ground: Option<Spanned<f32>>,
 }
 
 /// `[animation]`: frames and their rate.

@@ -3,7 +3,7 @@
 
 use super::location::{element_label, join, Doc};
 use super::raw::{RawInstance, RawScene};
-use super::{broken, camera, lights, material, meshes};
+use super::{broken, camera, lights, material, meshes, motion};
 use super::{Instance, Scene, SceneError};
 use glam::{Affine3A, Quat, Vec3};
 use std::collections::HashMap;
@@ -98,7 +98,7 @@ impl Scene {
                 meshes::mesh(&doc, m, &label, base)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let instances = broken::break_instances(
+        let mut instances = broken::break_instances(
             &doc,
             &raw.cut,
             &raw.fracture,
@@ -107,6 +107,14 @@ impl Scene {
             instances,
             render.seed,
         )?;
+        if let Some(e) = &explosion {
+            for inst in &mut instances {
+                if let Some(piece) = &mut inst.piece {
+                    piece.contact =
+                        motion::contact_time(e, inst.transform, piece, &meshes[inst.mesh].mesh);
+                }
+            }
+        }
 
         Ok(Scene {
             source: source.to_path_buf(),

@@ -46,6 +46,17 @@ pub struct Explosion {
     pub gravity: Vec3,
     /// Time (seconds) at which the pieces start moving.
     pub start: f32,
+    /// Height of the ground plane along "up" (against gravity; +y without gravity): a piece
+    /// stops where it first touches it ([`Piece::contact`]). `None`: pieces fall freely.
+    pub ground: Option<f32>,
+}
+
+impl Explosion {
+    /// The unit "up" the ground height is measured along: against gravity, or +y without it.
+    #[must_use]
+    pub fn up(&self) -> Vec3 {
+        (-self.gravity).try_normalize().unwrap_or(Vec3::Y)
+    }
 }
 
 /// The frames of an animation.
@@ -336,6 +347,9 @@ pub struct Piece {
     pub spin_axis: Vec3,
     /// Fraction (0.5–1) of the explosion's spin it turns at.
     pub spin_share: f32,
+    /// Seconds after the explosion's start at which the piece first touches the ground (it
+    /// keeps that pose from then on); `None` without a ground or when it never gets there.
+    pub contact: Option<f32>,
 }
 
 /// Analytic area lights.
