@@ -462,3 +462,34 @@ fn copy_words(gpu: &Gpu, kernel: &Kernel, src: &GpuBuffer<u32>, dst: &GpuBuffer<
     })
     .unwrap();
 }
+
+/// The memory meter counts every buffer: a new buffer raises the live bytes and the peak by at
+/// least its size, dropping it gives them back, and a mark starts the peak from what is live,
+/// so a benchmark can read what some work needed above what it started with.
+#[test]
+fn the_memory_meter_counts_buffers_live_and_at_their_peak() {
+    with_gpu(|gpu| {
+        let before = gpu.mark_memory();
+        assert_eq!(gpu.memory_use().peak, before);
+        let bytes = 3 << 20;
+        {
+            let a = GpuBuffer::<u32>::new(gpu, "meter a", bytes / 4).unwrap();
+            let b = GpuBuffer::<u32>::new(gpu, "meter b", bytes / 4).unwrap();
+            let used = gpu.memory_use();
+            assert!(
+                used.live >= before + 2 * bytes as u64,
+                "{used:?} from {before}"
+            );
+            assert!(used.peak >= used.live);
+            drop((a, b));
+        }
+        let after = gpu.memory_use();
+        assert_eq!(after.live, before, "dropped buffers are given back");
+        assert!(
+            after.peak >= before + 2 * bytes as u64,
+            "the peak remembers them"
+        );
+        assert_eq!(gpu.mark_memory(), before);
+        assert_eq!(gpu.memory_use().peak, before, "a mark starts a new peak");
+    });
+}

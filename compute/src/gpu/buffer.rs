@@ -40,6 +40,7 @@ pub(crate) struct BufferMemory {
 impl Drop for BufferMemory {
     fn drop(&mut self) {
         if let Some(a) = self.allocation.take() {
+            self.gpu.meter.sub(a.size());
             let _ = self.gpu.allocator.lock().unwrap().free(a);
         }
         unsafe { self.gpu.device.destroy_buffer(self.raw, None) };
@@ -136,6 +137,7 @@ impl<T: Pod> GpuBuffer<T> {
                 result,
             });
         }
+        inner.meter.add(allocation.size());
         let address = unsafe {
             inner
                 .device
@@ -423,6 +425,7 @@ impl Staging {
                 .device
                 .bind_buffer_memory(raw, allocation.memory(), allocation.offset())
         };
+        inner.meter.add(allocation.size());
         let staging = Staging {
             gpu: inner,
             raw,
@@ -446,6 +449,7 @@ impl Staging {
 impl Drop for Staging {
     fn drop(&mut self) {
         if let Some(a) = self.allocation.take() {
+            self.gpu.meter.sub(a.size());
             let _ = self.gpu.allocator.lock().unwrap().free(a);
         }
         unsafe { self.gpu.device.destroy_buffer(self.raw, None) };

@@ -90,6 +90,8 @@ pub(crate) struct GpuInner {
     pub(crate) memory: MemoryMode,
     /// Uploads and readbacks that went through a staging buffer.
     pub(crate) staging_copies: AtomicU64,
+    /// Bytes of buffer memory allocated, live and peak.
+    pub(crate) meter: super::meter::Meter,
     validation_log: Arc<ValidationLog>,
 }
 
@@ -208,6 +210,7 @@ impl Gpu {
                         info,
                         memory,
                         staging_copies: AtomicU64::new(0),
+                        meter: super::meter::Meter::default(),
                         validation_log,
                     }),
                 })

@@ -19,6 +19,7 @@ mod features;
 mod keep_alive;
 mod kernel;
 mod memory;
+mod meter;
 mod push;
 mod records;
 mod validation;
@@ -33,6 +34,7 @@ pub use features::{check_features, Feature, REQUIRED_FEATURES};
 pub use keep_alive::KeepAlive;
 pub use kernel::{BindingDef, BindingKind, Kernel, KernelDef, WORKGROUP_SIZE_ID};
 pub use memory::{MemoryMode, MEMORY_ENV};
+pub use meter::MemoryUse;
 pub use push::{
     align_up, check_fields, check_push_block, host_fields, push_bytes, HostField, PushBlock,
     PushFieldDef, PushRegistration, PushValue,

@@ -13,7 +13,7 @@
 //! first dispatch).
 
 use super::harness::{time_cpu, Bench, Throughput};
-use super::CommonArgs;
+use super::{host_memory, CommonArgs};
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -26,7 +26,7 @@ use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment,
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    GpuLazySolid, MatterColours, MatterSpec, MatterVoxels, StoredMatter,
+    GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy, StoredMatter,
 };
 use lazysolid_synth::solid::SolidExemplars;
 use std::sync::{Arc, Mutex};
@@ -50,6 +50,11 @@ pub struct CutsArgs {
     /// Seed of the jitter and of the fracture sites.
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
+    /// What the synthesis state keeps between requests: "keep" (every version) or a budget
+    /// of whole levels, coarsest first, such as "32MB" [default: the synthesizer's]. Under a
+    /// budget a cut recomputes the dropped levels it needs.
+    #[arg(long, value_name = "keep|NMB")]
+    pub memory: Option<MemoryPolicy>,
 }
 
 /// The measured plane cuts through the centre of the unit cube: normals.
@@ -67,6 +72,7 @@ const THESIS: &str = "thesis (2008 GPU): 8 ms and 14.4 MB of temporary memory pe
 /// Synthesized matter over the outer surface in a coherent-hash store: what every cut grows.
 struct Holder {
     matter: StoredMatter<HashStore>,
+    gpu: Gpu,
 }
 
 /// What one cut or fracture asked and cost.
@@ -81,6 +87,13 @@ struct CutCost {
     request_bytes: u64,
     store_before: u64,
     store_after: u64,
+    /// Device memory: most allocated during the cut above what was allocated before it, and
+    /// what stayed allocated after it (state and store growth).
+    device_peak_rise: u64,
+    device_kept: i64,
+    /// Host heap, the same two figures.
+    host_peak_rise: u64,
+    host_kept: i64,
 }
 
 /// What every state of the suite is made from.
@@ -90,16 +103,21 @@ struct Setup<'a> {
     exemplars: &'a SolidExemplars,
     mesh: &'a Mesh,
     seed: u32,
+    memory: Option<MemoryPolicy>,
     cache: Option<DiskCache>,
 }
 
 impl Holder {
     /// A fresh state and store holding the outer surface at resolution `r`.
     fn new(setup: &Setup<'_>, voxelizer: &mut Voxelizer, r: u32) -> anyhow::Result<Holder> {
-        let lazy = GpuLazySolid::with_defaults(
+        let options = LazyOptions {
+            policy: setup.memory,
+            ..LazyOptions::new(setup.seed)
+        };
+        let lazy = GpuLazySolid::with_options(
             setup.gpu,
             setup.exemplars,
-            setup.seed,
+            &options,
             r,
             setup.cache.as_ref(),
         )
@@ -120,7 +138,10 @@ impl Holder {
                 HashStore::build(&setup.kernels, r, keys, source, RobinHoodConfig::default())
             },
         )?;
-        Ok(Holder { matter })
+        Ok(Holder {
+            matter,
+            gpu: setup.gpu.clone(),
+        })
     }
 
     /// Requests, synthesizes and inserts the surface voxels of `caps` the store lacks.
@@ -130,7 +151,11 @@ impl Holder {
         caps: &(Vec<Vec3>, Vec<[u32; 3]>),
     ) -> anyhow::Result<CutCost> {
         let state_before = self.matter.state_bytes();
+        let device_before = self.gpu.mark_memory();
+        let host_before = host_memory::mark();
         let (grown, wall_ms) = time_cpu(|| self.matter.grow(voxelizer, &caps.0, &caps.1));
+        let device = self.gpu.memory_use();
+        let (host_live, host_peak) = (host_memory::live(), host_memory::peak());
         let grown = grown?;
         let synthesis = grown.synthesis;
         Ok(CutCost {
@@ -145,6 +170,10 @@ impl Holder {
             request_bytes: 12 * grown.new_voxels,
             store_before: grown.bytes_before,
             store_after: grown.bytes_after,
+            device_peak_rise: device.peak - device_before,
+            device_kept: device.live as i64 - device_before as i64,
+            host_peak_rise: host_peak - host_before,
+            host_kept: host_live as i64 - host_before as i64,
         })
     }
 }
@@ -180,6 +209,7 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         exemplars: &exemplars,
         mesh: &mesh,
         seed: args.seed,
+        memory: args.memory,
         cache: DiskCache::user().ok(),
     };
     let mut voxelizer = Voxelizer::new(&gpu)?;
@@ -192,7 +222,18 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     };
     let cases = args.voxel_res.len() * (CUTS.len() + args.pieces.len());
     let mut bench = Bench::new("bench-cuts", &gpu, &once, cases as u64)?;
-    let mut notes: Vec<(String, f64)> = vec![("seed".into(), args.seed as f64)];
+    let policy = args.memory.unwrap_or_default();
+    println!("synthesis state memory policy: {policy}");
+    let mut notes: Vec<(String, f64)> = vec![
+        ("seed".into(), args.seed as f64),
+        (
+            "state budget MB (0: keep every version)".into(),
+            match policy {
+                MemoryPolicy::Keep => 0.0,
+                MemoryPolicy::Budget(b) => b as f64 / 1e6,
+            },
+        ),
+    ];
     let whole = Fragment::whole(&mesh);
     let bounds = mesh.bounds();
     let centre = ((bounds.min + bounds.max) * 0.5).as_dvec3();
@@ -298,4 +339,31 @@ fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {
     );
     add("store MB before", c.store_before as f64 / 1e6);
     add("store MB after", c.store_after as f64 / 1e6);
+    // Measured: the device allocations (every buffer) and the host heap (the dependency walk
+    // and key lists run on the host), at their highest during the cut above the level before
+    // it; "temporary" is that peak less what stayed allocated (state and store growth).
+    add(
+        "device MB at peak above before",
+        c.device_peak_rise as f64 / 1e6,
+    );
+    add("device MB kept after", c.device_kept as f64 / 1e6);
+    add(
+        "device temporary MB (peak - kept)",
+        (c.device_peak_rise as f64 - c.device_kept.max(0) as f64) / 1e6,
+    );
+    add(
+        "host heap MB at peak above before",
+        c.host_peak_rise as f64 / 1e6,
+    );
+    add("host heap MB kept after", c.host_kept as f64 / 1e6);
+    add(
+        "host temporary MB (peak - kept)",
+        (c.host_peak_rise as f64 - c.host_kept.max(0) as f64) / 1e6,
+    );
+    add(
+        "temporary MB, device + host",
+        (c.device_peak_rise as f64 - c.device_kept.max(0) as f64 + c.host_peak_rise as f64
+            - c.host_kept.max(0) as f64)
+            / 1e6,
+    );
 }

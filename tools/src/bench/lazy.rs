@@ -12,26 +12,24 @@ use crate::cli::tuning::SolidOrder;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
-use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::gpu::{Gpu, GpuBuffer};
 use lazysolid_compute::hash::morton_decode;
 use lazysolid_compute::hash::perfect::PerfectAccess;
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{
-    HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore, StoreKernels, TileTree,
-    TileTreeConfig,
+    ColourSource, HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore, StoreKernels,
+    TileTree, TileTreeConfig,
 };
-use lazysolid_compute::voxel::Voxelizer;
+use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    finest_growth_cpu, lazy_key, GpuLazySolid, LazyOptions, LazyReport, MatterColours, MatterSpec,
-    MatterVoxels, MemoryPolicy, SharedLazy, StoredMatter,
+    finest_growth_cpu, lazy_key, GpuLazySolid, LazyOptions, LazyReport, MemoryPolicy,
 };
-use lazysolid_synth::solid::{voxel_colour, LevelSchedule, SolidExemplars};
+use lazysolid_synth::solid::{pack_rgb, voxel_colour, LevelSchedule, SolidExemplars};
 use lazysolid_synth::{load_solid, FitMode};
 use std::cell::RefCell;
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex};
 
 /// What to measure.
 #[derive(Args)]
@@ -69,6 +67,11 @@ pub struct LazyArgs {
     pub memory: Option<MemoryPolicy>,
     #[command(flatten)]
     pub order: SolidOrder,
+    /// Resolution of the cross-section figure (a fresh state holding the surface, then the
+    /// mid-z plane inside the mesh) [default: the first of --voxel-res]. It costs a second
+    /// surface request, so a large run may want a small one.
+    #[arg(long, value_name = "N")]
+    pub section_res: Option<u32>,
 }
 
 /// The exemplar of the lazy suites (`lazy`, `cuts`): one image playing all three roles.
@@ -115,6 +118,11 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             "--voxel-res {r}: must lie in 16..=2048"
         );
     }
+    let section_res = args.section_res.unwrap_or(sizes[0]);
+    ensure!(
+        (16..=2048).contains(&section_res),
+        "--section-res {section_res}: must lie in 16..=2048"
+    );
     let gpu = global.gpu()?;
     let exemplars = args.exemplar.load()?;
     let cache = DiskCache::user().ok();
@@ -154,7 +162,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 .iter()
                 .map(|&k| morton_decode(k, 3).map(|v| v as i32))
                 .collect();
-            let last = RefCell::new(None::<(LazyReport, GpuLazySolid)>);
+            let last = RefCell::new(None::<(Vec<[u32; 3]>, LazyReport, GpuLazySolid)>);
             let case = format!("{name} {r}³");
             bench.case(
                 &case,
@@ -165,16 +173,26 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 || {
                     let mut lazy = state(r)?;
                     let (result, ms) = time_cpu(|| lazy.request(&requested));
-                    let (_, report) = result?;
-                    *last.borrow_mut() = Some((report, lazy));
+                    let (triples, report) = result?;
+                    *last.borrow_mut() = Some((triples, report, lazy));
                     Ok(ms)
                 },
             )?;
-            let (report, lazy) = last.into_inner().context("no measured run")?;
+            let (triples, report, lazy) = last.into_inner().context("no measured run")?;
             let bytes = lazy.bytes();
+            drop(lazy);
             bench.status(format!("{name} {r}³: filling the stores"));
-            let lazy = Arc::new(Mutex::new(lazy));
-            let stores = store_bytes(&gpu, &lazy, &mut voxelizer, &mesh, r)?;
+            // The stores are filled with the request's colours: under a memory budget the
+            // state has dropped its finest levels, and four more requests would recompute
+            // them four times over.
+            let colours: Vec<u32> = triples
+                .iter()
+                .map(|&t| pack_rgb(voxel_colour(&exemplars, t)) | 0xff00_0000)
+                .collect();
+            drop(triples);
+            let colours = GpuBuffer::from_slice(&gpu, "requested colours", &colours)?;
+            let stores = store_bytes(&gpu, &interp, &colours, &mesh, r)?;
+            drop(colours);
             let full = (r as f64).powi(3);
             let computed: u64 = report.computed.iter().sum();
             // Voxels synthesized (stored: upsampled, then corrected) and those of the
@@ -268,9 +286,9 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 }
             }
         }
-        // The matter inside: the mid-z cross-section of the first resolution, synthesized as a
+        // The matter inside: the mid-z cross-section at --section-res, synthesized as a
         // second request into a state that already holds the surface.
-        let r = sizes[0];
+        let r = section_res;
         bench.status(format!("{name} {r}³: cross-section"));
         let mut lazy = state(r)?;
         let keys = voxelizer
@@ -352,56 +370,35 @@ fn section_mask(mesh: &Mesh, r: u32, z: u32) -> Vec<bool> {
     mask
 }
 
-/// Bytes of each store of the matter the lazy state holds: the coherent hash, the N³ tree and
-/// the perfect hash over the interpolation voxels (trilinear reads), the TileTree over the mesh
-/// (its texels from the surface voxels, an incremental request). The state already holds the
-/// interpolation voxels, so the builds synthesize only what the TileTree adds.
+/// Bytes of each store of the matter a request synthesized (`colours` of the interpolation
+/// voxels `keys`, in key order): the coherent hash, the N³ tree and the perfect hash over the
+/// interpolation voxels (trilinear reads), the TileTree over the mesh, whose texels' voxels the
+/// stores look up among those keys (one missing is an error).
 fn store_bytes(
     gpu: &Gpu,
-    lazy: &SharedLazy,
-    voxelizer: &mut Voxelizer,
+    keys: &VoxelKeys,
+    colours: &GpuBuffer<u32>,
     mesh: &Mesh,
     r: u32,
 ) -> anyhow::Result<Vec<(&'static str, u64)>> {
     let kernels = StoreKernels::new(gpu)?;
-    let (p, t) = (&mesh.positions[..], &mesh.triangles[..]);
-    let spec = |voxels| MatterSpec {
-        colours: MatterColours::Lazy(lazy.clone()),
-        voxels,
-        resolution: r,
-    };
-    let trilinear = MatterVoxels::Interpolation;
-    let (hash, _) = StoredMatter::build(gpu, voxelizer, spec(trilinear), p, t, |k, s| {
-        HashStore::build(
-            &kernels,
-            r,
-            k.expect("voxel stores are keyed"),
-            s,
-            RobinHoodConfig::default(),
-        )
-    })?;
-    let (octree, _) = StoredMatter::build(gpu, voxelizer, spec(trilinear), p, t, |k, s| {
-        let config = OctreeConfig::for_resolution(r)?;
-        OctreeStore::build(&kernels, r, k.expect("voxel stores are keyed"), s, config)
-            .map(|(store, _)| store)
-    })?;
-    let (perfect, _) = StoredMatter::build(gpu, voxelizer, spec(trilinear), p, t, |k, s| {
-        PerfectStore::build(
-            &kernels,
-            r,
-            k.expect("voxel stores are keyed"),
-            s,
-            PerfectAccess::Constrained,
-        )
-    })?;
-    let surface = MatterVoxels::Surface;
-    let (tree, _) = StoredMatter::build(gpu, voxelizer, spec(surface), p, t, |_, s| {
-        TileTree::build(&kernels, p, t, r, s, TileTreeConfig::default()).map(|(tree, _)| tree)
-    })?;
+    let source = ColourSource::Buffer { keys, colours };
+    let hash = HashStore::build(&kernels, r, keys, &source, RobinHoodConfig::default())?;
+    let (octree, _) =
+        OctreeStore::build(&kernels, r, keys, &source, OctreeConfig::for_resolution(r)?)?;
+    let perfect = PerfectStore::build(&kernels, r, keys, &source, PerfectAccess::Constrained)?;
+    let (tree, _) = TileTree::build(
+        &kernels,
+        &mesh.positions,
+        &mesh.triangles,
+        r,
+        &source,
+        TileTreeConfig::default(),
+    )?;
     Ok(vec![
-        ("coherent hash (trilinear)", hash.store().bytes()),
-        ("octree (trilinear)", octree.store().bytes()),
-        ("perfect hash (trilinear)", perfect.store().bytes()),
-        ("tiletree", tree.store().bytes()),
+        ("coherent hash (trilinear)", hash.bytes()),
+        ("octree (trilinear)", octree.bytes()),
+        ("perfect hash (trilinear)", perfect.bytes()),
+        ("tiletree", tree.bytes()),
     ])
 }

@@ -5,6 +5,7 @@ mod cuts;
 mod glints;
 pub mod harness;
 mod hash;
+pub mod host_memory;
 mod lazy;
 mod multiscale;
 mod plot;

@@ -94,11 +94,7 @@ impl LazySolidCpu {
                 .map(|i| d.keys[i])
                 .map(|k| {
                     let p = lazy_position(k);
-                    let parent = (l > 0).then(|| {
-                        let up = lazy_key(p.map(|v| v.div_euclid(2)));
-                        self.levels[l - 1][&up][params.passes[l - 1] as usize]
-                    });
-                    (k, upsample_voxel(analysis, params, l32, p, parent))
+                    (k, self.upsampled(analysis, params, l, p))
                 })
                 .collect();
             self.computed[l] += fresh.len() as u64;
@@ -107,7 +103,6 @@ impl LazySolidCpu {
             }
             for stage in 1..=schedule.final_stage() {
                 let state = &self.levels[l];
-                let above = l.checked_sub(1).map(|a| &self.levels[a]);
                 let updated: Vec<(u64, [u32; 3])> = (0..d.len())
                     .into_par_iter()
                     .filter(|&i| d.need[i] as u32 >= stage)
@@ -130,11 +125,7 @@ impl LazySolidCpu {
                                 Some(versions) => versions[v],
                                 None => {
                                     assert_eq!(v, 0, "only an upsampled read is not stored");
-                                    let parent = above.map(|a| {
-                                        let up = lazy_key(q.map(|c| c.div_euclid(2)));
-                                        a[&up][params.passes[l - 1] as usize]
-                                    });
-                                    upsample_voxel(analysis, params, l32, q, parent)
+                                    self.upsampled(analysis, params, l, q)
                                 }
                             }
                         });
@@ -157,5 +148,21 @@ impl LazySolidCpu {
         let finest = levels - 1;
         let last = params.passes[finest] as usize;
         Ok(keys.iter().map(|k| self.levels[finest][k][last]).collect())
+    }
+
+    /// Version 0 of voxel `p` of level `l`: upsampled from its parent's final version (the
+    /// parent level must hold it), for the voxels stored and for those read only upsampled.
+    fn upsampled(
+        &self,
+        analysis: &SolidAnalysis,
+        params: &SynthParams,
+        l: usize,
+        p: [i32; 3],
+    ) -> [u32; 3] {
+        let parent = l.checked_sub(1).map(|above| {
+            let up = lazy_key(p.map(|v| v.div_euclid(2)));
+            self.levels[above][&up][params.passes[above] as usize]
+        });
+        upsample_voxel(analysis, params, l as u32, p, parent)
     }
 }

@@ -3,7 +3,8 @@
 use crate::support::{lazysolid, terra_square, BenchRun};
 
 /// `lazysolid bench cuts` times every plane cut and the fracture as one row each, with the
-/// voxels the caps need, the new ones synthesized, and the store's growth.
+/// voxels the caps need, the new ones synthesized, the store's growth and the measured
+/// temporary memory on the device and the host.
 #[test]
 fn bench_cuts_times_every_cut_and_fracture() {
     let out = tempfile::tempdir().unwrap();
@@ -30,11 +31,24 @@ fn bench_cuts_times_every_cut_and_fracture() {
             "32³ plane cut 4 normal [1.0, 1.0, 0.4]: wall ms",
             "32³ fracture 4 pieces: voxel versions synthesized",
             "32³ fracture 4 pieces: store MB after",
+            "32³ fracture 4 pieces: host heap MB at peak above before",
+            "32³ fracture 4 pieces: temporary MB, device + host",
             "lazy request + insert (wall)",
             "thesis (2008 GPU): 8 ms",
         ],
     );
-    assert!(bench.json()["rows"]
-        .as_array()
-        .is_some_and(|r| r.len() == 5));
+    let json = bench.json();
+    assert!(json["rows"].as_array().is_some_and(|r| r.len() == 5));
+    // The memory figures are measured: a cut that synthesizes allocates device buffers and
+    // host lists, and frees its temporaries.
+    let note = |k: &str| {
+        json["derived"][k]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{k}: {}", json["derived"]))
+    };
+    let case = "32³ fracture 4 pieces";
+    assert!(note(&format!("{case}: voxel versions synthesized")) > 0.0);
+    assert!(note(&format!("{case}: device MB at peak above before")) > 0.0);
+    assert!(note(&format!("{case}: host heap MB at peak above before")) > 0.0);
+    assert!(note(&format!("{case}: device temporary MB (peak - kept)")) > 0.0);
 }

@@ -4,7 +4,8 @@
 use crate::support::{lazysolid, terra_square, BenchRun};
 
 /// `bench lazy` on the bunny at 16³ with a 16² terra crop (its candidates take seconds): the
-/// timed row, the per-level notes, each store's bytes and the cross-section figure.
+/// timed row, the per-level notes, each store's bytes and the cross-section figure at the
+/// resolution `--section-res` asks for.
 #[test]
 fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
     let out = tempfile::tempdir().unwrap();
@@ -15,7 +16,7 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
             .args(["bench", "lazy", "--meshes", "bunny00", "--voxel-res", "16"])
             .arg("--exemplar")
             .arg(&exemplar)
-            .args(["--runs", "1", "--warmup", "0"])
+            .args(["--runs", "1", "--warmup", "0", "--section-res", "32"])
             .env("LAZYSOLID_CACHE_DIR", dir.path().join("cache")),
         out.path(),
         &[
@@ -25,7 +26,7 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
             "bunny00 16³: store MB: tiletree",
             "bunny00 16³: store MB: perfect hash (trilinear)",
             "bunny00 16³: level 0 voxels",
-            "bunny00 16³ cross-section z = 8: voxel versions computed after the surface",
+            "bunny00 32³ cross-section z = 16: voxel versions computed after the surface",
         ],
     );
     let figures = bench
@@ -33,8 +34,8 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
         .iter()
         .find(|p| p.is_dir())
         .expect("a figures folder");
-    let section = image::open(figures.join("bunny00-16-section-z8.png")).unwrap();
-    assert_eq!((section.width(), section.height()), (16, 16));
+    let section = image::open(figures.join("bunny00-32-section-z16.png")).unwrap();
+    assert_eq!((section.width(), section.height()), (32, 32));
     assert!(bench.json()["rows"]
         .as_array()
         .is_some_and(|r| r.len() == 1));
