@@ -87,13 +87,33 @@ struct CutCost {
     request_bytes: u64,
     store_before: u64,
     store_after: u64,
-    /// Device memory: most allocated during the cut above what was allocated before it, and
-    /// what stayed allocated after it (state and store growth).
-    device_peak_rise: u64,
-    device_kept: i64,
-    /// Host heap, the same two figures.
-    host_peak_rise: u64,
-    host_kept: i64,
+    /// Device memory (every buffer) during the cut.
+    device: Rise,
+    /// Host heap during the cut (the dependency walk and the key lists run on the host).
+    host: Rise,
+}
+
+/// Memory during a piece of work, measured: the most allocated above what was allocated
+/// before it, and what stayed allocated after it (state and store growth; negative when the
+/// memory policy dropped levels).
+#[derive(Clone, Copy)]
+struct Rise {
+    peak: u64,
+    kept: i64,
+}
+
+impl Rise {
+    fn new(before: u64, live: u64, peak: u64) -> Rise {
+        Rise {
+            peak: peak.saturating_sub(before),
+            kept: live as i64 - before as i64,
+        }
+    }
+
+    /// The peak less what stayed: memory the work needed only while it ran.
+    fn temporary(&self) -> u64 {
+        self.peak.saturating_sub(self.kept.max(0) as u64)
+    }
 }
 
 /// What every state of the suite is made from.
@@ -170,10 +190,8 @@ impl Holder {
             request_bytes: 12 * grown.new_voxels,
             store_before: grown.bytes_before,
             store_after: grown.bytes_after,
-            device_peak_rise: device.peak - device_before,
-            device_kept: device.live as i64 - device_before as i64,
-            host_peak_rise: host_peak - host_before,
-            host_kept: host_live as i64 - host_before as i64,
+            device: Rise::new(device_before, device.live, device.peak),
+            host: Rise::new(host_before, host_live, host_peak),
         })
     }
 }
@@ -339,31 +357,20 @@ fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {
     );
     add("store MB before", c.store_before as f64 / 1e6);
     add("store MB after", c.store_after as f64 / 1e6);
-    // Measured: the device allocations (every buffer) and the host heap (the dependency walk
-    // and key lists run on the host), at their highest during the cut above the level before
-    // it; "temporary" is that peak less what stayed allocated (state and store growth).
-    add(
-        "device MB at peak above before",
-        c.device_peak_rise as f64 / 1e6,
-    );
-    add("device MB kept after", c.device_kept as f64 / 1e6);
-    add(
-        "device temporary MB (peak - kept)",
-        (c.device_peak_rise as f64 - c.device_kept.max(0) as f64) / 1e6,
-    );
-    add(
-        "host heap MB at peak above before",
-        c.host_peak_rise as f64 / 1e6,
-    );
-    add("host heap MB kept after", c.host_kept as f64 / 1e6);
-    add(
-        "host temporary MB (peak - kept)",
-        (c.host_peak_rise as f64 - c.host_kept.max(0) as f64) / 1e6,
-    );
+    // Measured, see `Rise`.
+    for (what, rise) in [("device", c.device), ("host heap", c.host)] {
+        add(
+            &format!("{what} MB at peak above before"),
+            rise.peak as f64 / 1e6,
+        );
+        add(&format!("{what} MB kept after"), rise.kept as f64 / 1e6);
+        add(
+            &format!("{what} temporary MB (peak - kept)"),
+            rise.temporary() as f64 / 1e6,
+        );
+    }
     add(
         "temporary MB, device + host",
-        (c.device_peak_rise as f64 - c.device_kept.max(0) as f64 + c.host_peak_rise as f64
-            - c.host_kept.max(0) as f64)
-            / 1e6,
+        (c.device.temporary() + c.host.temporary()) as f64 / 1e6,
     );
 }
