@@ -7,17 +7,15 @@
 //! - **Strip search** (the S nearest strips of the target image to each query strip, ranked by
 //!   (distance, pixel)): strips are 3N-value integer vectors, searched in an exact k-d tree
 //!   built in the target strips' principal axes (`strip_tree.rs`).
-//! - **Crossbar ranking** (the best 100 of the S² triples by (error, i·S + j)): both strip lists
-//!   are sorted by distance, and `d1[i] + d2[j]` is a lower bound of the triple's error, so a
-//!   row stops at the first `j` whose bound reaches the current 100th error, and the rows stop
-//!   at the first `i` whose bound with `j = 0` does (pairs come in increasing rank, so reaching
-//!   the worst error is enough: ties rank after it). The third term, the distance of the two
-//!   other strips, is bounded below by their per-channel sums and slopes (`StripMoments`):
-//!   a pair whose bound already reaches the worst error is skipped without its `3N`-value
-//!   distance, which removes about two thirds of them.
+//! - **Crossbar ranking** (the best 100 of the S² triples by (error, i·S + j)): every error,
+//!   a row of S at a time, with the second list's strips held as columns so that one row is
+//!   a loop over independent lanes; then a selection of the best 100. Bounds do not pay
+//!   here: the two lists' own distances are small beside the third term (the distance of
+//!   the two other strips), so at 256² 98 % of the pairs passed the sorted-list bound that
+//!   an earlier pruned version used, and its per-pair branches cost more than the sums.
 //! - **Strip distances** are exact sums of squares over zero-padded `f32` rows
-//!   ([`ssd`](super::strip_tree)): integers below 2²⁴, so exact, and in independent lanes that
-//!   the compiler vectorizes on any baseline.
+//!   (`strip_tree::ssd`): integers below 2²⁴, so exact, and in independent lanes that the
+//!   compiler vectorizes on any baseline.
 //! - **Coherence filter**: per pixel the neighbours' coordinates of each other role are marked
 //!   in a per-worker array of the exemplar's pixels, and a candidate is continued when one of
 //!   its coordinate's four unit steps is marked (the same test as
@@ -28,12 +26,11 @@ use super::candidates::{
     build_levels, crossbar_pair, keep_rows, neighbours4, others, CandidateParams, CandidateSets,
     SearchKey, SolidCandidates, StripMatches, MAX_CANDIDATES,
 };
-use super::strip_tree::{distinct_strips, padded, padded_len, ssd, StripTree};
+use super::strip_tree::{distinct_strips, padded, padded_len, StripTree};
 use super::strips::{along, sample_offset};
 use crate::coords::{pack, unpack};
 use crate::SynthResult;
 use rayon::prelude::*;
-use std::collections::BinaryHeap;
 
 /// Every pixel's strip along `axis` of an image's level colours: `n` RGB samples spaced by
 /// `h`, as `3n` integers.
@@ -62,10 +59,7 @@ fn search_host(
     let tree = StripTree::new(&targets, dims);
     // Identical query strips have the same matches: each distinct one is searched once.
     let (distinct, members, first) = distinct_strips(&queries, dims);
-    let found: Vec<Vec<(u32, u32)>> = distinct
-        .par_chunks_exact(dims)
-        .map(|query| tree.nearest(query, s))
-        .collect();
+    let found = tree.nearest_all(&distinct, s);
     let mut rows: Vec<&[(u32, u32)]> = vec![&[]; (m * m) as usize];
     for (u, row) in found.iter().enumerate() {
         for &p in &members[first[u] as usize..first[u + 1] as usize] {
@@ -79,67 +73,47 @@ fn search_host(
     }
 }
 
-/// Per strip, the projections of its samples onto two orthogonal directions per colour
-/// channel: the constant (the channel's sum) and the centred ramp `i - (n - 1) / 2` (its
-/// slope). By Bessel's inequality the squared differences of these projections, each divided
-/// by its direction's squared length, sum to at most the strips' squared distance: a lower
-/// bound of the crossbar's third term that costs six products instead of `3n`.
-struct StripMoments {
-    /// `[sum_r, sum_g, sum_b, ramp_r, ramp_g, ramp_b]` of every pixel's strip, each value
-    /// already divided by the square root of its direction's squared length, so that the
-    /// bound is the plain squared distance of two moment vectors.
-    moments: Vec<[f32; 6]>,
-}
+/// Pairs of a crossbar row computed together: `j` lanes in independent accumulators, which
+/// the compiler vectorizes on any baseline.
+const BLOCK: usize = 8;
 
-impl StripMoments {
-    fn new(strips: &[i32], n: usize) -> StripMoments {
-        let centre = (n as f32 - 1.0) / 2.0;
-        let ramp: f32 = (0..n).map(|i| (i as f32 - centre).powi(2)).sum();
-        let (cs, rs) = (1.0 / (n as f32).sqrt(), 1.0 / ramp.max(1.0).sqrt());
-        let moments = strips
-            .chunks_exact(3 * n)
-            .map(|v| {
-                let mut m = [0f32; 6];
-                for (i, c) in v.chunks_exact(3).enumerate() {
-                    let r = i as f32 - centre;
-                    for k in 0..3 {
-                        m[k] += c[k] as f32;
-                        m[3 + k] += r * c[k] as f32;
-                    }
-                }
-                for k in 0..3 {
-                    m[k] *= cs;
-                    m[3 + k] *= rs;
-                }
-                m
-            })
-            .collect();
-        StripMoments { moments }
-    }
-}
-
-/// The moment bounds of one strip against a row of strips given as six columns, into `out`
-/// (a loop over independent lanes, which the compiler vectorizes).
-fn moment_bounds(a: &[f32; 6], columns: &[Vec<f32>; 6], out: &mut [f32]) {
-    out.iter_mut().for_each(|o| *o = 0.0);
-    for (k, column) in columns.iter().enumerate() {
-        for (o, &b) in out.iter_mut().zip(column) {
-            let d = a[k] - b;
-            *o += d * d;
+/// The strips of `pixels` transposed into `dims` rows of `columns` values (zero beyond the
+/// pixels): one strip value of every pixel in one contiguous row.
+fn transposed(
+    strips: &[f32],
+    stride: usize,
+    dims: usize,
+    pixels: &[u32],
+    columns: usize,
+) -> Vec<f32> {
+    let mut out = vec![0.0f32; dims * columns];
+    for (j, &q) in pixels.iter().enumerate() {
+        let v = &strips[q as usize * stride..][..dims];
+        for (d, &x) in v.iter().enumerate() {
+            out[d * columns + j] = x;
         }
     }
+    out
 }
 
-/// Whether a pair's third term, at least `bound` up to `f32` rounding, certainly brings its
-/// error to `slack + 1` or more above the first two terms. Moments of different strips differ
-/// by at least `1 / sqrt(ramp)` or not at all, and their rounding is below 10⁻⁶ relative, so
-/// the margins (10⁻⁴ relative and 10⁻² absolute) keep every pair that could enter.
-fn ruled_out(bound: f32, slack: i64) -> bool {
-    f64::from(bound) * (1.0 - 1e-4) - 1e-2 > slack as f64 + 1.0
+/// The third terms of one crossbar row: the squared distances of strip `a` to every column
+/// of `b` (`a.len()` rows of `columns` values), exact for the reason `strip_tree::ssd` is.
+fn row_distances(a: &[f32], b: &[f32], columns: usize, out: &mut [f32]) {
+    for (block, o) in out.chunks_exact_mut(BLOCK).enumerate() {
+        let mut acc = [0.0f32; BLOCK];
+        for (d, &x) in a.iter().enumerate() {
+            let column = &b[d * columns + block * BLOCK..][..BLOCK];
+            for k in 0..BLOCK {
+                let t = x - column[k];
+                acc[k] += t * t;
+            }
+        }
+        o.copy_from_slice(&acc);
+    }
 }
 
-/// The crossbar ranking of `triples_cpu`, pruned by the sorted strip distances and a lower
-/// bound of the third term (module docs).
+/// The crossbar ranking of `triples_cpu`: all S² errors, a row at a time against the second
+/// list's strips held as columns, then the best `kept` by (error, i·S + j) (module docs).
 fn triples_host(
     level: &SolidLevel,
     e: usize,
@@ -152,80 +126,48 @@ fn triples_host(
     let (n, h, m, s) = (params.strip, level.spacing, side, params.s as usize);
     let dims = 3 * n as usize;
     let stride = padded_len(dims);
-    let raw1 = strips(&level.roles[f1].colours, a1, n, h, m);
-    let raw2 = strips(&level.roles[f2].colours, a2, n, h, m);
-    let (k1, k2) = (
-        StripMoments::new(&raw1, n as usize),
-        StripMoments::new(&raw2, n as usize),
-    );
-    let (s1, s2) = (padded(&raw1, dims), padded(&raw2, dims));
+    let s1 = padded(&strips(&level.roles[f1].colours, a1, n, h, m), dims);
+    let s2 = padded(&strips(&level.roles[f2].colours, a2, n, h, m), dims);
     let kept = params.kept();
-    let rows: Vec<Vec<(u32, u32, [u32; 3])>> = (0..(m * m) as usize)
+    let columns = s.div_ceil(BLOCK) * BLOCK;
+    let scratch = || (vec![0.0f32; columns], Vec::<u64>::with_capacity(s * s));
+    let rows: Vec<Vec<(u32, [u32; 3])>> = (0..(m * m) as usize)
         .into_par_iter()
-        .map(|p| {
-            let mut heap: BinaryHeap<(u32, u32)> = BinaryHeap::with_capacity(kept + 1);
+        .with_min_len(64)
+        .map_init(scratch, |(third, keys), p| {
             let d1 = &m1.distances[p * s..][..s];
             let d2 = &m2.distances[p * s..][..s];
-            let q2s = &m2.pixels[p * s..][..s];
-            let columns: [Vec<f32>; 6] =
-                std::array::from_fn(|k| q2s.iter().map(|&q| k2.moments[q as usize][k]).collect());
-            let mut lower = vec![0f32; s];
-            // Pairs are visited in increasing rank `i·S + j`, so a pair whose error can only
-            // equal the current worst ranks after it: `>=` prunes ties as well.
-            let worst = |heap: &BinaryHeap<(u32, u32)>| {
-                if heap.len() == kept {
-                    heap.peek().expect("full").0
-                } else {
-                    u32::MAX
-                }
-            };
+            let b = transposed(&s2, stride, dims, &m2.pixels[p * s..][..s], columns);
+            keys.clear();
             for (i, &di) in d1.iter().enumerate() {
-                if u64::from(di) + u64::from(d2[0]) >= u64::from(worst(&heap)) {
-                    break;
-                }
                 let q1 = m1.pixels[p * s + i] as usize;
-                let v1 = &s1[q1 * stride..][..stride];
-                moment_bounds(&k1.moments[q1], &columns, &mut lower);
-                for (j, &dj) in d2.iter().enumerate() {
-                    let w = worst(&heap);
-                    let bound = di + dj;
-                    if u64::from(bound) >= u64::from(w) {
-                        break;
-                    }
-                    // Skip the pair when its third term alone brings it to the worst kept
-                    // error (which, by the rank order, it cannot then beat).
-                    if ruled_out(lower[j], i64::from(w) - i64::from(bound) - 1) {
-                        continue;
-                    }
-                    let q2 = q2s[j] as usize;
-                    let entry = (
-                        bound + ssd(v1, &s2[q2 * stride..][..stride]),
-                        (i * s + j) as u32,
-                    );
-                    if heap.len() < kept {
-                        heap.push(entry);
-                    } else if entry < *heap.peek().expect("full") {
-                        *heap.peek_mut().expect("full") = entry;
-                    }
+                row_distances(&s1[q1 * stride..][..dims], &b, columns, third);
+                for (j, (&dj, &t)) in d2.iter().zip(third.iter()).enumerate() {
+                    let error = di + dj + t as u32;
+                    keys.push(u64::from(error) << 32 | (i * s + j) as u64);
                 }
             }
-            heap.into_sorted_vec()
-                .into_iter()
-                .map(|(cb, idx)| {
-                    let (i, j) = (idx as usize / s, idx as usize % s);
-                    let (q1, q2) = (m1.pixels[p * s + i], m2.pixels[p * s + j]);
+            if keys.len() > kept {
+                keys.select_nth_unstable(kept - 1);
+                keys.truncate(kept);
+            }
+            keys.sort_unstable();
+            keys.iter()
+                .map(|&key| {
+                    let idx = (key & u64::from(u32::MAX)) as usize;
+                    let (q1, q2) = (m1.pixels[p * s + idx / s], m2.pixels[p * s + idx % s]);
                     let mut t = [0u32; 3];
                     t[e] = pack(p as u32 % m, p as u32 / m);
                     t[f1] = pack(q1 % m, q1 / m);
                     t[f2] = pack(q2 % m, q2 / m);
-                    (cb, idx, t)
+                    ((key >> 32) as u32, t)
                 })
                 .collect()
         })
         .collect();
     CandidateSets {
         slots: kept,
-        triples: rows.iter().flat_map(|r| r.iter().map(|x| x.2)).collect(),
+        triples: rows.iter().flat_map(|r| r.iter().map(|x| x.1)).collect(),
         errors: rows.iter().flat_map(|r| r.iter().map(|x| x.0)).collect(),
         counts: rows.iter().map(|r| r.len() as u32).collect(),
     }
