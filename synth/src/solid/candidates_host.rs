@@ -138,13 +138,14 @@ fn triples_host(
             let d1 = &m1.distances[p * s..][..s];
             let d2 = &m2.distances[p * s..][..s];
             let b = transposed(&s2, stride, dims, &m2.pixels[p * s..][..s], columns);
-            keys.clear();
-            for (i, &di) in d1.iter().enumerate() {
+            // Written in place (not pushed) so that the loop over `j` is vectorized.
+            keys.resize(s * s, 0);
+            for (i, (&di, row)) in d1.iter().zip(keys.chunks_exact_mut(s)).enumerate() {
                 let q1 = m1.pixels[p * s + i] as usize;
                 row_distances(&s1[q1 * stride..][..dims], &b, columns, third);
-                for (j, (&dj, &t)) in d2.iter().zip(third.iter()).enumerate() {
-                    let error = di + dj + t as u32;
-                    keys.push(u64::from(error) << 32 | (i * s + j) as u64);
+                let rank = (i * s) as u64;
+                for (j, ((&dj, &t), key)) in d2.iter().zip(third.iter()).zip(row).enumerate() {
+                    *key = u64::from(di + dj + t as u32) << 32 | (rank + j as u64);
                 }
             }
             if keys.len() > kept {
