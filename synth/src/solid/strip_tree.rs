@@ -245,8 +245,8 @@ impl StripTree {
     /// The `k` strips nearest to each of `queries` (`dims` values each), ranked by
     /// (distance, index), in the order of the queries.
     ///
-    /// Queries are taken in runs that end in the same leaf, and each query first offers the
-    /// strips its predecessor in the run found: neighbouring queries share most of their
+    /// Queries are sorted by the leaf they descend to and answered in runs, each first offered the
+    /// strips its predecessor in the run found: queries of one leaf share most of their
     /// nearest strips, so the k-th distance starts close to its final value and the descent
     /// skips far more cells. The seeds change only the order in which strips are offered,
     /// never which strips can enter, so the result is the brute force's.
