@@ -87,6 +87,7 @@ pub(super) fn break_instances(
             };
             let spin_share = rng.random_range(0.5..=1.0);
             let centroid = piece.centroid();
+            let resolved_crossings = piece.resolved_crossings;
             let name = format!("{}#{index}.{k}", meshes[source].name);
             meshes.push(SceneMesh {
                 mesh: Mesh {
@@ -106,6 +107,7 @@ pub(super) fn break_instances(
                     spin_axis: axis,
                     spin_share,
                     contact: None,
+                    resolved_crossings,
                 }),
                 ..inst
             });

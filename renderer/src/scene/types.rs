@@ -350,6 +350,9 @@ pub struct Piece {
     /// Seconds after the explosion's start at which the piece first touches the ground (it
     /// keeps that pose from then on); `None` without a ground or when it never gets there.
     pub contact: Option<f32>,
+    /// Crossings of cut segments resolved in the caps that made this piece (where the input
+    /// surface intersects itself; 0 for a clean mesh), so that a scene's load can say so.
+    pub resolved_crossings: usize,
 }
 
 /// Analytic area lights.

@@ -156,6 +156,7 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         stats.bvh_bytes as f64 / 1e6,
         (stats.blas_time + stats.tlas_time).as_secs_f64() * 1e3
     );
+    report_pieces(&scene);
     report_stores(&tracer);
     eprintln!("prepared in {:.2} s", prepare.as_secs_f64());
     let tone_map = ToneMap {
@@ -267,6 +268,34 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         println!("animation: {}", args.output.with_extension("gif").display());
     }
     Ok(())
+}
+
+/// Per broken instance, its pieces and the self-intersections its caps resolved (a scanned
+/// mesh often intersects itself; the cut still closes every piece, and says where it had to).
+fn report_pieces(scene: &Scene) {
+    let mut broken: std::collections::BTreeMap<usize, (usize, usize, &str)> = Default::default();
+    for inst in &scene.instances {
+        if let Some(p) = &inst.piece {
+            let name = scene.meshes[inst.mesh].name.as_str();
+            let entry = broken.entry(p.broken).or_insert((0, 0, name));
+            entry.0 += 1;
+            entry.1 += p.resolved_crossings;
+        }
+    }
+    for (index, (pieces, crossings, name)) in broken {
+        let mesh = name.split('#').next().unwrap_or(name);
+        let resolved = if crossings > 0 {
+            format!(
+                "; {crossings} crossing(s) of its self-intersecting surface resolved in the caps"
+            )
+        } else {
+            String::new()
+        };
+        eprintln!(
+            "[[instance]] {} ({mesh}): broken into {pieces} closed pieces{resolved}",
+            index + 1
+        );
+    }
 }
 
 /// What the scene's stores hold and what synthesizing and cutting them cost.

@@ -74,6 +74,7 @@ fn render_frames_writes_a_still_numbered_frames_and_a_gif() {
         .env("LAZYSOLID_VALIDATION", "1"));
     assert!(ok, "{err}");
     for needle in [
+        "[[instance]] 1 (bunny): broken into 6 closed pieces\n",
         "cut faces:",
         "frame 1 (t = 0.250 s): 32x24, 2 spp",
         "frame 2 (t = 0.500 s)",
@@ -128,4 +129,69 @@ fn render_frames_writes_a_still_numbered_frames_and_a_gif() {
         assert!(!ok && err.contains(needle), "{args:?}: {err}");
         assert!(!refused.exists());
     }
+}
+
+/// A scanned mesh that intersects itself (the cow) breaks in a scene as it does in
+/// `lazysolid fracture`: every piece closed, and the load says how many crossings of its
+/// surface the caps resolved.
+#[test]
+fn render_says_how_many_crossings_a_broken_scan_resolved() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("cow.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            r#"[camera]
+position = [-2.0, 1.2, 2.0]
+look_at = [0.5, 0.4, 0.5]
+fov_y = 40
+
+[render]
+width = 16
+height = 12
+spp = 1
+
+[[mesh]]
+name = "cow"
+path = "{}"
+
+[[material]]
+name = "grey"
+kind = "lambertian"
+color = [0.5, 0.5, 0.5]
+
+[[instance]]
+name = "cow"
+mesh = "cow"
+material = "grey"
+
+[[fracture]]
+instance = "cow"
+pieces = 12
+seed = 1
+
+[environment]
+radiance = [0.5, 0.5, 0.5]
+"#,
+            repo("assets/meshes/cow.off").display()
+        ),
+    )
+    .unwrap();
+    let (ok, _, err) = run(lazysolid()
+        .arg("render")
+        .arg(&scene)
+        .arg("-o")
+        .arg(dir.path().join("cow.png")));
+    assert!(ok, "{err}");
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("[[instance]] 1 (cow): broken into 12 closed pieces; "))
+        .unwrap_or_else(|| panic!("no pieces line in {err}"));
+    let crossings: usize = line
+        .split("; ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no count in {line}"));
+    assert!(crossings > 0, "{line}");
 }
