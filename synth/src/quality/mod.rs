@@ -11,17 +11,22 @@
 //!   that keeps a volume from giving all three slice families one exemplar's balance.
 //! - [`blockiness`]: the share of oriented gradient energy that lies along the image axes,
 //!   against the exemplar's: axis-aligned blocks raise it, a blur or a shift leave it.
+//! - [`layout`]: the correlation of the image's large structures with themselves one
+//!   exemplar period away: a grid of the exemplar's copies shows even where the fine detail
+//!   was re-synthesized.
 //!
 //! See `docs/synthesis.md`, "Quality figures".
 
 pub mod anisotropy;
 pub mod blockiness;
 mod image;
+pub mod layout;
 pub mod swd;
 
 pub use anisotropy::{anisotropy, reachable_gap, VolumeAnisotropy};
 pub use blockiness::{axis_share, Blockiness};
 pub use image::LinearImage;
+pub use layout::layout_repetition;
 pub use swd::{PatchSets, SwdCalibration, SwdParams, SwdReport};
 
 /// The figures of one image against an exemplar.
@@ -33,6 +38,9 @@ pub struct ImageFigures {
     pub blockiness: Blockiness,
     /// Balance of the gradient energy between u and v ([`anisotropy()`](fn@anisotropy)).
     pub anisotropy: f64,
+    /// Correlation of the large structures one exemplar period away
+    /// ([`layout_repetition`]): 1 for a tiling.
+    pub layout: f64,
 }
 
 /// An exemplar's calibration for every figure, made once and applied to each image scored
@@ -42,6 +50,7 @@ pub struct ExemplarFigures {
     swd: SwdCalibration,
     axis_share: f64,
     anisotropy: f64,
+    period: [usize; 2],
 }
 
 impl ExemplarFigures {
@@ -52,6 +61,7 @@ impl ExemplarFigures {
             swd: SwdCalibration::new(&e, SwdParams::default()),
             axis_share: axis_share(&e),
             anisotropy: anisotropy(&e),
+            period: [width as usize, height as usize],
         }
     }
 
@@ -72,6 +82,7 @@ impl ExemplarFigures {
             swd: self.swd.measure(&image),
             blockiness: Blockiness::against(&image, self.axis_share),
             anisotropy: anisotropy(&image),
+            layout: layout_repetition(&image, self.period[0], self.period[1]),
         }
     }
 }

@@ -123,7 +123,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let params = SynthParams::new(
         levels,
         args.seed,
-        &passes_or_default(&args.schedule.passes, levels),
+        &passes_or_default(
+            &args.schedule.passes,
+            levels,
+            exemplar.width.min(exemplar.height),
+        ),
         &jitter_or_default(&args.schedule.jitter, levels),
     )?
     .with_period_penalty(args.coherence.period_penalty)?;
@@ -225,6 +229,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     println!(
         "period repetition {repetition:.3} (share of pixels one exemplar period apart that copy \
          the same exemplar pixel; the plain tiling is 1)"
+    );
+    println!(
+        "layout repetition {:.3} (correlation of the large structures one exemplar period apart; \
+         the plain tiling is 1, independent placement about 0)",
+        figures.layout
     );
     println!(
         "wrote {} and {}",

@@ -16,8 +16,10 @@ pub struct Schedule {
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes, one for all levels or a comma-separated list, coarsest first
-    /// [default: 2D and multiscale 4 per level, 2 at the finest; solid 2 per level, 1 at the
-    /// finest]. Each solid pass pads every level's box by up to 5, 3 and 2 voxels a side along
+    /// [default: 2D 0 at the levels whose 5x5 neighbourhood spans the exemplar (spacing at
+    /// least a quarter of its side: correcting them lays the exemplar out as a grid), 4 at the
+    /// others, 2 at the finest; multiscale 4 per level, 2 at the finest; solid 2 per level, 1
+    /// at the finest]. Each solid pass pads every level's box by up to 5, 3 and 2 voxels a side along
     /// x, y and z, so fewer passes make a small run possible on a slow device.
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,

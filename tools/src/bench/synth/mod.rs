@@ -235,7 +235,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         )?;
         let analysis = analysis.expect("analysed at least once");
         let levels = analysis.levels.len() as u32;
-        let passes = passes_or_default(&args.schedule.passes, levels);
+        let passes = passes_or_default(
+            &args.schedule.passes,
+            levels,
+            exemplar.width.min(exemplar.height),
+        );
         let jitter = jitter_or_default(&args.schedule.jitter, levels);
         let params = SynthParams::new(levels, args.seed, &passes, &jitter)?;
         let synth = GpuSynthesizer::new(&gpu, &analysis)?;
@@ -476,6 +480,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 format!("{c}: texture-synthesis SWD ratio"),
                 r.theirs.swd_ratio(),
             ),
+            (format!("{c}: lazysolid layout repetition"), r.ours.layout()),
+            (
+                format!("{c}: texture-synthesis layout repetition"),
+                r.theirs.layout(),
+            ),
             (format!("{c}: lazysolid blockiness"), r.ours.blockiness()),
             (
                 format!("{c}: texture-synthesis blockiness"),
@@ -528,10 +537,11 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
     println!(
         "quality against the exemplar, mean of {seeds} seed(s) (7x7 neighbourhood energy: mean \
          per neighbourhood, per value and the single-seed range; colour-histogram distance; \
-         period repetition: share of pixels one exemplar period apart copying exemplar pixels at most 4 apart)"
+         period repetition: share of pixels one exemplar period apart copying exemplar pixels at most 4 apart; \
+         layout: correlation of the large structures one exemplar period apart, 1 for a tiling)"
     );
     println!(
-        "{:<28} {:>8} {:>34} {:>34} {:>10} {:>11} {:>9} {:>10} {:>9} {:>11} {:>10} {:>12}",
+        "{:<28} {:>8} {:>34} {:>34} {:>10} {:>11} {:>9} {:>10} {:>11} {:>13} {:>9} {:>11} {:>10} {:>12}",
         "case",
         "samples",
         "energy lazysolid",
@@ -540,6 +550,8 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
         "hist theirs",
         "rep ours",
         "rep theirs",
+        "layout ours",
+        "layout theirs",
         "SWDr ours",
         "SWDr theirs",
         "block ours",
@@ -555,7 +567,7 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
     };
     for r in results {
         println!(
-            "{:<28} {:>8} {:>34} {:>34} {:>10.4} {:>11.4} {:>9.3} {:>10.3} {:>9.2} {:>11.2} {:>10.2} {:>12.2}",
+            "{:<28} {:>8} {:>34} {:>34} {:>10.4} {:>11.4} {:>9.3} {:>10.3} {:>11.3} {:>13.3} {:>9.2} {:>11.2} {:>10.2} {:>12.2}",
             r.case,
             r.ours.samples(),
             cell(&r.ours),
@@ -564,6 +576,8 @@ fn print_quality(results: &[CaseResult], seeds: u32) {
             r.theirs.histogram(),
             r.ours.repetition(),
             r.theirs.repetition(),
+            r.ours.layout(),
+            r.theirs.layout(),
             r.ours.swd_ratio(),
             r.theirs.swd_ratio(),
             r.ours.blockiness(),

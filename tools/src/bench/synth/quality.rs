@@ -29,6 +29,9 @@ pub struct Quality {
     pub swd_ratio: f64,
     /// Axis share of the gradient energy over the exemplar's: above 1, blocks.
     pub blockiness: f64,
+    /// Correlation of the large structures one exemplar period apart
+    /// (`quality::layout_repetition`): 1 for a tiling, even one whose detail was re-synthesized.
+    pub layout: f64,
 }
 
 /// Scores a `size`² image (and its coordinate map) against `exemplar` with at most `samples`
@@ -48,6 +51,7 @@ pub fn measure(
     Ok(Quality {
         swd_ratio: f.swd.ratio,
         blockiness: f.blockiness.ratio,
+        layout: f.layout,
         energy: report.mean,
         energy_per_value: report.per_value,
         samples: report.samples,
@@ -96,6 +100,11 @@ impl SeedScores {
     /// Mean SWD ratio.
     pub fn swd_ratio(&self) -> f64 {
         self.mean(|q| q.swd_ratio)
+    }
+
+    /// Mean layout repetition.
+    pub fn layout(&self) -> f64 {
+        self.mean(|q| q.layout)
     }
 
     /// Mean blockiness.
