@@ -77,23 +77,23 @@ fn search_host(
 /// the compiler vectorizes on any baseline.
 const BLOCK: usize = 8;
 
-/// The strips of `pixels` transposed into `dims` rows of `columns` values (zero beyond the
-/// pixels): one strip value of every pixel in one contiguous row.
-fn transposed(
+/// The strips of `pixels` transposed into `out`, `dims` rows of `columns` values: one strip
+/// value of every pixel in one contiguous row. Columns past the pixels are never written, so
+/// a buffer that starts zeroed and always receives as many pixels stays zero there.
+fn transpose_into(
     strips: &[f32],
     stride: usize,
     dims: usize,
     pixels: &[u32],
     columns: usize,
-) -> Vec<f32> {
-    let mut out = vec![0.0f32; dims * columns];
+    out: &mut [f32],
+) {
     for (j, &q) in pixels.iter().enumerate() {
         let v = &strips[q as usize * stride..][..dims];
         for (d, &x) in v.iter().enumerate() {
             out[d * columns + j] = x;
         }
     }
-    out
 }
 
 /// The third terms of one crossbar row: the squared distances of strip `a` to every column
@@ -130,19 +130,25 @@ fn triples_host(
     let s2 = padded(&strips(&level.roles[f2].colours, a2, n, h, m), dims);
     let kept = params.kept();
     let columns = s.div_ceil(BLOCK) * BLOCK;
-    let scratch = || (vec![0.0f32; columns], Vec::<u64>::with_capacity(s * s));
+    let scratch = || {
+        (
+            vec![0.0f32; dims * columns],
+            vec![0.0f32; columns],
+            Vec::<u64>::with_capacity(s * s),
+        )
+    };
     let rows: Vec<Vec<(u32, [u32; 3])>> = (0..(m * m) as usize)
         .into_par_iter()
         .with_min_len(64)
-        .map_init(scratch, |(third, keys), p| {
+        .map_init(scratch, |(b, third, keys), p| {
             let d1 = &m1.distances[p * s..][..s];
             let d2 = &m2.distances[p * s..][..s];
-            let b = transposed(&s2, stride, dims, &m2.pixels[p * s..][..s], columns);
+            transpose_into(&s2, stride, dims, &m2.pixels[p * s..][..s], columns, b);
             // Written in place (not pushed) so that the loop over `j` is vectorized.
             keys.resize(s * s, 0);
             for (i, (&di, row)) in d1.iter().zip(keys.chunks_exact_mut(s)).enumerate() {
                 let q1 = m1.pixels[p * s + i] as usize;
-                row_distances(&s1[q1 * stride..][..dims], &b, columns, third);
+                row_distances(&s1[q1 * stride..][..dims], b, columns, third);
                 let rank = (i * s) as u64;
                 for (j, ((&dj, &t), key)) in d2.iter().zip(third.iter()).zip(row).enumerate() {
                     *key = u64::from(di + dj + t as u32) << 32 | (rank + j as u64);

@@ -253,10 +253,12 @@ impl StripTree {
     pub(crate) fn nearest_all(&self, queries: &[i32], k: usize) -> Vec<Vec<(u32, u32)>> {
         let dims = self.dims;
         let count = queries.len() / dims.max(1);
-        let leaves: Vec<u32> = queries
+        // Each query rotated once: for its leaf here and for its descent below.
+        let rotated: Vec<Vec<f64>> = queries
             .par_chunks_exact(dims)
-            .map(|query| self.leaf_of(&self.rotate(query)))
+            .map(|query| self.rotate(query))
             .collect();
+        let leaves: Vec<u32> = rotated.iter().map(|q| self.leaf_of(q)).collect();
         let mut order: Vec<u32> = (0..count as u32).collect();
         order.sort_unstable_by_key(|&i| (leaves[i as usize], i));
         let scratch = || Seeds {
@@ -267,7 +269,8 @@ impl StripTree {
             .par_iter()
             .with_min_len(RUN)
             .map_init(scratch, |seeds, &i| {
-                self.nearest_seeded(&queries[i as usize * dims..][..dims], k, seeds)
+                let i = i as usize;
+                self.nearest_seeded(&queries[i * dims..][..dims], &rotated[i], k, seeds)
             })
             .collect();
         let mut out = vec![Vec::new(); count];
@@ -297,9 +300,14 @@ impl StripTree {
     }
 
     /// One query of [`nearest_all`](Self::nearest_all), the strips in `seeds.last` offered
-    /// first; on return `seeds.last` holds this query's strips.
-    fn nearest_seeded(&self, query: &[i32], k: usize, seeds: &mut Seeds) -> Vec<(u32, u32)> {
-        let q = self.rotate(query);
+    /// first (`q`: the query rotated); on return `seeds.last` holds this query's strips.
+    fn nearest_seeded(
+        &self,
+        query: &[i32],
+        q: &[f64],
+        k: usize,
+        seeds: &mut Seeds,
+    ) -> Vec<(u32, u32)> {
         let query = padded(query, self.dims);
         let stride = query.len();
         let mut heap = BinaryHeap::with_capacity(k + 1);
@@ -316,7 +324,7 @@ impl StripTree {
         let mut offsets = vec![0.0f64; self.dims];
         let mut search = Search {
             query: &query,
-            q: &q,
+            q,
             offsets: &mut offsets,
             k,
             heap: &mut heap,
