@@ -80,10 +80,10 @@ pub use neighbourhood::{
     DIAGONALS, NEIGHBOURHOOD_DIMS,
 };
 pub use params::{
-    default_jitter, default_passes, default_passes_for, jitter_or_default, layout_level,
-    pass_schedule, passes_or_default, SynthParams, DEFAULT_COARSE_JITTER, DEFAULT_FINEST_PASSES,
-    DEFAULT_FINE_JITTER, DEFAULT_PASSES, DEFAULT_PERIOD_PENALTY, JITTER_ONE, MAX_PASSES,
-    MAX_PERIOD_PENALTY,
+    default_jitter, default_passes, default_passes_for, default_plane_jitter, jitter_or_default,
+    layout_level, pass_schedule, passes_or_default, SynthParams, DEFAULT_COARSE_JITTER,
+    DEFAULT_FINEST_PASSES, DEFAULT_FINE_JITTER, DEFAULT_PASSES, DEFAULT_PERIOD_PENALTY, JITTER_ONE,
+    MAX_PASSES, MAX_PERIOD_PENALTY,
 };
 pub use pat::{decode_pattern, Pattern};
 pub use period::{period_reach, spans_period, PERIOD_TOLERANCE};

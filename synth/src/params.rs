@@ -44,9 +44,21 @@ pub const MAX_PERIOD_PENALTY: u32 = 1 << 25;
 /// the layouts from healing back into the tiling (docs/synthesis.md, "Repetition bound").
 pub const DEFAULT_PERIOD_PENALTY: u32 = MAX_PERIOD_PENALTY;
 
-/// The default jitter strengths of a pyramid of `levels` levels, coarsest first.
+/// The multiscale synthesizer's default jitter strengths for a pyramid of `levels` levels,
+/// coarsest first (and the 2D one's before the fine levels' jitter was dropped).
 pub fn default_jitter(levels: u32) -> Vec<f32> {
     jitter_schedule(levels, &DEFAULT_COARSE_JITTER, DEFAULT_FINE_JITTER)
+}
+
+/// The 2D synthesizer's default jitter strengths, coarsest first: [`DEFAULT_COARSE_JITTER`] at
+/// the four coarsest levels, none below. The coarse levels set the layout; below them the
+/// jitter (0.2 of the spacing: ±2 px at spacing 8, ±1 px on a minority of pixels at spacing 4,
+/// nothing finer) breaks no layout, but every jittered pixel cuts a seam that the passes only
+/// partly repair. Measured on fifteen exemplars at 512², seed 3 (docs/synthesis.md, "Fine
+/// jitter"): neighbourhood energy 6–43 % lower on all fifteen, calibrated SWD ratio within
+/// ±0.04, period and layout repetition unchanged.
+pub fn default_plane_jitter(levels: u32) -> Vec<f32> {
+    jitter_schedule(levels, &DEFAULT_COARSE_JITTER, 0.0)
 }
 
 /// `levels` jitter strengths, coarsest first: `coarse` at the coarsest levels, `fine` at every
@@ -67,9 +79,9 @@ pub fn given_or<T: Clone>(given: &[T], default: impl FnOnce() -> Vec<T>) -> Vec<
     }
 }
 
-/// `given` jitter strengths, or the defaults for `levels` levels when none were given.
+/// `given` jitter strengths, or the 2D defaults for `levels` levels when none were given.
 pub fn jitter_or_default(given: &[f32], levels: u32) -> Vec<f32> {
-    given_or(given, || default_jitter(levels))
+    given_or(given, || default_plane_jitter(levels))
 }
 
 /// `given` pass counts, or the 2D defaults for `levels` levels over an exemplar whose smaller
@@ -261,5 +273,16 @@ mod tests {
         assert_eq!(default_passes_for(5, 16), vec![0, 0, 0, 4, 2]);
         // The multiscale schedule corrects every level.
         assert_eq!(default_passes(5), vec![4, 4, 4, 4, 2]);
+    }
+
+    #[test]
+    fn plane_jitter_stops_below_the_four_coarsest_levels() {
+        assert_eq!(
+            default_plane_jitter(8),
+            vec![1.0, 0.8, 0.6, 0.4, 0.0, 0.0, 0.0, 0.0]
+        );
+        assert_eq!(default_plane_jitter(3), vec![1.0, 0.8, 0.6]);
+        // The multiscale schedule keeps 0.2 below them.
+        assert_eq!(default_jitter(6)[4..], [0.2, 0.2]);
     }
 }

@@ -52,7 +52,7 @@ use lazysolid_synth::solid::{
     TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, DEFAULT_SOLID_PARALLEL_LEVELS, ROLE_NAMES,
 };
 use lazysolid_synth::{
-    analyze, default_jitter, default_passes_for, load_solid, pack, period_repetition, unpack,
+    analyze, default_passes_for, default_plane_jitter, load_solid, pack, period_repetition, unpack,
     AnalysisParams, EnergyKernel, Exemplar, ExemplarFit, FittedExemplar, GpuSynthesizer, Region,
     SynthParams,
 };
@@ -218,7 +218,7 @@ fn synth_2d(
             levels,
             seed,
             &default_passes_for(levels, e.width.min(e.height)),
-            &default_jitter(levels),
+            &default_plane_jitter(levels),
         )?;
         let s = GpuSynthesizer::new(gpu, &a)?.synthesize(
             &a,

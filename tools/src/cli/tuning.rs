@@ -11,8 +11,8 @@ use lazysolid_synth::{DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PER
 #[command(next_help_heading = "Synthesis tuning")]
 pub struct Schedule {
     /// Jitter strength in 0..=1, one for all levels or a comma-separated list, coarsest first
-    /// [default: 2D and multiscale 1.0, 0.8, 0.6, 0.4 at the four coarsest levels, 0.2 below;
-    /// solid 0.6, 0.5, 0.4, 0.3, then 0.2].
+    /// [default: 2D 1.0, 0.8, 0.6, 0.4 at the four coarsest levels, 0 below; multiscale the same
+    /// with 0.2 below; solid 0.6, 0.5, 0.4, 0.3, then 0.2].
     #[arg(long, value_delimiter = ',')]
     pub jitter: Vec<f32>,
     /// Correction passes, one for all levels or a comma-separated list, coarsest first
