@@ -104,33 +104,58 @@ fn blur(src: &[f32], w: u32, h: u32, sigma: f32, toroidal: bool) -> Vec<f32> {
         .collect()
 }
 
+/// The histogram both thresholds cut: `values` binned into [`OTSU_BINS`] bins over their
+/// range, with the value that a cut after bin `i` stands for.
+struct Bins {
+    counts: [f64; OTSU_BINS],
+    lo: f32,
+    hi: f32,
+}
+
+impl Bins {
+    /// `None` when all values are equal (nothing to cut).
+    fn of(values: &[f32]) -> Option<Self> {
+        let (lo, hi) = values
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
+        if hi - lo <= 1e-6 {
+            return None;
+        }
+        let mut counts = [0f64; OTSU_BINS];
+        for &v in values {
+            counts[(((v - lo) / (hi - lo)) * (OTSU_BINS - 1) as f32).round() as usize] += 1.0;
+        }
+        Some(Self { counts, lo, hi })
+    }
+
+    /// The threshold between bin `i` and bin `i + 1`: values in bins up to `i` lie below it.
+    fn cut(&self, i: usize) -> f32 {
+        self.lo + (i as f32 + 0.5) / (OTSU_BINS - 1) as f32 * (self.hi - self.lo)
+    }
+
+    /// The sums of the counts weighted by 1, the bin index and its square.
+    fn moments(&self) -> (f64, f64, f64) {
+        self.counts
+            .iter()
+            .enumerate()
+            .fold((0.0, 0.0, 0.0), |(n, s, q), (i, &c)| {
+                (n + c, s + i as f64 * c, q + (i * i) as f64 * c)
+            })
+    }
+}
+
 /// Otsu's threshold of `values`: the cut that maximizes the between-class variance; `None`
 /// when all values are equal.
 fn otsu(values: &[f32]) -> Option<f32> {
-    let (lo, hi) = values
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
-            (a.min(v), b.max(v))
-        });
-    if hi - lo <= 1e-6 {
-        return None;
-    }
-    let bin = |v: f32| (((v - lo) / (hi - lo)) * (OTSU_BINS - 1) as f32).round() as usize;
-    let mut histogram = [0u64; OTSU_BINS];
-    for &v in values {
-        histogram[bin(v)] += 1;
-    }
-    let n = values.len() as f64;
-    let total: f64 = histogram
-        .iter()
-        .enumerate()
-        .map(|(i, &c)| i as f64 * c as f64)
-        .sum();
+    let bins = Bins::of(values)?;
+    let (n, total, _) = bins.moments();
     let (mut below, mut below_sum) = (0.0f64, 0.0f64);
     let mut best = (f64::NEG_INFINITY, 0usize);
-    for (i, &c) in histogram.iter().enumerate().take(OTSU_BINS - 1) {
-        below += c as f64;
-        below_sum += i as f64 * c as f64;
+    for (i, &c) in bins.counts.iter().enumerate().take(OTSU_BINS - 1) {
+        below += c;
+        below_sum += i as f64 * c;
         let above = n - below;
         if below == 0.0 || above == 0.0 {
             continue;
@@ -142,41 +167,18 @@ fn otsu(values: &[f32]) -> Option<f32> {
             best = (between, i);
         }
     }
-    // Values in bins up to the best index are below the threshold.
-    Some(lo + (best.1 as f32 + 0.5) / (OTSU_BINS - 1) as f32 * (hi - lo))
+    Some(bins.cut(best.1))
 }
 
 /// Kittler and Illingworth's minimum-error threshold of `values`: the cut that minimizes the
 /// classification error of a two-Gaussian fit, which (unlike Otsu's) finds a small class of
 /// its own spread beside a large one; `None` when all values are equal or no cut fits.
 fn minimum_error(values: &[f32]) -> Option<f32> {
-    let (lo, hi) = values
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
-            (a.min(v), b.max(v))
-        });
-    if hi - lo <= 1e-6 {
-        return None;
-    }
-    let bin = |v: f32| (((v - lo) / (hi - lo)) * (OTSU_BINS - 1) as f32).round() as usize;
-    let mut histogram = [0f64; OTSU_BINS];
-    for &v in values {
-        histogram[bin(v)] += 1.0;
-    }
-    let n = values.len() as f64;
+    let bins = Bins::of(values)?;
+    let (n, total_s, total_q) = bins.moments();
     let mut best: Option<(f64, usize)> = None;
     let (mut c0, mut s0, mut q0) = (0.0f64, 0.0f64, 0.0f64);
-    let total_s: f64 = histogram
-        .iter()
-        .enumerate()
-        .map(|(i, &c)| i as f64 * c)
-        .sum();
-    let total_q: f64 = histogram
-        .iter()
-        .enumerate()
-        .map(|(i, &c)| (i * i) as f64 * c)
-        .sum();
-    for (i, &c) in histogram.iter().enumerate().take(OTSU_BINS - 1) {
+    for (i, &c) in bins.counts.iter().enumerate().take(OTSU_BINS - 1) {
         c0 += c;
         s0 += i as f64 * c;
         q0 += (i * i) as f64 * c;
@@ -196,7 +198,7 @@ fn minimum_error(values: &[f32]) -> Option<f32> {
             best = Some((j, i));
         }
     }
-    best.map(|(_, i)| lo + (i as f32 + 0.5) / (OTSU_BINS - 1) as f32 * (hi - lo))
+    best.map(|(_, i)| bins.cut(i))
 }
 
 /// The 1D squared distance transform of `f` (0 at targets, a large value elsewhere) by the
