@@ -273,37 +273,45 @@ pub fn feature_map(
     weight_percent: u32,
 ) -> FeatureMap {
     let side = w.min(h);
-    let clamp = (side as f32 / 16.0).max(4.0);
     let luma: Vec<f32> = rgb.iter().map(|&c| luminance(c)).collect();
     let local = blur(&luma, w, h, (side as f32 / 16.0).max(1.0), toroidal);
-    let detail: Vec<f32> = luma.iter().zip(&local).map(|(l, m)| l - m).collect();
-    let split = |threshold: Option<f32>| {
-        threshold
-            .and_then(|t| split_map(rgb, &detail, t, w, h, toroidal, weight_percent, clamp))
-            .unwrap_or_else(|| FeatureMap {
-                mask: vec![false; rgb.len()],
-                channel: vec![0.0; rgb.len()],
-                dark: true,
-                clamp,
-                spread: 0.0,
-                reach: 0.0,
-                rule: Threshold::Otsu,
-            })
+    let split = Split {
+        detail: luma.iter().zip(&local).map(|(l, m)| l - m).collect(),
+        w,
+        h,
+        toroidal,
+        clamp: (side as f32 / 16.0).max(4.0),
+        weight: f64::from(weight_percent) / 100.0,
+        colour_deviation: colour_deviation(rgb),
     };
-    let otsu_map = split(otsu(&detail));
+    let otsu_map = split.map(otsu(&split.detail), Threshold::Otsu);
     if otsu_map.reach >= 1.0 {
         return otsu_map;
     }
     // Otsu's cut fell inside a speckled body (every pixel within a pixel of a border): a thin,
     // rare structure beside it (faint veins in mottled marble) is what the minimum-error
-    // threshold finds; it is taken only where its features reach farther.
-    let mut thin = split(minimum_error(&detail));
+    // threshold finds; it is taken only where its features reach farther and are connected.
+    let thin = split.map(minimum_error(&split.detail), Threshold::MinimumError);
     if thin.reach > otsu_map.reach && connected_share(&thin.mask, w, h) >= MIN_CONNECTED_SHARE {
-        thin.rule = Threshold::MinimumError;
         thin
     } else {
         otsu_map
     }
+}
+
+/// Standard deviation of the colour, all three channels together.
+fn colour_deviation(rgb: &[[f32; 3]]) -> f64 {
+    let n = rgb.len() as f64;
+    (0..3)
+        .map(|c| {
+            let mean = rgb.iter().map(|p| f64::from(p[c])).sum::<f64>() / n;
+            rgb.iter()
+                .map(|p| (f64::from(p[c]) - mean).powi(2))
+                .sum::<f64>()
+                / n
+        })
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// Share of the minimum-error class's pixels that must touch another of its pixels (among
@@ -343,80 +351,91 @@ fn connected_share(mask: &[bool], w: u32, h: u32) -> f64 {
     touching as f64 / members.max(1) as f64
 }
 
-/// The map of the split of `detail` at `threshold` (the smaller class the feature), or `None`
-/// when one class is empty.
-#[allow(clippy::too_many_arguments)]
-fn split_map(
-    rgb: &[[f32; 3]],
-    detail: &[f32],
-    threshold: f32,
+/// What every split of one image's local detail shares: the detail, the image's shape, the
+/// weight and the colour's deviation.
+struct Split {
+    detail: Vec<f32>,
     w: u32,
     h: u32,
     toroidal: bool,
-    weight_percent: u32,
     clamp: f32,
-) -> Option<FeatureMap> {
-    let below = detail.iter().filter(|&&d| d < threshold).count();
-    // The smaller class is the feature; ties go to the dark one.
-    let dark = below * 2 <= detail.len();
-    let mask: Vec<bool> = detail
-        .iter()
-        .map(|&d| if dark { d < threshold } else { d >= threshold })
-        .collect();
-    if mask.iter().all(|&m| m) || mask.iter().all(|&m| !m) {
-        return None;
-    }
-    let inverse: Vec<bool> = mask.iter().map(|&m| !m).collect();
-    let to_feature = squared_distance(&mask, w, h, toroidal);
-    let to_background = squared_distance(&inverse, w, h, toroidal);
-    let signed: Vec<f32> = mask
-        .iter()
-        .enumerate()
-        .map(|(p, &m)| {
-            let s = if m {
-                -(to_background[p].sqrt() - 0.5)
-            } else {
-                to_feature[p].sqrt() - 0.5
-            };
-            (s as f32).clamp(-clamp, clamp)
-        })
-        .collect();
-    let n = rgb.len() as f64;
-    let colour_variance: f64 = (0..3)
-        .map(|c| {
-            let mean = rgb.iter().map(|p| f64::from(p[c])).sum::<f64>() / n;
-            rgb.iter()
-                .map(|p| (f64::from(p[c]) - mean).powi(2))
-                .sum::<f64>()
-                / n
-        })
-        .sum();
-    let mean = signed.iter().map(|&v| f64::from(v)).sum::<f64>() / n;
-    let deviation = (signed
-        .iter()
-        .map(|&v| (f64::from(v) - mean).powi(2))
-        .sum::<f64>()
-        / n)
-        .sqrt();
-    let reach = ((deviation - SPECKLE_DEVIATION) / SPECKLE_RAMP).clamp(0.0, 1.0);
-    let scale = if deviation > 0.0 {
-        (f64::from(weight_percent) / 100.0) * reach * colour_variance.sqrt() / deviation
-    } else {
-        0.0
-    };
-    let spread = deviation / f64::from(clamp);
-    Some(FeatureMap {
-        mask,
-        channel: signed
+    /// The weight, as a fraction of the colour's deviation.
+    weight: f64,
+    /// Standard deviation of the colour, all three channels together.
+    colour_deviation: f64,
+}
+
+impl Split {
+    /// The map of the split at `threshold` by `rule` (the smaller class the feature); no
+    /// channel when there is no threshold or one class is empty.
+    fn map(&self, threshold: Option<f32>, rule: Threshold) -> FeatureMap {
+        let n = self.detail.len();
+        let none = || FeatureMap {
+            mask: vec![false; n],
+            channel: vec![0.0; n],
+            dark: true,
+            clamp: self.clamp,
+            spread: 0.0,
+            reach: 0.0,
+            rule,
+        };
+        let Some(threshold) = threshold else {
+            return none();
+        };
+        let below = self.detail.iter().filter(|&&d| d < threshold).count();
+        // The smaller class is the feature; ties go to the dark one.
+        let dark = below * 2 <= n;
+        let mask: Vec<bool> = self
+            .detail
             .iter()
-            .map(|&s| (f64::from(s) * scale) as f32)
-            .collect(),
-        dark,
-        clamp,
-        spread,
-        reach,
-        rule: Threshold::Otsu,
-    })
+            .map(|&d| if dark { d < threshold } else { d >= threshold })
+            .collect();
+        if mask.iter().all(|&m| m) || mask.iter().all(|&m| !m) {
+            return none();
+        }
+        let (w, h, clamp) = (self.w, self.h, self.clamp);
+        let inverse: Vec<bool> = mask.iter().map(|&m| !m).collect();
+        let to_feature = squared_distance(&mask, w, h, self.toroidal);
+        let to_background = squared_distance(&inverse, w, h, self.toroidal);
+        let signed: Vec<f32> = mask
+            .iter()
+            .enumerate()
+            .map(|(p, &m)| {
+                let s = if m {
+                    -(to_background[p].sqrt() - 0.5)
+                } else {
+                    to_feature[p].sqrt() - 0.5
+                };
+                (s as f32).clamp(-clamp, clamp)
+            })
+            .collect();
+        let count = n as f64;
+        let mean = signed.iter().map(|&v| f64::from(v)).sum::<f64>() / count;
+        let deviation = (signed
+            .iter()
+            .map(|&v| (f64::from(v) - mean).powi(2))
+            .sum::<f64>()
+            / count)
+            .sqrt();
+        let reach = ((deviation - SPECKLE_DEVIATION) / SPECKLE_RAMP).clamp(0.0, 1.0);
+        let scale = if deviation > 0.0 {
+            self.weight * reach * self.colour_deviation / deviation
+        } else {
+            0.0
+        };
+        FeatureMap {
+            mask,
+            channel: signed
+                .iter()
+                .map(|&s| (f64::from(s) * scale) as f32)
+                .collect(),
+            dark,
+            clamp,
+            spread: deviation / f64::from(clamp),
+            reach,
+            rule,
+        }
+    }
 }
 
 impl FeatureMap {
@@ -626,14 +645,19 @@ mod tests {
         let (w, h) = (128u32, 128u32);
         let on_vein = |x: u32, y: u32| x % 50 == 7 || (x + y) % 61 == 5;
         let mut state = 99u32;
-        let mut body = || {
-            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            150.0 + ((state >> 24) as f32 - 128.0) * 0.2
-        };
-        let image: Vec<[f32; 3]> = (0..w * h)
-            .map(|p| {
-                let (x, y) = (p % w, p / w);
-                let v = body() + if on_vein(x, y) { 70.0 } else { 0.0 };
+        let plain: Vec<[f32; 3]> = (0..w * h)
+            .map(|_| {
+                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+                let v = 150.0 + ((state >> 24) as f32 - 128.0) * 0.2;
+                [v, v, v]
+            })
+            .collect();
+        let image: Vec<[f32; 3]> = plain
+            .iter()
+            .enumerate()
+            .map(|(p, &c)| {
+                let (x, y) = (p as u32 % w, p as u32 / w);
+                let v = c[0] + if on_vein(x, y) { 70.0 } else { 0.0 };
                 [v, v, v]
             })
             .collect();
@@ -661,14 +685,6 @@ mod tests {
             "{found} of {marked} marked"
         );
         // The body alone: speckle by either threshold, no channel.
-        let mut state = 99u32;
-        let plain: Vec<[f32; 3]> = (0..w * h)
-            .map(|_| {
-                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-                let v = 150.0 + ((state >> 24) as f32 - 128.0) * 0.2;
-                [v, v, v]
-            })
-            .collect();
         assert!(!feature_map(&plain, w, h, true, 100).active());
     }
 
