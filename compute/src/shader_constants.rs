@@ -112,3 +112,9 @@ pub const TILETREE_TILE_WORDS: u32 = 12;
 pub const KEY_SET_UNION: u32 = 0;
 /// See [`KEY_SET_UNION`]: a \ b.
 pub const KEY_SET_DIFFERENCE: u32 = 1;
+
+/// Mode of the stores' lookup harnesses (`glsl/store/*_lookup.comp`) that writes a sample
+/// lookup (`StoreSample` in `store/texels.glsl`): two vec4 per point, the trilinear (TileTree:
+/// bilinear) sum, then (coverage, gradient of alpha). A high bit, so the octree's MIP modes
+/// (2 + depth) stay free.
+pub const STORE_LOOKUP_SAMPLE: u32 = 2147483648;

@@ -1,6 +1,7 @@
 #version 460
 // Test and benchmark harness of store/octree.glsl: out[i] = the nearest (mode 0), trilinear
-// (mode 1) or MIP lookup at depth mode - 2 (mode >= 2) at points[i].
+// (mode 1) or MIP lookup at depth mode - 2 (mode >= 2) at points[i]; mode STORE_LOOKUP_SAMPLE writes the sample lookup
+// (sum, then coverage and alpha gradient: out[2i], out[2i + 1]).
 #include "common.glsl"
 #include "store/octree.glsl"
 
@@ -21,6 +22,12 @@ void main() {
         return;
     }
     vec3 pos = Vec3Ptr(pc.points).v[i];
+    if (pc.mode == STORE_LOOKUP_SAMPLE) {
+        StoreSample s = store_octree_sample(pc.store, pos);
+        Vec4Ptr(pc.results).v[2u * i] = s.sum;
+        Vec4Ptr(pc.results).v[2u * i + 1u] = vec4(s.coverage, s.gradient);
+        return;
+    }
     vec4 c;
     if (pc.mode == 0u) {
         c = store_octree_nearest(pc.store, pos);

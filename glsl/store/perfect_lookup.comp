@@ -1,6 +1,7 @@
 #version 460
 // Test and benchmark harness of store/perfect.glsl: out[i] = the nearest (mode 0) or trilinear
-// (mode 1) lookup at points[i].
+// (mode 1) lookup at points[i]; mode STORE_LOOKUP_SAMPLE writes the sample lookup
+// (sum, then coverage and alpha gradient: out[2i], out[2i + 1]).
 #include "common.glsl"
 #include "store/perfect.glsl"
 
@@ -21,5 +22,11 @@ void main() {
         return;
     }
     vec3 pos = Vec3Ptr(pc.points).v[i];
+    if (pc.mode == STORE_LOOKUP_SAMPLE) {
+        StoreSample s = store_perfect_sample(pc.store, pos);
+        Vec4Ptr(pc.results).v[2u * i] = s.sum;
+        Vec4Ptr(pc.results).v[2u * i + 1u] = vec4(s.coverage, s.gradient);
+        return;
+    }
     Vec4Ptr(pc.results).v[i] = pc.mode == 0u ? store_perfect_nearest(pc.store, pos) : store_perfect_trilinear(pc.store, pos);
 }

@@ -6,9 +6,9 @@
 
 use super::colours::{fill_colours, new_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{timed_lookup, StoreKernels, TimedLookup};
+use super::kernels::{timed_lookup, LookupMode, StoreKernels, TimedLookup};
 use super::keys::check_keys;
-use super::{Filter, InsertUnit, SparseStore, StoreReport};
+use super::{InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::{
     fastmod_multiplier, morton_decode, HashError, KeyLayout, RobinHoodConfig, RobinHoodTable,
@@ -215,18 +215,18 @@ impl SparseStore for HashStore {
         }
     }
 
-    fn timed_lookup(
+    fn timed_lookup_mode(
         &self,
         points: &[Vec3],
         _normals: &[Vec3],
-        filter: Filter,
+        mode: LookupMode,
     ) -> Result<TimedLookup<'_>, StoreError> {
         Ok(timed_lookup(
             &self.kernels,
             &store::HASH_LOOKUP,
             points,
             &[],
-            filter,
+            mode,
             move |rec, c| {
                 let push = LookupPush {
                     store: self.params(),

@@ -2,10 +2,12 @@
 //! their first use (a store never builds the pipelines of another kind); the hash contexts
 //! and the sort + unique step keep their scratch here between builds.
 
+use super::lookup_cpu::StoreSample;
 use super::Filter;
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Kernel, KernelDef, Recorder};
 use crate::hash::perfect::PerfectKernels;
 use crate::hash::HashKernels;
+use crate::shader_constants::STORE_LOOKUP_SAMPLE;
 use crate::voxel::SortUnique;
 use glam::{Vec3, Vec4};
 use std::sync::{Arc, Mutex};
@@ -35,6 +37,40 @@ impl StoreKernels {
     }
 }
 
+/// What a store's lookup harness computes at each point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LookupMode {
+    /// The colour lookup with this filter: one vec4 per point.
+    Filtered(Filter),
+    /// The sample lookup a relief reads ([`StoreSample`]): the trilinear (TileTree: bilinear)
+    /// sum, its coverage and the gradient of alpha; two vec4 per point.
+    Sample,
+}
+
+impl LookupMode {
+    /// The harness's `mode` push constant.
+    pub(crate) fn code(self) -> u32 {
+        match self {
+            LookupMode::Filtered(filter) => (filter == Filter::Trilinear) as u32,
+            LookupMode::Sample => STORE_LOOKUP_SAMPLE,
+        }
+    }
+
+    /// vec4 results per point.
+    fn words(self) -> usize {
+        match self {
+            LookupMode::Filtered(_) => 1,
+            LookupMode::Sample => 2,
+        }
+    }
+}
+
+impl From<Filter> for LookupMode {
+    fn from(filter: Filter) -> LookupMode {
+        LookupMode::Filtered(filter)
+    }
+}
+
 /// Records one lookup dispatch of a store's kernel with the push block it builds from the call.
 type RecordFn<'a> = Box<dyn for<'b> Fn(&mut Recorder<'_>, LookupCall<'b>) -> GpuResult<()> + 'a>;
 
@@ -47,14 +83,14 @@ pub struct TimedLookup<'a> {
     normals: Option<GpuBuffer<f32>>,
     results: GpuBuffer<[f32; 4]>,
     kernel: Arc<Kernel>,
-    mode: u32,
+    mode: LookupMode,
     record: RecordFn<'a>,
 }
 
 impl TimedLookup<'_> {
     /// One lookup of every point; returns its GPU time in milliseconds.
     pub fn run(&self) -> GpuResult<f64> {
-        let n = self.results.len() as u32;
+        let n = (self.results.len() / self.mode.words()) as u32;
         let call = LookupCall {
             kernel: &self.kernel,
             groups: self.kernel.groups_for(n as u64),
@@ -65,7 +101,7 @@ impl TimedLookup<'_> {
                 .map_or(DeviceAddress::NULL, GpuBuffer::address),
             results: self.results.address(),
             n,
-            mode: self.mode,
+            mode: self.mode.code(),
         };
         let ((), t) = self.gpu.submit_timed(|rec| {
             rec.timestamp()?;
@@ -75,7 +111,22 @@ impl TimedLookup<'_> {
         Ok((t[1] - t[0]) * 1e-6)
     }
 
-    /// The results of the last run, one per point.
+    /// The samples of the last run of a [`LookupMode::Sample`] lookup, one per point.
+    pub fn samples(&self) -> GpuResult<Vec<StoreSample>> {
+        debug_assert_eq!(self.mode, LookupMode::Sample);
+        Ok(self
+            .results
+            .read()?
+            .chunks_exact(2)
+            .map(|r| StoreSample {
+                sum: Vec4::from_array(r[0]),
+                coverage: r[1][0],
+                gradient: Vec3::new(r[1][1], r[1][2], r[1][3]),
+            })
+            .collect())
+    }
+
+    /// The results of the last run: one per point (two for [`LookupMode::Sample`]).
     pub fn results(&self) -> GpuResult<Vec<Vec4>> {
         Ok(self
             .results
@@ -98,7 +149,7 @@ pub(crate) struct LookupCall<'a> {
     pub results: DeviceAddress<'a>,
     /// Points, one result each.
     pub n: u32,
-    /// 1 for [`Filter::Trilinear`], 0 for [`Filter::Nearest`].
+    /// [`LookupMode::code`].
     pub mode: u32,
 }
 
@@ -111,7 +162,7 @@ pub(crate) fn timed_lookup<'a>(
     kernel: &'static KernelDef,
     points: &[Vec3],
     normals: &[Vec3],
-    filter: Filter,
+    mode: LookupMode,
     dispatch: impl for<'b> Fn(&mut Recorder<'_>, LookupCall<'b>) -> GpuResult<()> + 'a,
 ) -> GpuResult<TimedLookup<'a>> {
     let gpu = &kernels.gpu;
@@ -129,9 +180,9 @@ pub(crate) fn timed_lookup<'a>(
         gpu: gpu.clone(),
         points: GpuBuffer::from_slice(gpu, "store lookup points", &flat(points))?,
         normals,
-        results: GpuBuffer::zeroed(gpu, "store lookup results", points.len())?,
+        results: GpuBuffer::zeroed(gpu, "store lookup results", points.len() * mode.words())?,
         kernel: gpu.kernel(kernel)?,
-        mode: (filter == Filter::Trilinear) as u32,
+        mode,
         record: Box::new(dispatch),
     })
 }

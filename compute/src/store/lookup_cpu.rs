@@ -44,3 +44,47 @@ pub fn trilinear_cpu(texel: impl Fn([u32; 3]) -> Option<u32>, pos: Vec3, resolut
         .map(|&(v, w)| unpack_rgba8(texel(v).unwrap_or(0)) * w)
         .sum()
 }
+
+/// A sample lookup (`StoreSample` in `glsl/include/store/texels.glsl`): what a relief reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StoreSample {
+    /// The weighted sum the colour lookup returns.
+    pub sum: Vec4,
+    /// Total weight of the stored corners (alpha byte above 0): a store whose alpha carries a
+    /// relief channel cannot tell coverage from alpha.
+    pub coverage: f32,
+    /// Gradient of `sum.w` with respect to the lookup position.
+    pub gradient: Vec3,
+}
+
+/// The sample lookup over the trilinear footprint: the sum as [`trilinear_cpu`], the stored
+/// corners' weight, and the analytic gradient of the alpha channel (each corner's weight
+/// differentiated, `dq/dpos = R`).
+pub fn trilinear_sample_cpu(
+    texel: impl Fn([u32; 3]) -> Option<u32>,
+    pos: Vec3,
+    resolution: u32,
+) -> StoreSample {
+    let q = pos * resolution as f32 - 0.5;
+    let f = q - q.floor();
+    let r = resolution as f32;
+    let mut s = StoreSample::default();
+    for (o, (v, w)) in trilinear_footprint(pos, resolution).into_iter().enumerate() {
+        let d = Vec3::new((o & 1) as f32, ((o >> 1) & 1) as f32, (o >> 2) as f32);
+        let wa = Vec3::ONE - f + d * (2.0 * f - Vec3::ONE);
+        let sign = (2.0 * d - Vec3::ONE) * r;
+        let dw = Vec3::new(
+            sign.x * wa.y * wa.z,
+            wa.x * sign.y * wa.z,
+            wa.x * wa.y * sign.z,
+        );
+        let t = texel(v).unwrap_or(0);
+        let c = unpack_rgba8(t);
+        s.sum += c * w;
+        if t >> 24 != 0 {
+            s.coverage += w;
+        }
+        s.gradient += dw * c.w;
+    }
+    s
+}

@@ -30,10 +30,11 @@ pub mod tiletree;
 pub use colours::{colours_by_key_cpu, ColourSource, HostColours};
 pub use error::StoreError;
 pub use hash_store::{HashStore, HashStoreParams};
-pub use kernels::{StoreKernels, TimedLookup};
+pub use kernels::{LookupMode, StoreKernels, TimedLookup};
 pub use keys::key_outside_grid;
 pub use lookup_cpu::{
-    nearest_cpu, nearest_voxel, trilinear_cpu, trilinear_footprint, unpack_rgba8,
+    nearest_cpu, nearest_voxel, trilinear_cpu, trilinear_footprint, trilinear_sample_cpu,
+    unpack_rgba8, StoreSample,
 };
 pub use marble::{
     marble_band, marble_band_at, marble_rgba8, MARBLE_BAND_ONE, MARBLE_BASE_FREQUENCY,
@@ -161,6 +162,19 @@ pub trait SparseStore {
         Ok(lookup.results()?)
     }
 
+    /// Runs the store's GLSL sample lookup (what a relief reads: the filtered sum, its
+    /// coverage and the gradient of alpha) at `points` with their `normals` (volume stores
+    /// ignore them).
+    fn sample_lookup(
+        &self,
+        points: &[Vec3],
+        normals: &[Vec3],
+    ) -> Result<Vec<StoreSample>, StoreError> {
+        let lookup = self.timed_lookup_mode(points, normals, LookupMode::Sample)?;
+        lookup.run()?;
+        Ok(lookup.samples()?)
+    }
+
     /// Uploads `points` (and `normals`, which volume stores ignore) once and returns a lookup
     /// that can be run and timed repeatedly: how benchmarks compare the structures' lookup cost
     /// without the transfers.
@@ -169,5 +183,15 @@ pub trait SparseStore {
         points: &[Vec3],
         normals: &[Vec3],
         filter: Filter,
+    ) -> Result<TimedLookup<'_>, StoreError> {
+        self.timed_lookup_mode(points, normals, filter.into())
+    }
+
+    /// [`SparseStore::timed_lookup`] of any [`LookupMode`].
+    fn timed_lookup_mode(
+        &self,
+        points: &[Vec3],
+        normals: &[Vec3],
+        mode: LookupMode,
     ) -> Result<TimedLookup<'_>, StoreError>;
 }

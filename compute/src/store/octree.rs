@@ -8,7 +8,7 @@
 
 use super::colours::{new_colours, ColourSource};
 use super::error::StoreError;
-use super::kernels::{timed_lookup, StoreKernels, TimedLookup};
+use super::kernels::{timed_lookup, LookupMode, StoreKernels, TimedLookup};
 use super::keys::check_keys;
 use super::{Filter, InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult, Recorder};
@@ -597,29 +597,29 @@ impl SparseStore for OctreeStore {
         p
     }
 
-    fn timed_lookup(
+    fn timed_lookup_mode(
         &self,
         points: &[Vec3],
         _normals: &[Vec3],
-        filter: Filter,
+        mode: LookupMode,
     ) -> Result<TimedLookup<'_>, StoreError> {
-        Ok(self.lookup_in_mode(points, filter, None)?)
+        Ok(self.lookup_in_mode(points, mode, None)?)
     }
 }
 
 impl OctreeStore {
     /// MIP lookup: the average colour of the node of level `depth` containing each point.
     pub fn lookup_mip(&self, points: &[Vec3], depth: u32) -> Result<Vec<Vec4>, StoreError> {
-        let lookup = self.lookup_in_mode(points, Filter::Nearest, Some(depth))?;
+        let lookup = self.lookup_in_mode(points, Filter::Nearest.into(), Some(depth))?;
         lookup.run()?;
         Ok(lookup.results()?)
     }
 
-    /// The lookup kernel at `points`: by `filter`, or the MIP of level `mip` (mode 2 + depth).
+    /// The lookup kernel at `points`: by `mode`, or the MIP of level `mip` (mode 2 + depth).
     fn lookup_in_mode(
         &self,
         points: &[Vec3],
-        filter: Filter,
+        mode: LookupMode,
         mip: Option<u32>,
     ) -> GpuResult<TimedLookup<'_>> {
         timed_lookup(
@@ -627,7 +627,7 @@ impl OctreeStore {
             &store::OCTREE_LOOKUP,
             points,
             &[],
-            filter,
+            mode,
             move |rec, c| {
                 let push = LookupPush {
                     store: self.params(),

@@ -15,9 +15,9 @@
 
 use super::colours::{new_colours, ColourSource, HostColours};
 use super::error::StoreError;
-use super::kernels::{timed_lookup, StoreKernels, TimedLookup};
+use super::kernels::{timed_lookup, LookupMode, StoreKernels, TimedLookup};
 use super::keys::check_keys;
-use super::{Filter, InsertUnit, SparseStore, StoreReport};
+use super::{InsertUnit, SparseStore, StoreReport};
 use crate::gpu::{DeviceAddress, GpuBuffer};
 use crate::hash::perfect::{
     BlockedPerfectHash, PerfectAccess, PerfectConfig, PerfectConstruction, PerfectHashGpu,
@@ -472,18 +472,18 @@ impl SparseStore for PerfectStore {
         }
     }
 
-    fn timed_lookup(
+    fn timed_lookup_mode(
         &self,
         points: &[Vec3],
         _normals: &[Vec3],
-        filter: Filter,
+        mode: LookupMode,
     ) -> Result<TimedLookup<'_>, StoreError> {
         Ok(timed_lookup(
             &self.kernels,
             &store::PERFECT_LOOKUP,
             points,
             &[],
-            filter,
+            mode,
             move |rec, c| {
                 let push = LookupPush {
                     store: self.params(),

@@ -8,23 +8,35 @@
 #ifndef LAZYSOLID_HASH_PERFECT_BLOCKED_GLSL
 #define LAZYSOLID_HASH_PERFECT_BLOCKED_GLSL
 
-vec4 perfect_blocked_trilinear(PerfectHashParams p, uint block, uint resolution, vec3 pos) {
+// The block of pos's footprint: the word of its slot's first texel, the footprint's local
+// cell in the block and the trilinear fractions.
+void perfect_blocked_footprint(PerfectHashParams p, uint block, uint resolution, vec3 pos, out uint base,
+                               out uvec3 local, out vec3 f) {
     precise vec3 q = pos * float(resolution) - 0.5;
     vec3 fl = floor(q);
-    vec3 f = q - fl;
+    f = q - fl;
     uvec3 j = uvec3(clamp(ivec3(fl) + 1, ivec3(0), ivec3(int(resolution))));
     uvec3 b = j / block;
-    uvec3 local = j - b * block;
-    uint s = perfect_slot(p, b);
+    local = j - b * block;
+    base = perfect_slot(p, b) * p.block_words;
+}
+
+// Corner o (bit 0: +x, bit 1: +y, bit 2: +z) of the footprint at local cell `local`.
+uint perfect_blocked_texel(PerfectHashParams p, uint block, uint base, uvec3 local, int o) {
+    uvec3 t = local + uvec3(o & 1, (o >> 1) & 1, o >> 2);
     uint side = block + 1u;
-    U32Ptr data = U32Ptr(p.data);
-    uint base = s * p.block_words;
+    return U32Ptr(p.data).v[base + t.x + side * (t.y + side * t.z)];
+}
+
+vec4 perfect_blocked_trilinear(PerfectHashParams p, uint block, uint resolution, vec3 pos) {
+    uint base;
+    uvec3 local;
+    vec3 f;
+    perfect_blocked_footprint(p, block, resolution, pos, base, local, f);
     vec4 sum = vec4(0.0);
     for (int o = 0; o < 8; ++o) {
-        uvec3 d = uvec3(o & 1, (o >> 1) & 1, o >> 2);
-        uvec3 t = local + d;
-        vec3 w3 = mix(1.0 - f, f, vec3(d));
-        sum += (w3.x * w3.y * w3.z) * unpackUnorm4x8(data.v[base + t.x + side * (t.y + side * t.z)]);
+        vec3 w3 = mix(1.0 - f, f, vec3(uvec3(o & 1, (o >> 1) & 1, o >> 2)));
+        sum += (w3.x * w3.y * w3.z) * unpackUnorm4x8(perfect_blocked_texel(p, block, base, local, o));
     }
     return sum;
 }

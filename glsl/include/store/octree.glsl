@@ -65,15 +65,20 @@ vec4 store_octree_nearest(OctreeParams p, vec3 pos) {
     return store_unpack(store_octree_texel(p, store_nearest_voxel(pos, p.resolution)));
 }
 
-vec4 store_octree_trilinear(OctreeParams p, vec3 pos) {
+StoreSample store_octree_sample(OctreeParams p, vec3 pos) {
     ivec3 base;
     vec3 f;
     store_trilinear_footprint(pos, p.resolution, base, f);
-    vec4 sum = vec4(0.0);
+    StoreSample s = store_sample_empty();
     for (int o = 0; o < 8; ++o) {
-        sum += store_corner_weight(f, o) * store_unpack(store_octree_texel(p, store_corner(base, o, p.resolution)));
+        store_sample_add(s, store_octree_texel(p, store_corner(base, o, p.resolution)), store_corner_weight(f, o),
+                         store_corner_weight_gradient(f, o, p.resolution));
     }
-    return sum;
+    return s;
+}
+
+vec4 store_octree_trilinear(OctreeParams p, vec3 pos) {
+    return store_octree_sample(p, pos).sum;
 }
 
 // The average colour of the node of level `depth` containing pos (depth 0: the root's); a

@@ -65,18 +65,40 @@ vec4 store_perfect_nearest(PerfectStoreParams p, vec3 pos) {
     return store_unpack(store_perfect_texel(p, store_nearest_voxel(pos, p.resolution)));
 }
 
-vec4 store_perfect_trilinear(PerfectStoreParams p, vec3 pos) {
+// The blocked layout's sample: the same 8 texels as its trilinear lookup, read from one block.
+StoreSample store_perfect_blocked_sample(PerfectStoreParams p, vec3 pos) {
+    uint base;
+    uvec3 local;
+    vec3 f;
+    perfect_blocked_footprint(p.table, p.block, p.resolution, pos, base, local, f);
+    StoreSample s = store_sample_empty();
+    for (int o = 0; o < 8; ++o) {
+        store_sample_add(s, perfect_blocked_texel(p.table, p.block, base, local, o), store_corner_weight(f, o),
+                         store_corner_weight_gradient(f, o, p.resolution));
+    }
+    return s;
+}
+
+StoreSample store_perfect_sample(PerfectStoreParams p, vec3 pos) {
     if (p.block != 0u) {
-        return perfect_blocked_trilinear(p.table, p.block, p.resolution, pos);
+        return store_perfect_blocked_sample(p, pos);
     }
     ivec3 base;
     vec3 f;
     store_trilinear_footprint(pos, p.resolution, base, f);
-    vec4 sum = vec4(0.0);
+    StoreSample s = store_sample_empty();
     for (int o = 0; o < 8; ++o) {
-        sum += store_corner_weight(f, o) * store_unpack(store_perfect_texel(p, store_corner(base, o, p.resolution)));
+        store_sample_add(s, store_perfect_texel(p, store_corner(base, o, p.resolution)), store_corner_weight(f, o),
+                         store_corner_weight_gradient(f, o, p.resolution));
     }
-    return sum;
+    return s;
+}
+
+vec4 store_perfect_trilinear(PerfectStoreParams p, vec3 pos) {
+    if (p.block != 0u) {
+        return perfect_blocked_trilinear(p.table, p.block, p.resolution, pos);
+    }
+    return store_perfect_sample(p, pos).sum;
 }
 
 #endif

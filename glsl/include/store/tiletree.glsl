@@ -36,6 +36,8 @@
 #ifndef LAZYSOLID_STORE_TILETREE_GLSL
 #define LAZYSOLID_STORE_TILETREE_GLSL
 
+#include "store/texels.glsl"
+
 #define TILETREE_LEAF 0x80000000u
 
 struct TileTreeParams {
@@ -91,7 +93,8 @@ uint store_tiletree_face(uint mask, vec3 n) {
 
 // Shared by both filters: the tile of the leaf and face at pos (its map corner and its
 // rectangle's width and height in columns) and the in-tile coordinate; false in empty space.
-bool store_tiletree_tile(TileTreeParams p, vec3 pos, vec3 n, out uvec2 corner, out uvec2 size, out vec2 t) {
+bool store_tiletree_tile(TileTreeParams p, vec3 pos, vec3 n, out uvec2 corner, out uvec2 size, out vec2 t,
+                         out uint face) {
     precise vec3 g = pos * float(p.resolution);
     uvec3 voxel = uvec3(clamp(floor(g), vec3(0.0), vec3(float(p.resolution) - 1.0)));
     uint leaf = store_tiletree_leaf(p, voxel);
@@ -103,7 +106,7 @@ bool store_tiletree_tile(TileTreeParams p, vec3 pos, vec3 n, out uvec2 corner, o
     uint w0 = leaves.v[base];
     uint w1 = leaves.v[base + 1u];
     uvec3 origin = uvec3(w0 & 0xffffu, w0 >> 16, w1 & 0xffffu);
-    uint face = store_tiletree_face(w1 >> 24, n);
+    face = store_tiletree_face(w1 >> 24, n);
     uint c = leaves.v[base + 2u + 2u * face];
     uint r = leaves.v[base + 3u + 2u * face];
     corner = uvec2(c & 0xffffu, c >> 16);
@@ -121,7 +124,8 @@ vec4 store_tiletree_nearest(TileTreeParams p, vec3 pos, vec3 n) {
     uvec2 corner;
     uvec2 size;
     vec2 t;
-    if (!store_tiletree_tile(p, pos, n, corner, size, t)) {
+    uint face;
+    if (!store_tiletree_tile(p, pos, n, corner, size, t, face)) {
         return vec4(0.0);
     }
     uvec2 xy = uvec2(clamp(floor(t + 0.5), vec2(1.0), vec2(size)));
@@ -132,7 +136,8 @@ vec4 store_tiletree_bilinear(TileTreeParams p, vec3 pos, vec3 n) {
     uvec2 corner;
     uvec2 size;
     vec2 t;
-    if (!store_tiletree_tile(p, pos, n, corner, size, t)) {
+    uint face;
+    if (!store_tiletree_tile(p, pos, n, corner, size, t, face)) {
         return vec4(0.0);
     }
     vec2 i = clamp(floor(t), vec2(0.0), vec2(size));
@@ -146,6 +151,38 @@ vec4 store_tiletree_bilinear(TileTreeParams p, vec3 pos, vec3 n) {
     vec4 c11 = unpackUnorm4x8(map.v[base + p.map_width + 1u]);
     precise vec4 r = (c00 * (1.0 - f.x) + c10 * f.x) * (1.0 - f.y) + (c01 * (1.0 - f.x) + c11 * f.x) * f.y;
     return r;
+}
+
+// The bilinear lookup with its coverage (1 on a tile, whose texels are all written; 0 in
+// empty space) and the gradient of alpha: in the face's plane (axes b, c), 0 along its normal.
+StoreSample store_tiletree_sample(TileTreeParams p, vec3 pos, vec3 n) {
+    uvec2 corner;
+    uvec2 size;
+    vec2 t;
+    uint face;
+    StoreSample s = store_sample_empty();
+    if (!store_tiletree_tile(p, pos, n, corner, size, t, face)) {
+        return s;
+    }
+    vec2 i = clamp(floor(t), vec2(0.0), vec2(size));
+    precise vec2 f = clamp(t - i, vec2(0.0), vec2(1.0));
+    uvec2 xy = uvec2(i);
+    U32Ptr map = U32Ptr(p.map);
+    uint base = (corner.y + xy.y) * p.map_width + corner.x + xy.x;
+    vec4 c00 = unpackUnorm4x8(map.v[base]);
+    vec4 c10 = unpackUnorm4x8(map.v[base + 1u]);
+    vec4 c01 = unpackUnorm4x8(map.v[base + p.map_width]);
+    vec4 c11 = unpackUnorm4x8(map.v[base + p.map_width + 1u]);
+    precise vec4 r = (c00 * (1.0 - f.x) + c10 * f.x) * (1.0 - f.y) + (c01 * (1.0 - f.x) + c11 * f.x) * f.y;
+    s.sum = r;
+    s.coverage = 1.0;
+    float res = float(p.resolution);
+    float d_b = ((c10.a - c00.a) * (1.0 - f.y) + (c11.a - c01.a) * f.y) * res;
+    float d_c = ((c01.a - c00.a) * (1.0 - f.x) + (c11.a - c10.a) * f.x) * res;
+    uint a = face / 2u;
+    s.gradient[(a + 1u) % 3u] = d_b;
+    s.gradient[(a + 2u) % 3u] = d_c;
+    return s;
 }
 
 #endif

@@ -6,8 +6,10 @@ use super::{TileTreeConfig, TileTreeHost, TileTreeStats, NAME};
 use crate::gpu::{DeviceAddress, GpuBuffer, GpuResult};
 use crate::kernels::store;
 use crate::store::colours::{fill_colours, ByKey, KeyedColours};
-use crate::store::kernels::{timed_lookup, StoreKernels, TimedLookup};
-use crate::store::{ColourSource, Filter, InsertUnit, SparseStore, StoreError, StoreReport};
+use crate::store::kernels::{timed_lookup, LookupMode, StoreKernels, TimedLookup};
+use crate::store::{
+    ColourSource, Filter, InsertUnit, SparseStore, StoreError, StoreReport, StoreSample,
+};
 use crate::voxel::VoxelKeys;
 use glam::{Vec3, Vec4};
 use std::path::Path;
@@ -427,6 +429,30 @@ impl TileTree {
         normals: &[Vec3],
         filter: Filter,
     ) -> Result<Vec<Vec4>, StoreError> {
+        self.with_host(points, normals, |host, p, n| {
+            super::lookup_cpu(host, p, n, filter)
+        })
+    }
+
+    /// Runs [`sample_cpu`](super::sample_cpu) against the read-back map.
+    ///
+    /// # Errors
+    /// Device errors (reading the map).
+    pub fn sample_cpu(
+        &self,
+        points: &[Vec3],
+        normals: &[Vec3],
+    ) -> Result<Vec<StoreSample>, StoreError> {
+        self.with_host(points, normals, super::sample_cpu)
+    }
+
+    /// `read` at every point and normal against the read-back map.
+    fn with_host<T>(
+        &self,
+        points: &[Vec3],
+        normals: &[Vec3],
+        read: impl Fn(&TileTreeHost<'_>, Vec3, Vec3) -> T,
+    ) -> Result<Vec<T>, StoreError> {
         check_normals(points, normals)?;
         let map = self.map_words()?;
         let host = TileTreeHost {
@@ -440,7 +466,7 @@ impl TileTree {
         Ok(points
             .iter()
             .zip(normals)
-            .map(|(&p, &n)| super::lookup_cpu(&host, p, n, filter))
+            .map(|(&p, &n)| read(&host, p, n))
             .collect())
     }
 
@@ -553,11 +579,11 @@ impl SparseStore for TileTree {
     }
 
     /// `Filter::Trilinear` runs the tile's bilinear filter, `Filter::Nearest` the nearest texel.
-    fn timed_lookup(
+    fn timed_lookup_mode(
         &self,
         points: &[Vec3],
         normals: &[Vec3],
-        filter: Filter,
+        mode: LookupMode,
     ) -> Result<TimedLookup<'_>, StoreError> {
         check_normals(points, normals)?;
         Ok(timed_lookup(
@@ -565,7 +591,7 @@ impl SparseStore for TileTree {
             &store::TILETREE_LOOKUP,
             points,
             normals,
-            filter,
+            mode,
             move |rec, c| {
                 let push = LookupPush {
                     store: self.params(),

@@ -5,7 +5,7 @@
 use super::geometry::{dominant_face, face_axis, plane_axes};
 use super::plan::LEAF_WORDS;
 use super::refine::LEAF_BIT;
-use crate::store::{unpack_rgba8, Filter};
+use crate::store::{unpack_rgba8, Filter, StoreSample};
 use glam::{Vec3, Vec4};
 
 /// What a lookup reads: the tree, the leaf records and the tile map, as on the GPU.
@@ -62,47 +62,110 @@ pub fn pick_face(mask: u32, n: Vec3) -> u32 {
     pick
 }
 
-/// The lookup at `pos` ([0, 1]³) with surface normal `normal`; (0, 0, 0, 0) in empty space.
-/// `Filter::Trilinear` means the tile's bilinear filter (the TileTree's filtered lookup).
-pub fn lookup_cpu(host: &TileTreeHost<'_>, pos: Vec3, normal: Vec3, filter: Filter) -> Vec4 {
+/// Where a lookup reads in the tile map: the tile of the leaf and face at a point.
+struct TileRead<'h, 'a> {
+    host: &'h TileTreeHost<'a>,
+    /// The tile's map corner.
+    corner: (u32, u32),
+    /// Its rectangle's columns and rows.
+    columns: u32,
+    rows: u32,
+    /// The in-tile coordinate along the face's two in-plane axes.
+    tb: f32,
+    tc: f32,
+    /// The face's normal axis.
+    axis: usize,
+}
+
+impl TileRead<'_, '_> {
+    fn texel(&self, x: u32, y: u32) -> u32 {
+        let w = self.host.map_width as usize;
+        self.host.map[(self.corner.1 + y) as usize * w + (self.corner.0 + x) as usize]
+    }
+}
+
+/// The tile a lookup at `pos` with normal `normal` reads, or `None` in empty space.
+fn tile_read<'h, 'a>(
+    host: &'h TileTreeHost<'a>,
+    pos: Vec3,
+    normal: Vec3,
+) -> Option<TileRead<'h, 'a>> {
     let r = host.resolution as f32;
     let g = pos * r;
     let voxel = g.floor().clamp(Vec3::ZERO, Vec3::splat(r - 1.0)).as_uvec3();
-    let Some(leaf) = descend(host, voxel.to_array()) else {
-        return Vec4::ZERO;
-    };
+    let leaf = descend(host, voxel.to_array())?;
     let rec = &host.leaves[LEAF_WORDS * leaf as usize..][..LEAF_WORDS];
     let origin = [rec[0] & 0xffff, rec[0] >> 16, rec[1] & 0xffff];
     let mask = rec[1] >> 24;
     let face = pick_face(mask, normal);
     let corner = rec[2 + 2 * face as usize];
     let rect = rec[3 + 2 * face as usize];
-    let (cx, cy) = (corner & 0xffff, corner >> 16);
     let (x0, y0) = (rect & 0xff, (rect >> 8) & 0xff);
-    let (columns, rows) = (((rect >> 16) & 0xff) + 1, (rect >> 24) + 1);
     let (a, _) = face_axis(face);
     let (b, c) = plane_axes(a);
-    let tb = (g[b] - (origin[b] + x0) as f32) + 0.5;
-    let tc = (g[c] - (origin[c] + y0) as f32) + 0.5;
-    let w = host.map_width as usize;
-    let texel = |x: u32, y: u32| host.map[(cy + y) as usize * w + (cx + x) as usize];
+    Some(TileRead {
+        host,
+        corner: (corner & 0xffff, corner >> 16),
+        columns: ((rect >> 16) & 0xff) + 1,
+        rows: (rect >> 24) + 1,
+        tb: (g[b] - (origin[b] + x0) as f32) + 0.5,
+        tc: (g[c] - (origin[c] + y0) as f32) + 0.5,
+        axis: a,
+    })
+}
+
+/// The bilinear footprint of a tile read: the texel of its (0, 0) corner and the fractions.
+fn bilinear_footprint(t: &TileRead<'_, '_>) -> ((u32, u32), f32, f32) {
+    let ib = t.tb.floor().clamp(0.0, t.columns as f32);
+    let ic = t.tc.floor().clamp(0.0, t.rows as f32);
+    let fx = (t.tb - ib).clamp(0.0, 1.0);
+    let fy = (t.tc - ic).clamp(0.0, 1.0);
+    ((ib as u32, ic as u32), fx, fy)
+}
+
+/// The lookup at `pos` ([0, 1]³) with surface normal `normal`; (0, 0, 0, 0) in empty space.
+/// `Filter::Trilinear` means the tile's bilinear filter (the TileTree's filtered lookup).
+pub fn lookup_cpu(host: &TileTreeHost<'_>, pos: Vec3, normal: Vec3, filter: Filter) -> Vec4 {
+    let Some(t) = tile_read(host, pos, normal) else {
+        return Vec4::ZERO;
+    };
     match filter {
         Filter::Nearest => {
-            let x = ((tb + 0.5).floor().clamp(1.0, columns as f32)) as u32;
-            let y = ((tc + 0.5).floor().clamp(1.0, rows as f32)) as u32;
-            unpack_rgba8(texel(x, y))
+            let x = ((t.tb + 0.5).floor().clamp(1.0, t.columns as f32)) as u32;
+            let y = ((t.tc + 0.5).floor().clamp(1.0, t.rows as f32)) as u32;
+            unpack_rgba8(t.texel(x, y))
         }
         Filter::Trilinear => {
-            let ib = tb.floor().clamp(0.0, columns as f32);
-            let ic = tc.floor().clamp(0.0, rows as f32);
-            let fx = (tb - ib).clamp(0.0, 1.0);
-            let fy = (tc - ic).clamp(0.0, 1.0);
-            let (x, y) = (ib as u32, ic as u32);
-            let c00 = unpack_rgba8(texel(x, y));
-            let c10 = unpack_rgba8(texel(x + 1, y));
-            let c01 = unpack_rgba8(texel(x, y + 1));
-            let c11 = unpack_rgba8(texel(x + 1, y + 1));
+            let ((x, y), fx, fy) = bilinear_footprint(&t);
+            let c00 = unpack_rgba8(t.texel(x, y));
+            let c10 = unpack_rgba8(t.texel(x + 1, y));
+            let c01 = unpack_rgba8(t.texel(x, y + 1));
+            let c11 = unpack_rgba8(t.texel(x + 1, y + 1));
             (c00 * (1.0 - fx) + c10 * fx) * (1.0 - fy) + (c01 * (1.0 - fx) + c11 * fx) * fy
         }
+    }
+}
+
+/// The sample lookup (`store_tiletree_sample`): the bilinear sum, coverage 1 on a tile (its
+/// texels are all written) and 0 in empty space, and the gradient of alpha in the face's
+/// plane (0 along the face's normal axis).
+pub fn sample_cpu(host: &TileTreeHost<'_>, pos: Vec3, normal: Vec3) -> StoreSample {
+    let Some(t) = tile_read(host, pos, normal) else {
+        return StoreSample::default();
+    };
+    let ((x, y), fx, fy) = bilinear_footprint(&t);
+    let c00 = unpack_rgba8(t.texel(x, y));
+    let c10 = unpack_rgba8(t.texel(x + 1, y));
+    let c01 = unpack_rgba8(t.texel(x, y + 1));
+    let c11 = unpack_rgba8(t.texel(x + 1, y + 1));
+    let r = host.resolution as f32;
+    let mut gradient = Vec3::ZERO;
+    let (b, c) = plane_axes(t.axis);
+    gradient[b] = ((c10.w - c00.w) * (1.0 - fy) + (c11.w - c01.w) * fy) * r;
+    gradient[c] = ((c01.w - c00.w) * (1.0 - fx) + (c11.w - c10.w) * fx) * r;
+    StoreSample {
+        sum: (c00 * (1.0 - fx) + c10 * fx) * (1.0 - fy) + (c01 * (1.0 - fx) + c11 * fx) * fy,
+        coverage: 1.0,
+        gradient,
     }
 }

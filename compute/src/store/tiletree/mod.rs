@@ -26,7 +26,7 @@ pub use geometry::{
     column_hit, dominant_face, Surface, CONE, FOLD_TOLERANCE, MARGIN, SWITCH_MARGIN,
 };
 pub use gpu::{TileTree, TileTreeParams};
-pub use lookup_cpu::{descend, lookup_cpu, pick_face, TileTreeHost};
+pub use lookup_cpu::{descend, lookup_cpu, pick_face, sample_cpu, TileTreeHost};
 pub use plan::{Plan, Tile, TileTreeStats, LEAF_WORDS, TILE_WORDS};
 pub use refine::{Leaf, LEAF_BIT};
 
