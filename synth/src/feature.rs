@@ -68,6 +68,9 @@ pub struct FeatureMap {
     /// The feature channel per pixel: the clamped signed distance in pixels, scaled (see the
     /// module docs); 0 everywhere when the image has no two classes.
     pub channel: Vec<f32>,
+    /// The clamped signed distance itself, in pixels (negative inside features), whatever the
+    /// weight: what a relief is made of (`crate::relief`); 0 everywhere without two classes.
+    pub distance: Vec<f32>,
     /// Whether the features are the dark class (cracks, outlines) or the light one.
     pub dark: bool,
     /// The clamp of the signed distance, in pixels.
@@ -373,6 +376,7 @@ impl Split {
         let none = || FeatureMap {
             mask: vec![false; n],
             channel: vec![0.0; n],
+            distance: vec![0.0; n],
             dark: true,
             clamp: self.clamp,
             spread: 0.0,
@@ -429,6 +433,7 @@ impl Split {
                 .iter()
                 .map(|&s| (f64::from(s) * scale) as f32)
                 .collect(),
+            distance: signed,
             dark,
             clamp,
             spread: deviation / f64::from(clamp),

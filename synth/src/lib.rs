@@ -38,6 +38,7 @@ mod period;
 mod plan;
 mod push_registry;
 pub mod quality;
+pub mod relief;
 mod repetition;
 mod resample;
 pub mod shader_constants;

@@ -18,8 +18,8 @@ use lazysolid_synth::solid::lazy::{
 };
 use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
-    level_schedules, pack_rgb, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer,
-    SolidAnalysis, SolidCandidates, SolidExemplars, SolidSynthesis, VolumeBox, DEFAULT_BALANCE,
+    level_schedules, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, SolidAnalysis,
+    SolidCandidates, SolidExemplars, SolidRelief, SolidSynthesis, VolumeBox, DEFAULT_BALANCE,
     DEFAULT_SOLID_PARALLEL_LEVELS,
 };
 use lazysolid_synth::{SynthError, SynthParams};
@@ -416,9 +416,13 @@ fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() 
     });
 }
 
-/// The RGBA8 colour of every voxel of the full `[0, R)³` volume of [`case`], synthesized on
-/// the GPU in one box: what every lazily filled store must hold.
-fn full_cube_colours(gpu: &lazysolid_compute::gpu::Gpu) -> impl Fn([u32; 3]) -> u32 {
+/// The RGBA8 texel of every voxel of the full `[0, R)³` volume of [`case`], synthesized on
+/// the GPU in one box, with its CPU texel rule (`voxel_texel`, the relief code in alpha when
+/// `relief` is given): what every lazily filled store must hold.
+fn full_cube_colours(
+    gpu: &lazysolid_compute::gpu::Gpu,
+    relief: Option<&SolidRelief>,
+) -> impl Fn([u32; 3]) -> u32 {
     let (exemplars, analysis, candidates, params) = case();
     let r = RESOLUTION;
     let window = VolumeBox {
@@ -430,8 +434,8 @@ fn full_cube_colours(gpu: &lazysolid_compute::gpu::Gpu) -> impl Fn([u32; 3]) -> 
         .synthesize(analysis, candidates, params, window, false, &mut |_| {})
         .unwrap()
         .0;
-    let colours = full.colours(exemplars);
-    move |p: [u32; 3]| -> u32 { pack_rgb(colours[window.index(p.map(|v| v as i32))]) | 0xff00_0000 }
+    let texels = full.texels(exemplars, relief);
+    move |p: [u32; 3]| -> u32 { texels[window.index(p.map(|v| v as i32))] }
 }
 
 /// Colours of the interpolation voxels of the bunny at 16³ and of its surface voxels (a second,
@@ -440,16 +444,41 @@ fn full_cube_colours(gpu: &lazysolid_compute::gpu::Gpu) -> impl Fn([u32; 3]) -> 
 /// centre, and the TileTree's tiles hold them at every texel.
 #[test]
 fn stores_filled_by_lazy_synthesis_hold_the_full_volume_colours() {
+    stores_hold_the_full_volume(false);
+}
+
+/// The same with the relief channel in alpha: the lazy kernel's codes (GPU) equal the full
+/// volume's by the CPU rule, in every store; and the codes vary (a channel, not a constant).
+#[test]
+fn stores_filled_by_lazy_synthesis_hold_the_full_volume_relief() {
+    stores_hold_the_full_volume(true);
+}
+
+fn stores_hold_the_full_volume(with_relief: bool) {
     let (exemplars, analysis, candidates, params) = case();
     let m = unit_mesh("bunny00.off");
     let r = RESOLUTION;
+    let relief = with_relief.then(|| SolidRelief::of(exemplars));
     with_gpu(|gpu| {
-        let want = full_cube_colours(gpu);
+        let want = full_cube_colours(gpu, relief.as_ref());
+        let codes: BTreeSet<u32> = (0..r * r * r)
+            .map(|i| want([i % r, i / r % r, i / (r * r)]) >> 24)
+            .collect();
+        if with_relief {
+            assert!(codes.len() >= 3, "relief codes {codes:?}");
+            assert!(
+                codes.iter().all(|&c| c >= 2),
+                "the octree's tags are reserved"
+            );
+        } else {
+            assert_eq!(codes.into_iter().collect::<Vec<_>>(), [255]);
+        }
         let kernels = StoreKernels::new(gpu).unwrap();
         let mut v = Voxelizer::new(gpu).unwrap();
         let interp = v.interpolation(&m.positions, &m.triangles, r).unwrap();
         let surface = v.surface(&m.positions, &m.triangles, r).unwrap();
         let mut lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
+        lazy.set_relief(exemplars, relief.clone()).unwrap();
         let (c_interp, first) = lazy.colours(&interp).unwrap();
         let (c_surface, second) = lazy.colours(&surface).unwrap();
         let total = |r: &lazysolid_synth::solid::lazy::LazyReport| r.computed.iter().sum::<u64>();
@@ -531,7 +560,7 @@ fn matter_grows_by_a_new_surface_without_synthesizing_a_voxel_twice() {
     let m = unit_mesh("bunny00.off");
     let r = RESOLUTION;
     with_gpu(|gpu| {
-        let want = full_cube_colours(gpu);
+        let want = full_cube_colours(gpu, None);
         let kernels = StoreKernels::new(gpu).unwrap();
         let mut v = Voxelizer::new(gpu).unwrap();
         let lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();

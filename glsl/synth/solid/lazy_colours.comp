@@ -1,8 +1,8 @@
 #version 460
-// Lazy synthesis into the stores: the RGBA8 colour (red in the low byte, alpha 255) of each
-// voxel of a sorted key set of the R^3 grid (Morton keys of its position), from its final
-// triple: per channel the median of the three roles' exemplar colours (voxel_colour in
-// synth/src/solid/volume.rs). A voxel that is not final counts an error.
+// Lazy synthesis into the stores: the RGBA8 texel (red in the low byte; alpha the relief code,
+// or 255 without relief) of each voxel of a sorted key set of the R^3 grid (Morton keys of its
+// position), from its final triple: per byte the median of the three roles' exemplar texels
+// (voxel_texel in synth/src/solid/relief.rs). A voxel that is not final counts an error.
 #include "common.glsl"
 #include "synth/lazy.glsl"
 #include "synth/synth.glsl"
@@ -10,7 +10,7 @@
 layout(push_constant, scalar) uniform Push {
     uint64_t levels;
     uint64_t keys;     // Morton keys of grid positions
-    uint64_t rgb;      // 3 x side^2 packed RGB, role after role
+    uint64_t rgb;      // 3 x side^2 packed texels (RGB, relief code), role after role
     uint64_t colours;  // out: RGBA8 per key
     uint64_t errors;
     uint n;
@@ -40,8 +40,8 @@ void main() {
         uvec2 e = synth_unpack(t[r]);
         c[r] = U32Ptr(pc.rgb).v[r * pc.side * pc.side + e.y * pc.side + e.x];
     }
-    uint rgba = 0xff000000u;
-    for (uint ch = 0u; ch < 3u; ch++) {
+    uint rgba = 0u;
+    for (uint ch = 0u; ch < 4u; ch++) {
         uint sh = 8u * ch;
         rgba |= median3((c[0] >> sh) & 0xffu, (c[1] >> sh) & 0xffu, (c[2] >> sh) & 0xffu) << sh;
     }

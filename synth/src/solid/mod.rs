@@ -20,6 +20,7 @@ pub mod lazy;
 mod loop_budget;
 mod nrrd;
 mod plan;
+mod relief;
 mod roles;
 mod schedule;
 mod slab;
@@ -58,6 +59,7 @@ pub use jitter::jitter3;
 pub use loop_budget::{LOOP_BUDGET, LOOP_LIMIT};
 pub use nrrd::{decode_nrrd, encode_nrrd, RgbVolume};
 pub use plan::{plan_boxes, plan_levels, LevelPlan, Subpass, VolumeBox, CLASSES_3D, SUBPASSES_3D};
+pub use relief::{role_texel, voxel_texel, SolidRelief};
 pub use roles::{
     image_axis, project, shared_axis, SolidExemplars, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLES,
     ROLE_AXES, ROLE_NAMES,

@@ -10,6 +10,7 @@
 //! axes alike, so no slice direction is favoured.
 
 use super::plan::VolumeBox;
+use super::relief::{voxel_texel, SolidRelief};
 use super::roles::{SolidExemplars, ROLES};
 use crate::coords::unpack;
 use crate::{SynthError, SynthResult};
@@ -47,6 +48,15 @@ impl SolidSynthesis {
             .expect("a synthesis has its finest level");
         (0..self.window.voxels())
             .map(|i| finest.triples[finest.region.index(self.window.position(i))])
+            .collect()
+    }
+
+    /// The window's RGBA8 texels as the stores receive them: the median rule per byte, the
+    /// relief code in alpha when `relief` is given (255 otherwise).
+    pub fn texels(&self, exemplars: &SolidExemplars, relief: Option<&SolidRelief>) -> Vec<u32> {
+        self.window_triples()
+            .into_iter()
+            .map(|t| voxel_texel(exemplars, relief, t))
             .collect()
     }
 

@@ -21,7 +21,7 @@ use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
 use super::policy::{MemoryPolicy, LAZY_CHUNK_VOXELS};
 use crate::cache::DiskCache;
 use crate::kernels::synth_solid;
-use crate::solid::analysis::{analyze_solid, pack_rgb, SolidAnalysis};
+use crate::solid::analysis::{analyze_solid, SolidAnalysis};
 use crate::solid::candidates::CandidateParams;
 use crate::solid::candidates::SolidCandidates;
 use crate::solid::candidates_cache::candidates_cached;
@@ -31,6 +31,7 @@ use crate::solid::defaults::{
     default_solid_jitter, default_solid_passes, DEFAULT_SOLID_PARALLEL_LEVELS,
 };
 use crate::solid::gpu::GpuSolidSynthesizer;
+use crate::solid::relief::{role_texel, SolidRelief};
 use crate::solid::roles::{SolidExemplars, ROLES};
 use crate::solid::schedule::{level_schedules, LevelSchedule};
 use crate::{SynthError, SynthParams, SynthResult};
@@ -274,6 +275,8 @@ pub struct LazyOptions {
     pub parallel_levels: Option<u32>,
     /// What the state keeps between requests.
     pub policy: Option<MemoryPolicy>,
+    /// Whether the texels carry the relief channel in alpha (`crate::relief`).
+    pub relief: bool,
 }
 
 impl LazyOptions {
@@ -283,6 +286,7 @@ impl LazyOptions {
             seed,
             parallel_levels: None,
             policy: None,
+            relief: false,
         }
     }
 }
@@ -353,8 +357,11 @@ pub struct GpuLazySolid {
     levels: Vec<LevelState>,
     /// Every level's record, rewritten whenever a level's table or buffers change.
     records: DeviceRecords,
-    /// The three roles' exemplar colours, packed RGB, role after role.
+    /// Every role's exemplar texels (`role_texel`: RGB and the relief code or 255), role
+    /// after role.
     rgb: GpuBuffer<u32>,
+    /// The relief the texels carry.
+    relief: Option<SolidRelief>,
     /// What stays between requests.
     policy: MemoryPolicy,
     /// Requested voxels synthesized together before the policy applies.
@@ -421,13 +428,7 @@ impl GpuLazySolid {
         }
         let records: Vec<LazyLevelRecord<'_>> = levels.iter().map(LevelState::record).collect();
         let records = DeviceRecords::new(gpu, "lazy level records", &records)?;
-        let side = analysis.side;
-        let rgb: Vec<u32> = (0..ROLES)
-            .flat_map(|r| {
-                let e = exemplars.role(r);
-                (0..side * side).map(move |i| pack_rgb(e.at(i % side, i / side)))
-            })
-            .collect();
+        let rgb = role_texels(exemplars, None);
         let me = GpuLazySolid {
             gpu: gpu.clone(),
             synth: GpuSolidSynthesizer::new(gpu, analysis, candidates)?,
@@ -449,10 +450,33 @@ impl GpuLazySolid {
             levels,
             records,
             rgb: GpuBuffer::from_slice(gpu, "lazy exemplar colours", &rgb)?,
+            relief: None,
             policy: MemoryPolicy::default(),
             chunk_voxels: LAZY_CHUNK_VOXELS,
         };
         Ok(me)
+    }
+
+    /// Whether texels from now on carry `relief` in their alpha byte (`None`: alpha 255), for
+    /// the images of `exemplars` (those the state was made with). Voxels already returned
+    /// keep what they were given: set it before the first request.
+    ///
+    /// # Errors
+    /// Device errors (uploading the exemplars' texels).
+    pub fn set_relief(
+        &mut self,
+        exemplars: &SolidExemplars,
+        relief: Option<SolidRelief>,
+    ) -> SynthResult<()> {
+        let texels = role_texels(exemplars, relief.as_ref());
+        self.rgb = GpuBuffer::from_slice(&self.gpu, "lazy exemplar colours", &texels)?;
+        self.relief = relief;
+        Ok(())
+    }
+
+    /// The relief the texels carry, if any.
+    pub fn relief(&self) -> Option<&SolidRelief> {
+        self.relief.as_ref()
     }
 
     /// What the state keeps between requests from now on (applied after the next chunk).
@@ -565,6 +589,9 @@ impl GpuLazySolid {
         let mut state =
             GpuLazySolid::new(gpu, exemplars, &analysis, &candidates, &synth, resolution)?;
         state.set_policy(options.policy.unwrap_or_default());
+        if options.relief {
+            state.set_relief(exemplars, Some(SolidRelief::of(exemplars)))?;
+        }
         Ok(state)
     }
 
@@ -1178,4 +1205,14 @@ mod tests {
             "{e}"
         );
     }
+}
+
+/// Every role's packed texels (`role_texel`), role after role, as the colour kernel reads them.
+fn role_texels(exemplars: &SolidExemplars, relief: Option<&SolidRelief>) -> Vec<u32> {
+    let side = exemplars.side();
+    (0..ROLES)
+        .flat_map(|r| {
+            (0..side * side).map(move |i| role_texel(exemplars, relief, r, i % side, i / side))
+        })
+        .collect()
 }
