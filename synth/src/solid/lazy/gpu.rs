@@ -1170,6 +1170,16 @@ fn hash_error(level: usize, e: lazysolid_compute::hash::HashError) -> SynthError
     }
 }
 
+/// Every role's packed texels (`role_texel`), role after role, as the colour kernel reads them.
+fn role_texels(exemplars: &SolidExemplars, relief: Option<&SolidRelief>) -> Vec<u32> {
+    let side = exemplars.side();
+    (0..ROLES)
+        .flat_map(|r| {
+            (0..side * side).map(move |i| role_texel(exemplars, relief, r, i % side, i / side))
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::check_fits;
@@ -1207,12 +1217,3 @@ mod tests {
     }
 }
 
-/// Every role's packed texels (`role_texel`), role after role, as the colour kernel reads them.
-fn role_texels(exemplars: &SolidExemplars, relief: Option<&SolidRelief>) -> Vec<u32> {
-    let side = exemplars.side();
-    (0..ROLES)
-        .flat_map(|r| {
-            (0..side * side).map(move |i| role_texel(exemplars, relief, r, i % side, i / side))
-        })
-        .collect()
-}
