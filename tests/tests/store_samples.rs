@@ -7,7 +7,7 @@ use glam::Vec3;
 use lazysolid_compute::hash::perfect::PerfectAccess;
 use lazysolid_compute::hash::{morton_decode, RobinHoodConfig};
 use lazysolid_compute::store::*;
-use lazysolid_compute::voxel::{VoxelGrid, VoxelKeys, Voxelizer};
+use lazysolid_compute::voxel::{VoxelGrid, Voxelizer};
 use lazysolid_tests::{point_on_triangle, rng, unit_mesh, with_gpu};
 use rand::Rng;
 use std::collections::HashMap;
