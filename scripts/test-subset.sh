@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # One list, read by scripts/gpu-bench.sh too.
-SUBSET_TESTS=(core prims hash store tiletree solid lazy render)
+SUBSET_TESTS=(core prims hash store store_samples tiletree solid lazy render)
 args=()
 for t in "${SUBSET_TESTS[@]}"; do
   args+=(--test "$t")

@@ -50,6 +50,7 @@ layout(binding = 11, scalar) buffer RayCount { uint ray_count[]; };
 struct StoreRecord {
     uint kind;     // STORE_KIND_*
     uint filtering;  // STORE_FILTER_*
+    float relief;  // object-space height per unit of alpha (0: no relief)
     HashStoreParams hash;
     OctreeParams octree;
     PerfectStoreParams perfect;
@@ -112,7 +113,43 @@ bool store_kind_used(uint kind) {
     return (STORE_KINDS & (1u << kind)) != 0u;
 }
 
-vec3 store_albedo(uint slot, vec3 pos, vec3 normal) {
+// The sample lookup of a store with relief (its filter; TileTree: bilinear): the colour sum,
+// the stored corners' weight and the gradient of alpha (store/texels.glsl).
+StoreSample store_sample(uint slot, vec3 pos, vec3 normal) {
+    uint kind = store_records[slot].kind;
+    StoreSample s = store_sample_empty();
+    if (store_kind_used(STORE_KIND_HASH) && kind == STORE_KIND_HASH) {
+        s = store_hash_sample(store_records[slot].hash, pos);
+    } else if (store_kind_used(STORE_KIND_OCTREE) && kind == STORE_KIND_OCTREE) {
+        s = store_octree_sample(store_records[slot].octree, pos);
+    } else if (store_kind_used(STORE_KIND_PERFECT) && kind == STORE_KIND_PERFECT) {
+        s = store_perfect_sample(store_records[slot].perfect, pos);
+    } else if (store_kind_used(STORE_KIND_TILETREE) && kind == STORE_KIND_TILETREE) {
+        s = store_tiletree_sample(store_records[slot].tiletree, pos, normal);
+    }
+    return s;
+}
+
+vec3 albedo_of_srgb(vec3 srgb) {
+    return vec3(srgb_to_linear(srgb.r), srgb_to_linear(srgb.g), srgb_to_linear(srgb.b));
+}
+
+// Albedo of a store-baked texture at an object-space surface point with its object-space
+// geometric normal, and the gradient (object space) of its relief height, 0 without relief.
+// A point whose voxels are not stored (never expected on the surface) shows magenta, so a
+// hole is seen, not hidden. A store with relief carries the relief code in alpha, so its
+// coverage comes from the sample lookup, not from alpha.
+vec3 store_albedo(uint slot, vec3 pos, vec3 normal, out vec3 relief_gradient) {
+    relief_gradient = vec3(0.0);
+    float relief = store_records[slot].relief;
+    if (relief > 0.0) {
+        StoreSample s = store_sample(slot, pos, normal);
+        if (s.coverage <= 0.0) {
+            return vec3(1.0, 0.0, 1.0);
+        }
+        relief_gradient = relief * s.gradient / s.coverage;
+        return albedo_of_srgb(s.sum.rgb / s.coverage);
+    }
     uint kind = store_records[slot].kind;
     bool nearest = store_records[slot].filtering == STORE_FILTER_NEAREST;
     vec4 c = vec4(0.0);
@@ -132,8 +169,21 @@ vec3 store_albedo(uint slot, vec3 pos, vec3 normal) {
     if (c.a <= 0.0) {
         return vec3(1.0, 0.0, 1.0);
     }
-    vec3 srgb = c.rgb / c.a;  // a partial trilinear footprint is renormalized
-    return vec3(srgb_to_linear(srgb.r), srgb_to_linear(srgb.g), srgb_to_linear(srgb.b));
+    return albedo_of_srgb(c.rgb / c.a);  // a partial trilinear footprint is renormalized
+}
+
+// The shading normal bent by a relief whose height has world-space gradient g: the height
+// field's normal n - (g - (g.n) n). The geometric normal still decides which side a ray is on
+// (next-event rays below it are not traced, BSDF samples below it end the path), so the bend
+// cannot let light through the surface; and the bent normal is kept at least slightly facing
+// the viewer (v), since a view below its hemisphere would shade black.
+vec3 bend_normal(vec3 ns, vec3 g, vec3 v) {
+    vec3 n = normalize(ns - (g - dot(g, ns) * ns));
+    float facing = dot(n, v);
+    if (dot(ns, v) > 0.0 && facing < 0.05) {
+        n = normalize(n + (0.05 - facing) * v);
+    }
+    return n;
 }
 
 SurfaceHit surface_of(TraceHit h) {
@@ -284,8 +334,17 @@ void main() {
                 SurfaceHit s = surface_of(h);
                 Material m = materials[s.material];
                 uint store_slot = instance_stores[s.instance];
-                vec3 albedo = store_slot == 0xffffffffu ? solid_texture_albedo(m, s.p_object)
-                                                        : store_albedo(store_slot, s.p_surface_object, s.n_object);
+                vec3 relief_gradient = vec3(0.0);
+                vec3 albedo = store_slot == 0xffffffffu
+                                  ? solid_texture_albedo(m, s.p_object)
+                                  : store_albedo(store_slot, s.p_surface_object, s.n_object, relief_gradient);
+                if (relief_gradient != vec3(0.0)) {
+                    // Object to world: a rotation times a uniform scale, which slopes ignore.
+                    vec4 o2w[3] = bvh_instances[s.instance].object_to_world;
+                    vec3 g = cwbvh_transform_vector(o2w, relief_gradient);
+                    float scale = length(cwbvh_transform_vector(o2w, vec3(1.0, 0.0, 0.0)));
+                    s.ns = bend_normal(s.ns, g / scale, -dir);
+                }
                 if (depth == 0u) {
                     aov_albedo = m.kind == MATERIAL_EMISSIVE ? m.emission / max(max3(m.emission), 1e-6) : albedo;
                     aov_normal = s.ns;

@@ -1138,6 +1138,72 @@ fn synthesized_textures_name_their_exemplar_and_store() {
     );
 }
 
+/// `relief` on a synthesized texture read through a filtered store: its slope is kept; out of
+/// range, not finite, on a nearest store, or on a texture without a feature channel it is
+/// refused with the field, the line and the limit.
+#[test]
+fn relief_is_a_synthesized_texture_field_with_a_stated_range() {
+    let (_dir, scene) = scene_dir(&[]);
+    let texture = |fields: &str| {
+        edit(
+            15,
+            &format!("texture = {{ kind = \"synthesized\", exemplar = \"cracked\", resolution = 64, {fields} }}"),
+        )
+    };
+    let s = Scene::parse(
+        &texture("store = \"coherent_hash\", filter = \"trilinear\", relief = 0.75"),
+        &scene,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let spec = s.materials[0].texture.as_ref().unwrap();
+    assert_eq!(spec.synthesized.as_ref().unwrap().relief, 0.75);
+    let s = Scene::parse(
+        &texture("store = \"tiletree\", filter = \"trilinear\""),
+        &scene,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let spec = s.materials[0].texture.as_ref().unwrap();
+    assert_eq!(
+        spec.synthesized.as_ref().unwrap().relief,
+        0.0,
+        "no relief by default"
+    );
+    for (bad, why) in [
+        ("-0.5", "is out of range (must be in [0, 4]"),
+        ("4.5", "is out of range (must be in [0, 4]"),
+        ("nan", "is not finite"),
+        ("inf", "is not finite"),
+    ] {
+        let e = Scene::parse(
+            &texture(&format!(
+                "store = \"octree\", filter = \"trilinear\", relief = {bad}"
+            )),
+            &scene,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains(":15: material \"white\".texture.relief: ") && e.contains(why),
+            "{bad}: {e}"
+        );
+    }
+    let e = Scene::parse(&texture("store = \"octree\", relief = 1"), &scene)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(":15: material \"white\".texture.relief: needs a filtered store (filter = \"trilinear\")"),
+        "{e}"
+    );
+    expect(
+        &edit(
+            15,
+            "texture = { kind = \"checker\", color_a = [1, 1, 1], color_b = [0, 0, 0], relief = 1 }",
+        ),
+        15,
+        "material \"white\".texture.relief: relief is read from a synthesized texture's feature channel",
+    );
+}
+
 /// BASE with its box named `b`, followed by `more` (which starts on line 20).
 fn broken(more: &str) -> String {
     append(&format!("name = \"b\"\n{more}"))

@@ -20,6 +20,7 @@ use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::store::StoreKernels;
 use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_synth::cache::DiskCache;
+use lazysolid_synth::relief::relief_pixels_per_alpha;
 use lazysolid_synth::solid::lazy::{
     CutInfo, GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy,
     SharedLazy, StoredMatter, SynthesisInfo,
@@ -40,7 +41,7 @@ pub(crate) struct Baker<'a> {
     gpu: &'a Gpu,
     kernels: Option<Arc<StoreKernels>>,
     voxelizer: Option<Voxelizer>,
-    lazy: HashMap<(PathBuf, u32, u32, MemoryPolicy), SharedLazy>,
+    lazy: HashMap<(PathBuf, u32, u32, MemoryPolicy, bool), SharedLazy>,
 }
 
 /// The lazy synthesis state of exemplar `spec` at resolution `r`, with the solid defaults and
@@ -51,6 +52,7 @@ fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid,
     let cache = DiskCache::user().ok();
     let options = LazyOptions {
         policy: Some(spec.policy),
+        relief: spec.relief > 0.0,
         ..LazyOptions::new(spec.seed)
     };
     GpuLazySolid::with_options(gpu, &exemplars, &options, r, cache.as_ref())
@@ -96,7 +98,13 @@ impl<'a> Baker<'a> {
                 material, r,
             ))));
         };
-        let key = (synth.exemplar.clone(), synth.seed, r, synth.policy);
+        let key = (
+            synth.exemplar.clone(),
+            synth.seed,
+            r,
+            synth.policy,
+            synth.relief > 0.0,
+        );
         if let Some(lazy) = self.lazy.get(&key) {
             return Ok(MatterColours::Lazy(lazy.clone()));
         }
@@ -107,14 +115,17 @@ impl<'a> Baker<'a> {
 
     /// Bakes the texture of `material` on `mesh` into the store `spec` asks for, and grows it
     /// by the cap faces of the pieces cut from it (`caps`: positions and triangles in the
-    /// mesh's coordinates), which a second request synthesizes.
+    /// mesh's coordinates), which a second request synthesizes. Also returns the relief's
+    /// object-space height per unit of the stored alpha (0 without relief): `relief` (the
+    /// walls' slope) times the relief code's pixels of feature distance per unit of alpha,
+    /// over R (one exemplar pixel is one voxel at the finest level).
     pub(crate) fn bake(
         &mut self,
         scene: &Scene,
         mesh: usize,
         material: usize,
         caps: Option<(&[Vec3], &[[u32; 3]])>,
-    ) -> Result<(Matter, Option<SynthesisInfo>, Option<CutInfo>), RenderError> {
+    ) -> Result<(Matter, Option<SynthesisInfo>, Option<CutInfo>, f32), RenderError> {
         let material = &scene.materials[material];
         let mesh = &scene.meshes[mesh];
         let spec = material
@@ -134,6 +145,20 @@ impl<'a> Baker<'a> {
             ))
         };
         let colours = self.colours(material, r).map_err(|e| context("", &e))?;
+        let relief = match (
+            &colours,
+            material
+                .texture
+                .as_ref()
+                .and_then(|t| t.synthesized.as_ref()),
+        ) {
+            (MatterColours::Lazy(lazy), Some(synth)) if synth.relief > 0.0 => {
+                let lazy = lazy.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+                let clamp = lazy.relief().map_or(0.0, |rel| rel.clamp());
+                synth.relief * relief_pixels_per_alpha(clamp) / r as f32
+            }
+            _ => 0.0,
+        };
         let voxels = match (spec.kind, spec.filter, &colours) {
             (StoreKind::TileTree, _, MatterColours::Voxel(_)) => MatterVoxels::Unkeyed,
             (StoreKind::TileTree, _, _) | (_, StoreFilter::Nearest, _) => MatterVoxels::Surface,
@@ -162,6 +187,6 @@ impl<'a> Baker<'a> {
             ),
             _ => None,
         };
-        Ok((matter, stats, cut))
+        Ok((matter, stats, cut, relief))
     }
 }

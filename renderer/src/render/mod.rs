@@ -10,5 +10,5 @@ pub use error::RenderError;
 pub use frame::GpuFrame;
 pub use path_tracer::{PassReport, PathTracer, RenderStats};
 pub use stores::{
-    BakedStoreInfo, GpuStoreRecord, SceneStore, SceneStores, SynthesisInfo, NO_STORE,
+    BakedStoreInfo, GpuStoreRecord, SceneStore, SceneStores, StoreRead, SynthesisInfo, NO_STORE,
 };

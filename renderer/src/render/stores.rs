@@ -33,6 +33,9 @@ lazysolid_compute::push_block! {
         pub kind: u32,
         /// `STORE_FILTER_*`.
         pub filter: u32,
+        /// Object-space height per unit of the alpha channel of a store with relief (0: no
+        /// relief): the path tracer bends shading normals by this times alpha's gradient.
+        pub relief: f32,
         /// The coherent-hash store's params.
         pub hash: HashStoreParams<'a>,
         /// The octree's params.
@@ -42,6 +45,15 @@ lazysolid_compute::push_block! {
         /// The TileTree's params.
         pub tiletree: TileTreeParams<'a>,
     }
+}
+
+/// How the path tracer reads a store: its filter and its relief.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StoreRead {
+    /// Nearest or filtered.
+    pub filter: StoreFilter,
+    /// Object-space height per unit of alpha (see [`GpuStoreRecord::relief`]).
+    pub relief: f32,
 }
 
 /// Marks an instance whose albedo is not read from a store.
@@ -61,13 +73,14 @@ pub enum SceneStore {
 }
 
 impl SceneStore {
-    /// The record of the store's current buffers, read with `filter`.
-    pub fn record(&self, filter: StoreFilter) -> GpuStoreRecord<'_> {
+    /// The record of the store's current buffers, read as `read` says.
+    pub fn record(&self, read: StoreRead) -> GpuStoreRecord<'_> {
         let mut r = GpuStoreRecord {
-            filter: match filter {
+            filter: match read.filter {
                 StoreFilter::Nearest => STORE_FILTER_NEAREST,
                 StoreFilter::Trilinear => STORE_FILTER_TRILINEAR,
             },
+            relief: read.relief,
             ..Default::default()
         };
         match self {
@@ -162,7 +175,7 @@ pub struct BakedStoreInfo {
 /// rewrites the records before the next render (until then they keep the old buffers alive).
 pub struct SceneStores {
     gpu: Gpu,
-    stores: Vec<(Matter, StoreFilter)>,
+    stores: Vec<(Matter, StoreRead)>,
     records: DeviceRecords,
     instance_slots: GpuBuffer<u32>,
     info: Vec<BakedStoreInfo>,
@@ -196,7 +209,7 @@ impl SceneStores {
             }
             let caps = caps_of(scene, root, inst.material);
             let start = Instant::now();
-            let (matter, synthesis, cut) = baker.bake(
+            let (matter, synthesis, cut, relief) = baker.bake(
                 scene,
                 root,
                 inst.material,
@@ -220,7 +233,13 @@ impl SceneStores {
                 cut,
             });
             let slot = stores.len() as u32;
-            stores.push((matter, spec.filter));
+            stores.push((
+                matter,
+                StoreRead {
+                    filter: spec.filter,
+                    relief,
+                },
+            ));
             slot_of.insert((root, inst.material), slot);
             slots[i] = slot;
         }
@@ -242,7 +261,7 @@ impl SceneStores {
 
     /// The records of `stores` on the device (one default record when there is no store:
     /// bindings cannot be empty).
-    fn upload(gpu: &Gpu, stores: &[(Matter, StoreFilter)]) -> Result<DeviceRecords, RenderError> {
+    fn upload(gpu: &Gpu, stores: &[(Matter, StoreRead)]) -> Result<DeviceRecords, RenderError> {
         let mut records: Vec<GpuStoreRecord<'_>> =
             stores.iter().map(|(m, f)| m.store().record(*f)).collect();
         if records.is_empty() {

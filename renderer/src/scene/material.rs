@@ -464,6 +464,7 @@ fn texture(
     doc.reject(&raw.exemplar, label, "exemplar", why)?;
     doc.reject(&raw.seed, label, "seed", why)?;
     doc.reject(&raw.memory, label, "memory", why)?;
+    doc.reject(&raw.relief, label, "relief", NO_RELIEF_CHANNEL)?;
     doc.reject(
         &raw.path,
         label,
@@ -487,6 +488,41 @@ fn texture(
     })
 }
 
+/// Why a texture that is not synthesized has no `relief`.
+const NO_RELIEF_CHANNEL: &str = "relief is read from a synthesized texture's feature channel (kind = \"synthesized\"); a procedural pattern or a volume file has none";
+
+/// Largest `relief`: the slope of the features' walls (height per unit of feature distance),
+/// 4 being 76° walls; beyond, the bent normals of a groove's two walls face away from most
+/// views.
+pub const MAX_RELIEF: f32 = 4.0;
+
+/// The `relief` of a synthesized texture read through `store` (0 when absent).
+fn relief(
+    doc: &Doc,
+    raw: &RawTexture,
+    label: &str,
+    store: Option<StoreSpec>,
+) -> Result<f32, SceneError> {
+    let Some(value) = &raw.relief else {
+        return Ok(0.0);
+    };
+    let field = join(label, "relief");
+    let v = doc.number(
+        value,
+        &field,
+        |v| (0.0..=MAX_RELIEF).contains(&v),
+        &format!("in [0, {MAX_RELIEF}]: the slope of the features' walls, height per unit of feature distance"),
+    )?;
+    if v > 0.0 && store.is_some_and(|s| s.filter == StoreFilter::Nearest) {
+        return Err(doc.invalid(
+            value.span(),
+            field,
+            "needs a filtered store (filter = \"trilinear\"): the bump is the filter's derivative, and a nearest lookup is flat within each voxel",
+        ));
+    }
+    Ok(v)
+}
+
 /// A `kind = "volume"` texture table: its file, read through the store `store` only.
 fn volume_texture(
     doc: &Doc,
@@ -508,6 +544,7 @@ fn volume_texture(
         "memory",
         "only kind = \"synthesized\" keeps a synthesis state",
     )?;
+    doc.reject(&raw.relief, label, "relief", NO_RELIEF_CHANNEL)?;
     let path = doc.require(
         &raw.path,
         table,
@@ -554,6 +591,7 @@ fn synthesized_texture(
         "path",
         "a synthesized texture names its `exemplar`",
     )?;
+    let relief = relief(doc, raw, label, store)?;
     let exemplar = doc.require(
         &raw.exemplar,
         table,
@@ -594,6 +632,7 @@ fn synthesized_texture(
             fit: fitted.fit,
             seed,
             policy,
+            relief,
         }),
         store,
     })

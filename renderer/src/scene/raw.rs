@@ -175,6 +175,7 @@ pub(super) struct RawTexture {
     pub store: Option<Spanned<RawStoreKind>>,
     pub resolution: Option<Spanned<u32>>,
     pub filter: Option<Spanned<RawStoreFilter>>,
+    pub relief: Option<Spanned<f32>>,
 }
 
 /// Sparse stores as spelled in the file.

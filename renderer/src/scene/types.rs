@@ -244,7 +244,7 @@ pub struct SolidTexture {
 
 /// A solid texture synthesized from a 2D exemplar playing all three roles (lazily: only the
 /// voxels the store needs are synthesized).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SynthesizedSpec {
     /// The exemplar image (GIMP pattern, PNG or JPEG).
     pub exemplar: std::path::PathBuf,
@@ -255,6 +255,9 @@ pub struct SynthesizedSpec {
     pub seed: u32,
     /// What the synthesis state keeps between requests (`memory = "keep"` or `"32MB"`).
     pub policy: lazysolid_synth::solid::lazy::MemoryPolicy,
+    /// Slope of the relief's feature walls (`relief = …`; 0: none): the texels carry the
+    /// relief channel in alpha and the path tracer bends shading normals by its gradient.
+    pub relief: f32,
 }
 
 /// Which sparse store holds a baked solid texture, at what resolution, read how.
