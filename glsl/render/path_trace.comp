@@ -100,10 +100,6 @@ float srgb_to_linear(float c) {
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
-// Albedo of a store-baked texture at an object-space surface point with its object-space
-// geometric normal. A point whose voxels are not stored (never expected on the surface) shows
-// magenta, so a hole is seen, not hidden.
-//
 // The scene's store kinds, one bit per STORE_KIND_*, are a specialization constant: the lookups
 // of kinds the scene does not use are compiled out, which shortens the pipeline's compilation on
 // a CPU device (default: all four kinds).
@@ -134,11 +130,51 @@ vec3 albedo_of_srgb(vec3 srgb) {
     return vec3(srgb_to_linear(srgb.r), srgb_to_linear(srgb.g), srgb_to_linear(srgb.b));
 }
 
+// The resolution R of a store.
+uint store_resolution(uint slot) {
+    uint kind = store_records[slot].kind;
+    if (kind == STORE_KIND_HASH) {
+        return store_records[slot].hash.resolution;
+    } else if (kind == STORE_KIND_OCTREE) {
+        return store_records[slot].octree.resolution;
+    } else if (kind == STORE_KIND_PERFECT) {
+        return store_records[slot].perfect.resolution;
+    }
+    return store_records[slot].tiletree.resolution;
+}
+
+// The relief channel (alpha, renormalized by coverage) at pos; false where nothing is stored.
+bool relief_height(uint slot, vec3 pos, vec3 normal, out float height) {
+    StoreSample s = store_sample(slot, pos, normal);
+    height = s.coverage > 0.0 ? s.sum.a / s.coverage : 0.0;
+    return s.coverage > 0.0;
+}
+
+// Slope of the relief channel along the unit tangent `dir` at pos, per object unit: a central
+// difference of the filtered channel one voxel (h) either side. The filter's own derivative
+// jumps from voxel to voxel (the shading shows every voxel as a facet); the difference of the
+// continuous filtered channel is continuous. One-sided where one side is not stored; the
+// filter's derivative where neither is.
+float relief_slope(uint slot, vec3 pos, vec3 normal, vec3 dir, float h, float centre, vec3 analytic) {
+    float plus;
+    float minus;
+    bool p = relief_height(slot, pos + dir * h, normal, plus);
+    bool m = relief_height(slot, pos - dir * h, normal, minus);
+    if (p && m) {
+        return (plus - minus) / (2.0 * h);
+    } else if (p) {
+        return (plus - centre) / h;
+    } else if (m) {
+        return (centre - minus) / h;
+    }
+    return dot(analytic, dir);
+}
+
 // Albedo of a store-baked texture at an object-space surface point with its object-space
-// geometric normal, and the gradient (object space) of its relief height, 0 without relief.
-// A point whose voxels are not stored (never expected on the surface) shows magenta, so a
-// hole is seen, not hidden. A store with relief carries the relief code in alpha, so its
-// coverage comes from the sample lookup, not from alpha.
+// geometric normal, and the gradient (object space, in the surface's tangent plane) of its
+// relief height, 0 without relief. A point whose voxels are not stored (never expected on the
+// surface) shows magenta, so a hole is seen, not hidden. A store with relief carries the relief
+// code in alpha, so its coverage comes from the sample lookup, not from alpha.
 vec3 store_albedo(uint slot, vec3 pos, vec3 normal, out vec3 relief_gradient) {
     relief_gradient = vec3(0.0);
     float relief = store_records[slot].relief;
@@ -147,7 +183,14 @@ vec3 store_albedo(uint slot, vec3 pos, vec3 normal, out vec3 relief_gradient) {
         if (s.coverage <= 0.0) {
             return vec3(1.0, 0.0, 1.0);
         }
-        relief_gradient = relief * s.gradient / s.coverage;
+        float centre = s.sum.a / s.coverage;
+        vec3 analytic = s.gradient / s.coverage;
+        vec3 t;
+        vec3 b;
+        make_frame(normalize(normal), t, b);
+        float h = 1.0 / float(store_resolution(slot));
+        relief_gradient = relief * (t * relief_slope(slot, pos, normal, t, h, centre, analytic) +
+                                    b * relief_slope(slot, pos, normal, b, h, centre, analytic));
         return albedo_of_srgb(s.sum.rgb / s.coverage);
     }
     uint kind = store_records[slot].kind;

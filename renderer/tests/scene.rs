@@ -1340,11 +1340,16 @@ fn explosion_scene_loads() {
     assert_eq!(s.instances.iter().filter(|i| i.piece.is_some()).count(), 14);
     let e = s.explosion.expect("an explosion");
     assert_eq!((e.speed, e.start), (1.6, 0.25));
+    assert_eq!(s.render.spp, 32);
     let a = s.animation.expect("an animation");
     assert_eq!((a.frames, a.width, a.height, a.spp), (16, 320, 240, 8));
     assert_eq!((s.render.width, s.render.height), (640, 480));
     let synthesized = s.materials[0].texture.as_ref().unwrap();
     assert_eq!(synthesized.kind, SolidTextureKind::Synthesized);
+    assert!(
+        synthesized.synthesized.as_ref().unwrap().relief > 0.0,
+        "the main job shows the matter's relief"
+    );
 }
 
 /// The lowest point of every piece, along the explosion's "up", in each frame of the scene's

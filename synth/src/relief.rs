@@ -56,10 +56,11 @@ pub fn relief_pixels_per_alpha(clamp: f32) -> f32 {
     2.0 * clamp * 255.0 / f32::from(255 - RELIEF_CODE_MIN)
 }
 
-/// The relief channel of `image` (tiling, as solid exemplars do).
-pub fn relief_map(image: &Exemplar) -> ReliefMap {
+/// The relief channel of `image`, whose distances wrap when it tiles (`toroidal`; solid
+/// exemplars always do).
+pub fn relief_map(image: &Exemplar, toroidal: bool) -> ReliefMap {
     let rgb: Vec<[f32; 3]> = image.rgb.iter().map(|c| c.map(f32::from)).collect();
-    let map = feature_map(&rgb, image.width, image.height, true, 100);
+    let map = feature_map(&rgb, image.width, image.height, toroidal, 100);
     ReliefMap {
         codes: map
             .distance
@@ -112,7 +113,7 @@ mod tests {
             height: h,
             rgb,
         };
-        let map = relief_map(&image);
+        let map = relief_map(&image, true);
         let row: Vec<u8> = (0..w as usize)
             .map(|x| map.codes[10 * w as usize + x])
             .collect();

@@ -17,7 +17,11 @@ impl SolidRelief {
     /// The relief of every image of `exemplars`.
     pub fn of(exemplars: &SolidExemplars) -> SolidRelief {
         SolidRelief {
-            maps: exemplars.images.iter().map(relief_map).collect(),
+            maps: exemplars
+                .images
+                .iter()
+                .map(|e| relief_map(e, true))
+                .collect(),
         }
     }
 

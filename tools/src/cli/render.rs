@@ -1,16 +1,18 @@
 //! `lazysolid render SCENE.toml -o out.png`: path-trace a scene file on the device.
 
+use super::components::components;
 use super::output::check_writable;
 use super::resolution::Resolution;
 use super::GlobalArgs;
 use anyhow::{bail, ensure, Context};
 use clap::{Args, ValueEnum};
+use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_renderer::output::{
     preview_frame, write_exr, write_gif, write_png, Operator, ToneMap,
 };
 use lazysolid_renderer::render::PathTracer;
-use lazysolid_renderer::scene::Scene;
+use lazysolid_renderer::scene::{Camera, Scene};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -65,6 +67,55 @@ pub struct RenderArgs {
     /// --exr is given, and an animated preview out.gif.
     #[arg(long, value_name = "A..B", value_parser = parse_frames)]
     pub frames: Option<(u32, u32)>,
+    /// Eye position X,Y,Z, overriding the scene camera's: with --look-at and --fov, another
+    /// view of the same scene (a close-up of one crack) without a second scene file.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
+    pub camera: Option<Vec3>,
+    /// Point X,Y,Z the camera looks at, overriding the scene's.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
+    pub look_at: Option<Vec3>,
+    /// Vertical field of view in degrees, in (0, 180), overriding the scene's.
+    #[arg(long, value_name = "DEG")]
+    pub fov: Option<f32>,
+}
+
+fn parse_point(value: &str) -> Result<Vec3, String> {
+    let p: [f32; 3] = components(value, " (e.g. 0.4,1.2,-2)", "a number")?;
+    let p = Vec3::from_array(p);
+    if !p.is_finite() {
+        return Err(format!("{value:?} is not finite"));
+    }
+    Ok(p)
+}
+
+/// The scene's camera with the command line's position, look-at point and field of view.
+fn override_camera(args: &RenderArgs, camera: &mut Camera) -> anyhow::Result<()> {
+    if let Some(p) = args.camera {
+        camera.position = p;
+    }
+    if let Some(p) = args.look_at {
+        camera.look_at = p;
+    }
+    if let Some(fov) = args.fov {
+        ensure!(
+            fov.is_finite() && fov > 0.0 && fov < 180.0,
+            "--fov {fov} is out of range (0, 180) degrees"
+        );
+        camera.fov_y_deg = fov;
+    }
+    let view = camera.look_at - camera.position;
+    ensure!(
+        view.length() > 0.0,
+        "--camera/--look-at: the camera is at the point it looks at ({}), so it has no view direction",
+        camera.position
+    );
+    ensure!(
+        view.normalize().cross(camera.up.normalize()).length() >= 1e-3,
+        "--camera/--look-at: the view direction {} is parallel to the camera's up {}",
+        view.normalize(),
+        camera.up
+    );
+    Ok(())
 }
 
 fn parse_frames(value: &str) -> Result<(u32, u32), String> {
@@ -123,6 +174,7 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     if let Some(seed) = args.seed {
         scene.render.seed = seed;
     }
+    override_camera(args, &mut scene.camera)?;
     let frames: Vec<u32> = args.frames.map_or(vec![], |(a, b)| (a..=b).collect());
     if let Some(last) = frames.iter().chain(&args.frame).max().copied() {
         let Some(animation) = scene.animation else {

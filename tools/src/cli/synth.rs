@@ -9,6 +9,7 @@ use super::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use lazysolid_synth::relief::{relief_map, RELIEF_CODE_MIN};
 use lazysolid_synth::{
     analyze_cached, histogram_distance, jitter_or_default, load_plane, passes_or_default,
     period_repetition, unpack, AnalysisParams, Border, DiskCache, EnergyKernel, EnergyReport,
@@ -49,6 +50,11 @@ pub struct SynthArgs {
     /// before synthesis starts).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Also write the synthesized relief channel as a grey PNG: the exemplar's clamped
+    /// feature distance (features dark, the matter farthest from them white) looked up through
+    /// the synthesized coordinates, as a store's alpha byte carries it for `relief`.
+    #[arg(long, value_name = "PNG")]
+    pub relief_out: Option<PathBuf>,
     #[command(flatten)]
     pub schedule: Schedule,
     #[command(flatten)]
@@ -98,6 +104,15 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     check_writable("-o", &args.output)?;
     check_writable("-o", &coords_path(&args.output))?;
+    if let Some(path) = &args.relief_out {
+        ensure!(
+            path.extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("png")),
+            "--relief-out {}: the relief channel is written as a .png file",
+            path.display()
+        );
+        check_writable("--relief-out", path)?;
+    }
     let exemplar_path = assets::exemplar("EXEMPLAR", &args.exemplar, None)?;
     let border = if args.clamp {
         Border::Clamp
@@ -165,6 +180,21 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     write_png(&args.output, w, h, &colours)?;
     let coords_out = coords_path(&args.output);
     write_png(&coords_out, w, h, &coords)?;
+    let relief = match &args.relief_out {
+        Some(path) => {
+            let map = relief_map(&exemplar, !args.clamp);
+            let grey: Vec<[u8; 3]> = window_coords
+                .iter()
+                .map(|&c| {
+                    let (x, y) = unpack(c);
+                    [map.codes[(y * exemplar.width + x) as usize]; 3]
+                })
+                .collect();
+            write_png(path, w, h, &grey)?;
+            Some((path, map.clamp))
+        }
+        None => None,
+    };
 
     let start = Instant::now();
     let energy = EnergyKernel::new(&gpu)?;
@@ -240,5 +270,11 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.output.display(),
         coords_out.display()
     );
+    if let Some((path, clamp)) = relief {
+        println!(
+            "wrote {} (relief channel: feature distance -{clamp}..{clamp} px as codes {RELIEF_CODE_MIN}..255)",
+            path.display()
+        );
+    }
     Ok(())
 }

@@ -55,6 +55,29 @@ fn render_refuses_bad_scenes_and_arguments() {
         .arg("-o")
         .arg(&png));
     assert!(!ok && err.contains("missing.toml"), "{err}");
+    // Another view of a scene: a camera that looks at itself, a field of view out of range and
+    // a point that is not X,Y,Z are refused before anything is written.
+    for (args, want) in [
+        (
+            &["--camera", "0,1,2", "--look-at", "0,1,2"][..],
+            "the camera is at the point it looks at",
+        ),
+        (&["--fov", "180"][..], "--fov 180 is out of range"),
+        (&["--look-at", "1,2"][..], "is not X,Y,Z"),
+        (
+            &["--camera", "0,5,0", "--look-at", "0,0,0"][..],
+            "parallel to the camera's up",
+        ),
+    ] {
+        let (ok, _, err) = run(lazysolid()
+            .arg("render")
+            .arg(repo("scenes/test/interior.toml"))
+            .arg("-o")
+            .arg(&png)
+            .args(args));
+        assert!(!ok && err.contains(want), "{args:?}: {err}");
+        assert!(!png.exists(), "{args:?}");
+    }
 }
 
 /// `render --frame K --frames A..B` renders the still and the sequence from one bake: the still

@@ -59,6 +59,50 @@ fn synth_writes_texture_and_coordinate_map_with_metrics() {
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
 }
 
+/// `--relief-out`: the relief channel through the synthesized coordinates, a grey PNG of the
+/// window's size whose codes vary (features low, far from them high); a path that is not a
+/// PNG is refused before any work.
+#[test]
+fn synth_writes_the_relief_channel() {
+    let dir = tempfile::tempdir().unwrap();
+    let cache = tempfile::tempdir().unwrap();
+    let synth = |relief: &str| {
+        run(lazysolid()
+            .current_dir(dir.path())
+            .args(["synth", "cracked", "--res", "64x40", "--seed", "2"])
+            .args([
+                "--energy-samples",
+                "64",
+                "--relief-out",
+                relief,
+                "-o",
+                "c.png",
+            ])
+            .env("LAZYSOLID_CACHE_DIR", cache.path())
+            .env("LAZYSOLID_VALIDATION", "1"))
+    };
+    let (ok, stdout, err) = synth("c.relief.png");
+    assert!(ok, "{err}");
+    assert!(
+        stdout.contains("relief channel: feature distance"),
+        "{stdout}"
+    );
+    let relief = image::open(dir.path().join("c.relief.png"))
+        .unwrap()
+        .to_rgb8();
+    assert_eq!(relief.dimensions(), (64, 40));
+    assert!(relief.pixels().all(|p| p[0] == p[1] && p[1] == p[2]));
+    let codes: std::collections::BTreeSet<u8> = relief.pixels().map(|p| p[0]).collect();
+    assert!(codes.len() > 16, "{codes:?}");
+    assert!(codes.iter().all(|&c| c >= 2), "{codes:?}");
+    let (ok, _, err) = synth("c.relief.txt");
+    assert!(!ok);
+    assert!(
+        err.contains("--relief-out c.relief.txt") && err.contains(".png"),
+        "{err}"
+    );
+}
+
 #[test]
 fn synth_names_a_bad_exemplar_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();

@@ -20,8 +20,8 @@ use clap::{Args, ValueEnum};
 use lazysolid_compute::hash::perfect::{PerfectAccess, PerfectConstruction};
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::store::{
-    ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, PerfectStore, SparseStore,
-    StoreKernels, TileTree, TileTreeConfig, TimedLookup,
+    ColourSource, Filter, HashStore, LookupMode, OctreeConfig, OctreeStore, PerfectStore,
+    SparseStore, StoreKernels, TileTree, TileTreeConfig, TimedLookup,
 };
 use lazysolid_compute::voxel::{VoxelGrid, VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
@@ -104,6 +104,11 @@ pub struct TexturesArgs {
     /// 8.8.4.4); default: the store's choice for R, and all-4 and all-2 trees where they fit.
     #[arg(long, value_delimiter = ',')]
     pub octree: Vec<String>,
+    /// Also time, on every trilinear (TileTree: bilinear) structure, the sample lookup a
+    /// texture with `relief` reads: the filtered sum, the stored corners' weight and the
+    /// gradient of the alpha byte, which carries the relief channel (0 extra bytes per texel).
+    #[arg(long)]
+    pub relief: bool,
 }
 
 /// One measured structure.
@@ -114,8 +119,12 @@ struct Measured {
     filter: Filter,
     thesis: Option<ThesisRow>,
     bytes: u64,
+    /// Texels stored.
+    texels: u64,
     build_ms: f64,
     lookup_ms: f64,
+    /// The relief's sample lookup of the viewpoint (filtered structures, with --relief).
+    relief_ms: Option<f64>,
     missing: usize,
 }
 
@@ -174,6 +183,7 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         dir,
         view: &view,
         measured: Vec::new(),
+        relief: args.relief,
     };
     let source = ColourSource::Marble { seed: args.seed };
     let octree_name = |c: &OctreeConfig| {
@@ -403,6 +413,8 @@ struct Session<'a> {
     dir: PathBuf,
     view: &'a Viewpoint,
     measured: Vec<Measured>,
+    /// Whether filtered structures also time the relief's sample lookup.
+    relief: bool,
 }
 
 impl Session<'_> {
@@ -433,6 +445,20 @@ impl Session<'_> {
         )?;
         let colours = lookup.results()?;
         let missing = colours.iter().filter(|c| c.w == 0.0).count();
+        let relief_ms = if self.relief && filter == Filter::Trilinear {
+            let sample =
+                store.timed_lookup_mode(&view.points, &view.normals, LookupMode::Sample)?;
+            Some(self.bench.case(
+                "viewpoint lookups, relief sample",
+                view.points.len() as u64,
+                &label,
+                Throughput::Elements,
+                None,
+                || Ok(sample.run()?),
+            )?)
+        } else {
+            None
+        };
         let file = self.dir.join(format!("{}.png", slug(&label)));
         rgb_image(
             &file,
@@ -446,8 +472,10 @@ impl Session<'_> {
             filter,
             thesis,
             bytes: store.bytes(),
+            texels: store.len(),
             build_ms,
             lookup_ms,
+            relief_ms,
             missing,
         });
         Ok(())
@@ -539,15 +567,24 @@ fn summary(
         args.res.height
     );
     println!(
-        "{:<34} {:>10} {:>10} {:>8} {:>12} {:>10} {:>10}",
-        "structure", "MB", "thesis MB", "vs", "lookup ms", "speed", "thesis"
+        "{:<34} {:>10} {:>8} {:>10} {:>8} {:>12} {:>10} {:>10} {:>10}",
+        "structure",
+        "MB",
+        "B/texel",
+        "thesis MB",
+        "vs",
+        "lookup ms",
+        "speed",
+        "thesis",
+        "relief ms"
     );
     for m in measured {
         let speed = base_ms(m.filter).map(|b| b / m.lookup_ms);
         println!(
-            "{:<34} {:>10.2} {:>10} {:>8} {:>12.3} {:>10} {:>10}",
+            "{:<34} {:>10.2} {:>8.2} {:>10} {:>8} {:>12.3} {:>10} {:>10} {:>10}",
             m.label,
             m.bytes as f64 / 1e6,
+            m.bytes as f64 / m.texels.max(1) as f64,
             thesis_mb(m).map(|t| format!("{t:.1}")).unwrap_or_default(),
             thesis_mb(m)
                 .map(|t| format!("{:+.0}%", (m.bytes as f64 / 1e6 / t - 1.0) * 100.0))
@@ -557,8 +594,14 @@ fn summary(
             m.thesis
                 .map(|t| format!("{:.2}x", t.speedup()))
                 .unwrap_or_default(),
+            m.relief_ms.map(|r| format!("{r:.3}")).unwrap_or_default(),
         );
     }
+    println!(
+        "B/texel: the structure's bytes per stored texel (a relief channel adds none: it is the \
+         texel's alpha byte); relief ms: the sample lookup a texture with relief reads (sum, \
+         coverage and alpha gradient), with --relief"
+    );
     for m in measured {
         if let Some(t) = m.thesis {
             println!("  {} stands for the thesis' {}", m.label, t.label());
