@@ -108,7 +108,7 @@ pub struct TexturesArgs {
     /// texture with `relief` reads: the filtered sum, the stored corners' weight and the
     /// gradient of the alpha byte, which carries the relief channel (0 extra bytes per texel).
     #[arg(long)]
-    pub relief: bool,
+    pub relief_lookups: bool,
 }
 
 /// One measured structure.
@@ -123,7 +123,7 @@ struct Measured {
     texels: u64,
     build_ms: f64,
     lookup_ms: f64,
-    /// The relief's sample lookup of the viewpoint (filtered structures, with --relief).
+    /// The relief's sample lookup of the viewpoint (filtered structures, with --relief-lookups).
     relief_ms: Option<f64>,
     missing: usize,
 }
@@ -183,7 +183,7 @@ pub fn run(args: &TexturesArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         dir,
         view: &view,
         measured: Vec::new(),
-        relief: args.relief,
+        relief: args.relief_lookups,
     };
     let source = ColourSource::Marble { seed: args.seed };
     let octree_name = |c: &OctreeConfig| {
@@ -600,7 +600,7 @@ fn summary(
     println!(
         "B/texel: the structure's bytes per stored texel (a relief channel adds none: it is the \
          texel's alpha byte); relief ms: the sample lookup a texture with relief reads (sum, \
-         coverage and alpha gradient), with --relief"
+         coverage and alpha gradient), with --relief-lookups"
     );
     for m in measured {
         if let Some(t) = m.thesis {
