@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/fetch-assets.sh
-cargo build --release --locked -p lazysolid-tools --no-default-features  # the peers are for benchmarks
+cargo build --release --locked -p lazysolid-tools
 bin=target/release/lazysolid
 "$bin" device
 mkdir -p results

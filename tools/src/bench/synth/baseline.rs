@@ -1,20 +1,10 @@
 //! The baseline: Embark's `texture-synthesis` crate (multiresolution stochastic synthesis on the
-//! CPU), run with its defaults except the seed, the output size and the thread count. Built
-//! with the tools' `peers` feature (on by default; the main job's build leaves it out, see
-//! `baseline_absent.rs`).
+//! CPU), run with its defaults except the seed, the output size and the thread count.
 
 use anyhow::Context;
 use lazysolid_synth::{pack, Exemplar, MAX_EXEMPLAR_SIDE};
 use texture_synthesis::image::{DynamicImage, RgbImage, Rgba, RgbaImage};
 use texture_synthesis::{Dims, GeneratedImage, Session};
-
-/// One run's result, before its pixels and coordinates are read.
-pub type Generated = GeneratedImage;
-
-/// Whether the baseline was built in: it was.
-pub fn check_available() -> anyhow::Result<()> {
-    Ok(())
-}
 
 /// The settings the baseline runs with, as the bench reports them.
 pub fn settings(threads: usize) -> String {
@@ -41,7 +31,7 @@ pub fn synthesize(
     size: u32,
     seed: u64,
     threads: usize,
-) -> anyhow::Result<Generated> {
+) -> anyhow::Result<GeneratedImage> {
     let bytes: Vec<u8> = exemplar.rgb.iter().flatten().copied().collect();
     let image = RgbImage::from_raw(exemplar.width, exemplar.height, bytes)
         .context("exemplar size does not match its pixels")?;
@@ -56,7 +46,7 @@ pub fn synthesize(
 }
 
 /// The pixels and the coordinate map of a `size`² output of [`synthesize`] (untimed).
-pub fn output(generated: Generated, exemplar: &Exemplar, size: u32) -> anyhow::Result<Output> {
+pub fn output(generated: GeneratedImage, exemplar: &Exemplar, size: u32) -> anyhow::Result<Output> {
     const _: () = assert!(MAX_EXEMPLAR_SIDE <= 4096, "positions are stored in 12 bits");
     let transform = generated.get_coordinate_transform();
     let out = generated.into_image().to_rgb8();

@@ -16,10 +16,6 @@
 //!
 //! The exemplar analysis is its own case per exemplar: the papers treat it as a precomputation.
 
-#[cfg(feature = "peers")]
-mod baseline;
-#[cfg(not(feature = "peers"))]
-#[path = "baseline_absent.rs"]
 mod baseline;
 mod quality;
 
@@ -165,7 +161,6 @@ impl EndToEnd<'_> {
 
 /// Runs the suite.
 pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
-    baseline::check_available()?;
     crate::bench::plot::ensure_font()?;
     ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
     ensure!(!args.res.is_empty(), "--res names no size");
