@@ -132,27 +132,6 @@ vec4 store_tiletree_nearest(TileTreeParams p, vec3 pos, vec3 n) {
     return unpackUnorm4x8(U32Ptr(p.map).v[(corner.y + xy.y) * p.map_width + corner.x + xy.x]);
 }
 
-vec4 store_tiletree_bilinear(TileTreeParams p, vec3 pos, vec3 n) {
-    uvec2 corner;
-    uvec2 size;
-    vec2 t;
-    uint face;
-    if (!store_tiletree_tile(p, pos, n, corner, size, t, face)) {
-        return vec4(0.0);
-    }
-    vec2 i = clamp(floor(t), vec2(0.0), vec2(size));
-    precise vec2 f = clamp(t - i, vec2(0.0), vec2(1.0));
-    uvec2 xy = uvec2(i);
-    U32Ptr map = U32Ptr(p.map);
-    uint base = (corner.y + xy.y) * p.map_width + corner.x + xy.x;
-    vec4 c00 = unpackUnorm4x8(map.v[base]);
-    vec4 c10 = unpackUnorm4x8(map.v[base + 1u]);
-    vec4 c01 = unpackUnorm4x8(map.v[base + p.map_width]);
-    vec4 c11 = unpackUnorm4x8(map.v[base + p.map_width + 1u]);
-    precise vec4 r = (c00 * (1.0 - f.x) + c10 * f.x) * (1.0 - f.y) + (c01 * (1.0 - f.x) + c11 * f.x) * f.y;
-    return r;
-}
-
 // The bilinear lookup with its coverage (1 on a tile, whose texels are all written; 0 in
 // empty space) and the gradient of alpha: in the face's plane (axes b, c), 0 along its normal.
 StoreSample store_tiletree_sample(TileTreeParams p, vec3 pos, vec3 n) {
@@ -183,6 +162,10 @@ StoreSample store_tiletree_sample(TileTreeParams p, vec3 pos, vec3 n) {
     s.gradient[(a + 1u) % 3u] = d_b;
     s.gradient[(a + 2u) % 3u] = d_c;
     return s;
+}
+
+vec4 store_tiletree_bilinear(TileTreeParams p, vec3 pos, vec3 n) {
+    return store_tiletree_sample(p, pos, n).sum;
 }
 
 #endif

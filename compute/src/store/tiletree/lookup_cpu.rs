@@ -126,24 +126,15 @@ fn bilinear_footprint(t: &TileRead<'_, '_>) -> ((u32, u32), f32, f32) {
 /// The lookup at `pos` ([0, 1]³) with surface normal `normal`; (0, 0, 0, 0) in empty space.
 /// `Filter::Trilinear` means the tile's bilinear filter (the TileTree's filtered lookup).
 pub fn lookup_cpu(host: &TileTreeHost<'_>, pos: Vec3, normal: Vec3, filter: Filter) -> Vec4 {
+    if filter == Filter::Trilinear {
+        return sample_cpu(host, pos, normal).sum;
+    }
     let Some(t) = tile_read(host, pos, normal) else {
         return Vec4::ZERO;
     };
-    match filter {
-        Filter::Nearest => {
-            let x = ((t.tb + 0.5).floor().clamp(1.0, t.columns as f32)) as u32;
-            let y = ((t.tc + 0.5).floor().clamp(1.0, t.rows as f32)) as u32;
-            unpack_rgba8(t.texel(x, y))
-        }
-        Filter::Trilinear => {
-            let ((x, y), fx, fy) = bilinear_footprint(&t);
-            let c00 = unpack_rgba8(t.texel(x, y));
-            let c10 = unpack_rgba8(t.texel(x + 1, y));
-            let c01 = unpack_rgba8(t.texel(x, y + 1));
-            let c11 = unpack_rgba8(t.texel(x + 1, y + 1));
-            (c00 * (1.0 - fx) + c10 * fx) * (1.0 - fy) + (c01 * (1.0 - fx) + c11 * fx) * fy
-        }
-    }
+    let x = ((t.tb + 0.5).floor().clamp(1.0, t.columns as f32)) as u32;
+    let y = ((t.tc + 0.5).floor().clamp(1.0, t.rows as f32)) as u32;
+    unpack_rgba8(t.texel(x, y))
 }
 
 /// The sample lookup (`store_tiletree_sample`): the bilinear sum, coverage 1 on a tile (its
