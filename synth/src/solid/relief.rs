@@ -3,6 +3,7 @@
 //! packed texels at the voxel's triple, so the relief code follows the colour's rule.
 
 use super::roles::{SolidExemplars, ROLES};
+use super::volume::median3;
 use crate::coords::unpack;
 use crate::relief::{relief_map, ReliefMap, NO_RELIEF};
 
@@ -55,9 +56,8 @@ pub fn voxel_texel(exemplars: &SolidExemplars, relief: Option<&SolidRelief>, t: 
         role_texel(exemplars, relief, r, x, y)
     });
     (0..4).fold(0, |acc, byte| {
-        let sh = 8 * byte;
-        let [a, b, d] = c.map(|w| (w >> sh) & 0xff);
-        acc | a.max(b).min(a.min(b).max(d)) << sh
+        let [a, b, d] = c.map(|w| (w >> (8 * byte)) as u8);
+        acc | u32::from(median3(a, b, d)) << (8 * byte)
     })
 }
 

@@ -11,8 +11,7 @@
 
 use super::plan::VolumeBox;
 use super::relief::{voxel_texel, SolidRelief};
-use super::roles::{SolidExemplars, ROLES};
-use crate::coords::unpack;
+use super::roles::SolidExemplars;
 use crate::{SynthError, SynthResult};
 
 /// Largest side of a synthesized box.
@@ -69,17 +68,15 @@ impl SolidSynthesis {
     }
 }
 
-/// The colour of a voxel with triple `t`: per channel the median of the three exemplars.
+/// The colour of a voxel with triple `t`: per channel the median of the three exemplars (the
+/// RGB of [`voxel_texel`], the rule the stores receive).
 pub fn voxel_colour(exemplars: &SolidExemplars, t: [u32; 3]) -> [u8; 3] {
-    let c: [[u8; 3]; ROLES] = std::array::from_fn(|r| {
-        let (x, y) = unpack(t[r]);
-        exemplars.role(r).at(x, y)
-    });
-    std::array::from_fn(|ch| median3(c[0][ch], c[1][ch], c[2][ch]))
+    let w = voxel_texel(exemplars, None, t);
+    [w as u8, (w >> 8) as u8, (w >> 16) as u8]
 }
 
 /// The middle one of three values.
-fn median3(a: u8, b: u8, c: u8) -> u8 {
+pub(super) fn median3(a: u8, b: u8, c: u8) -> u8 {
     a.max(b).min(a.min(b).max(c))
 }
 
