@@ -7,7 +7,7 @@ use super::appearance::{shared_appearance, Appearance, APPEARANCE_DIMS};
 use super::coherence::coherence_sets;
 use super::error::{SynthError, SynthResult};
 use super::exemplar::Exemplar;
-use super::feature::{feature_map, DEFAULT_FEATURE_WEIGHT, MAX_FEATURE_WEIGHT};
+use super::feature::{feature_map, FeatureMask, DEFAULT_FEATURE_WEIGHT, MAX_FEATURE_WEIGHT};
 use super::neighbourhood::{exemplar_neighbourhoods, NEIGHBOURHOOD_DIMS};
 use super::stack::{gaussian_stack, scalar_stack};
 
@@ -40,6 +40,8 @@ pub struct AnalysisParams {
     /// colour's standard deviation (`synth/feature.rs`; 0: colour only). The multiscale
     /// analysis, whose exemplars are related by colour offsets, ignores it.
     pub feature_weight: u32,
+    /// Which threshold finds the features the channel measures distances to.
+    pub feature_mask: FeatureMask,
 }
 
 impl AnalysisParams {
@@ -82,6 +84,7 @@ impl Default for AnalysisParams {
             spread: DEFAULT_COHERENCE_SPREAD,
             toroidal: true,
             feature_weight: DEFAULT_FEATURE_WEIGHT,
+            feature_mask: FeatureMask::Auto,
         }
     }
 }
@@ -139,6 +142,7 @@ pub fn analyze(exemplar: &Exemplar, params: &AnalysisParams) -> SynthResult<Exem
         h,
         params.toroidal,
         params.feature_weight,
+        params.feature_mask,
     );
     let features = map
         .active()

@@ -35,6 +35,7 @@ pub fn analysis_key(exemplar: &Exemplar, params: &AnalysisParams) -> CacheKey {
         .bool("toroidal", params.toroidal)
         .u32("feature weight", params.feature_weight)
         .u32("feature rule", super::feature::FEATURE_RULE)
+        .u32("feature mask", params.feature_mask.code())
         .u32("appearance dims", APPEARANCE_DIMS as u32)
         .f64("quantization", APPEARANCE_QUANT_MAX)
         .u32("coherence pool", MAX_POOL as u32)

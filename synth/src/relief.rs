@@ -20,7 +20,7 @@
 //! same agreement of the three slices.
 
 use crate::exemplar::Exemplar;
-use crate::feature::feature_map;
+use crate::feature::{feature_map, FeatureMask};
 
 /// Smallest relief code: alpha values below are the octree's tags.
 pub const RELIEF_CODE_MIN: u8 = 2;
@@ -58,9 +58,9 @@ pub fn relief_pixels_per_alpha(clamp: f32) -> f32 {
 
 /// The relief channel of `image`, whose distances wrap when it tiles (`toroidal`; solid
 /// exemplars always do).
-pub fn relief_map(image: &Exemplar, toroidal: bool) -> ReliefMap {
+pub fn relief_map(image: &Exemplar, toroidal: bool, mask: FeatureMask) -> ReliefMap {
     let rgb: Vec<[f32; 3]> = image.rgb.iter().map(|c| c.map(f32::from)).collect();
-    let map = feature_map(&rgb, image.width, image.height, toroidal, 100);
+    let map = feature_map(&rgb, image.width, image.height, toroidal, 100, mask);
     ReliefMap {
         codes: map
             .distance
@@ -113,7 +113,7 @@ mod tests {
             height: h,
             rgb,
         };
-        let map = relief_map(&image, true);
+        let map = relief_map(&image, true, FeatureMask::Auto);
         let row: Vec<u8> = (0..w as usize)
             .map(|x| map.codes[10 * w as usize + x])
             .collect();

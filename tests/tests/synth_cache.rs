@@ -2,6 +2,7 @@
 //! change of pixels or parameters misses, and a damaged entry is recomputed (never trusted,
 //! never a panic). Every test uses its own temporary cache folder.
 
+use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::{
     analysis_key, analyze, analyze_cached, AnalysisParams, CacheOutcome, DiskCache, Exemplar,
     ExemplarAnalysis, ANALYSIS_CACHE_KIND,
@@ -65,7 +66,7 @@ fn changed_parameters_or_pixels_miss() {
     let base = AnalysisParams::default();
     let mut changed_pixel = exemplar.clone();
     changed_pixel.rgb[617][1] ^= 1;
-    let cases: [(&Exemplar, AnalysisParams); 6] = [
+    let cases: [(&Exemplar, AnalysisParams); 7] = [
         (exemplar, base),
         (exemplar, AnalysisParams { spread: 8, ..base }),
         (exemplar, AnalysisParams { k: 3, ..base }),
@@ -73,6 +74,13 @@ fn changed_parameters_or_pixels_miss() {
             exemplar,
             AnalysisParams {
                 feature_weight: 0,
+                ..base
+            },
+        ),
+        (
+            exemplar,
+            AnalysisParams {
+                feature_mask: FeatureMask::MinimumError,
                 ..base
             },
         ),

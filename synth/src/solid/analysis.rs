@@ -75,6 +75,7 @@ pub fn analyze_solid(exemplars: &SolidExemplars) -> SolidAnalysis {
                 side,
                 true,
                 exemplars.feature_weight,
+                exemplars.feature_mask,
             )
         })
         .collect();

@@ -42,6 +42,7 @@ pub fn candidates_key(exemplars: &SolidExemplars, params: &CandidateParams) -> C
     }
     b.u32("feature weight", exemplars.feature_weight)
         .u32("feature rule", crate::feature::FEATURE_RULE)
+        .u32("feature mask", exemplars.feature_mask.code())
         .u32("strip", params.strip)
         .u32("s", params.s)
         .bool("coherence", params.coherence)

@@ -21,7 +21,7 @@ impl SolidRelief {
             maps: exemplars
                 .images
                 .iter()
-                .map(|e| relief_map(e, true))
+                .map(|e| relief_map(e, true, exemplars.feature_mask))
                 .collect(),
         }
     }

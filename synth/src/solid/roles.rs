@@ -15,7 +15,7 @@
 //! neighbourhoods intersect): `E_x`/`E_y` share z (both along v), `E_x`/`E_z` share y (u of
 //! `E_x`, v of `E_z`), `E_y`/`E_z` share x (both along u).
 
-use crate::feature::{DEFAULT_FEATURE_WEIGHT, MAX_FEATURE_WEIGHT};
+use crate::feature::{FeatureMask, DEFAULT_FEATURE_WEIGHT, MAX_FEATURE_WEIGHT};
 use crate::{Exemplar, SynthError, SynthResult};
 
 /// Number of roles (and of world axes).
@@ -65,6 +65,8 @@ pub struct SolidExemplars {
     /// Weight of the feature-distance channel in the appearance space, in percent of the
     /// colour's standard deviation (`synth/feature.rs`; 0: colour only).
     pub feature_weight: u32,
+    /// Which threshold finds the features (`synth/feature.rs`).
+    pub feature_mask: FeatureMask,
 }
 
 impl SolidExemplars {
@@ -112,6 +114,7 @@ impl SolidExemplars {
             images,
             role_image,
             feature_weight: DEFAULT_FEATURE_WEIGHT,
+            feature_mask: FeatureMask::Auto,
         })
     }
 
@@ -132,6 +135,12 @@ impl SolidExemplars {
         }
         self.feature_weight = percent;
         Ok(self)
+    }
+
+    /// The same exemplars with their features found by `mask`.
+    pub fn with_feature_mask(mut self, mask: FeatureMask) -> SolidExemplars {
+        self.feature_mask = mask;
+        self
     }
 
     /// Side of every exemplar.

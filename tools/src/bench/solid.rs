@@ -25,6 +25,8 @@
 //!   2026-12-03);
 //! - `no feature`: the appearance space of colour alone, without the feature-distance
 //!   channel (`synth/feature.rs`; the rule before 2026-12-03, second session);
+//! - `otsu mask`: the features found by Otsu's split always, as before 2026-12-05 (the rule
+//!   takes the minimum-error split where Otsu's takes part of the body; `synth/feature.rs`);
 //! - `keep current`: the correction's current triple competes even when it is none of the
 //!   gathered candidates (the rule before 2026-12-03);
 //! - `crossbar only`: candidates without the coherence filter (each pixel's 12 smallest
@@ -46,6 +48,7 @@ use clap::Args;
 use lazysolid_compute::atomic_file::write_bytes_atomically;
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_synth::cache::{CacheOutcome, DiskCache};
+use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::solid::{
     analyze_solid, axis_quality, candidates_key, oblique, role_scorers, slice, AxisQuality,
     CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, SolidExemplars, SolidSynthesis,
@@ -119,8 +122,8 @@ pub struct SolidArgs {
     #[arg(long)]
     pub quick: bool,
     /// Score the default synthesis, the colour rules and the 2D synthesis only, without the
-    /// five ablation syntheses (keep current, crossbar only, no balance, no feature, the
-    /// finest level's other correction order): a
+    /// six ablation syntheses (keep current, crossbar only, no balance, no feature, Otsu's
+    /// mask, the finest level's other correction order): a
     /// table of many exemplars at 128³ in minutes instead of an hour.
     #[arg(long)]
     pub no_ablations: bool,
@@ -568,6 +571,19 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     "no feature",
                     q(&featureless.synthesis, &featureless.colours)?,
                     Some(featureless.consistency),
+                );
+                // The mask rule's ablation: Otsu's split always (the minimum-error one is
+                // taken by the rule where Otsu's takes part of the body; synth/feature.rs).
+                let otsu = synthesize_cube(
+                    &gpu,
+                    exemplars.clone().with_feature_mask(FeatureMask::Otsu),
+                    &request,
+                    Some(&cache),
+                )?;
+                push(
+                    "otsu mask",
+                    q(&otsu.synthesis, &otsu.colours)?,
+                    Some(otsu.consistency),
                 );
                 // The finest level's other correction order: ordered subpasses when the
                 // default is parallel, and the reverse.

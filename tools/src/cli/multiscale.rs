@@ -123,6 +123,7 @@ impl GraphOptions {
                 toroidal: true,
                 // Ignored: the multiscale appearance space is colour only.
                 feature_weight: 0,
+                ..AnalysisParams::default()
             },
         )?;
         Ok(Analysed {

@@ -131,7 +131,14 @@ fn feature_pictures(exemplars: &SolidExemplars) -> FeatureReport {
     for image in &exemplars.images {
         let m = image.width;
         let colours: Vec<[f32; 3]> = image.rgb.iter().map(|p| p.map(f32::from)).collect();
-        let map = feature_map(&colours, m, m, true, exemplars.feature_weight);
+        let map = feature_map(
+            &colours,
+            m,
+            m,
+            true,
+            exemplars.feature_weight,
+            exemplars.feature_mask,
+        );
         lines.push(map.describe(&image.source, exemplars.feature_weight));
         let (w, h, picture) = map.picture(&image.rgb, m, m);
         width = w;
@@ -377,7 +384,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.fit.into(),
         args.exemplar_side,
     )?;
-    let exemplars = exemplars.with_feature_weight(args.features.feature_weight)?;
+    let exemplars = exemplars
+        .with_feature_weight(args.features.feature_weight)?
+        .with_feature_mask(args.features.feature_mask.into());
     let candidate_params = CandidateParams {
         strip: args.strip,
         s: args.s,

@@ -131,6 +131,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         spread: args.coherence.spread,
         toroidal: !args.clamp,
         feature_weight: args.features.feature_weight,
+        feature_mask: args.features.feature_mask.into(),
     };
     let (analysis, cached) = analyze_cached(&exemplar, &analysis_params, cache.as_ref())?;
     let analysis_s = start.elapsed().as_secs_f64();
@@ -182,7 +183,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     write_png(&coords_out, w, h, &coords)?;
     let relief = match &args.relief_out {
         Some(path) => {
-            let map = relief_map(&exemplar, !args.clamp);
+            let map = relief_map(&exemplar, !args.clamp, analysis_params.feature_mask);
             let grey: Vec<[u8; 3]> = window_coords
                 .iter()
                 .map(|&c| {
@@ -226,6 +227,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             exemplar.height,
             analysis_params.toroidal,
             analysis_params.feature_weight,
+            analysis_params.feature_mask,
         );
         println!(
             "{}",

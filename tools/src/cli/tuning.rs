@@ -2,7 +2,8 @@
 //! groups in, so a flag has one name, one parser and one help text wherever it appears, under
 //! the help heading "Synthesis tuning".
 
-use clap::Args;
+use clap::{Args, ValueEnum};
+use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::{DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY};
 
 /// The per-level schedule of the pyramid synthesis: how strongly each level is jittered and
@@ -53,6 +54,33 @@ pub struct Features {
     /// docs/solid.md)
     #[arg(long, default_value_t = lazysolid_synth::feature::DEFAULT_FEATURE_WEIGHT)]
     pub feature_weight: u32,
+    /// Which threshold of the local detail finds the features (docs/synthesis.md, "Feature
+    /// distance"; the run prints which one was taken)
+    #[arg(long, value_enum, default_value_t = Mask::Auto)]
+    pub feature_mask: Mask,
+}
+
+/// `--feature-mask`: which threshold finds an exemplar's features.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum Mask {
+    /// Otsu's split, or the minimum-error one where its class is a connected structure that
+    /// reaches clearly farther (or Otsu's split is speckle)
+    #[default]
+    Auto,
+    /// Otsu's split always
+    Otsu,
+    /// The minimum-error (Kittler-Illingworth) split always
+    MinimumError,
+}
+
+impl From<Mask> for FeatureMask {
+    fn from(m: Mask) -> FeatureMask {
+        match m {
+            Mask::Auto => FeatureMask::Auto,
+            Mask::Otsu => FeatureMask::Otsu,
+            Mask::MinimumError => FeatureMask::MinimumError,
+        }
+    }
 }
 
 /// How the volume synthesizer's finest levels run their correction passes.
