@@ -7,6 +7,7 @@
 //!   of the GLSL shading library.
 //! - [`fracture`]: plane cuts and Voronoi fracture of closed meshes into closed, capped pieces.
 //! - [`glint`]: the infinite glint microstructure by example (point and range queries).
+//! - [`normal_map`]: von Mises–Fisher lobes and their spherical EM fit (normal-map filtering).
 //! - [`render`]: the path-tracing kernel's driver (progressive passes into a float film).
 //! - [`output`] and [`diff`]: EXR/PNG writing and FLIP image comparison.
 //! - [`kernels`] and [`shader_constants`]: the renderer's GLSL kernels (`glsl/render/`), compiled
@@ -19,6 +20,7 @@ pub mod diff;
 pub mod fracture;
 pub mod glint;
 pub mod mesh;
+pub mod normal_map;
 pub mod output;
 mod push_registry;
 pub mod render;

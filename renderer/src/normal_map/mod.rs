@@ -1,0 +1,7 @@
+//! Normal-map filtering by mixtures of von Mises–Fisher lobes (seed 000 ch. 7, Han et al.
+//! 2007): the lobe and its closed forms ([`vmf`]) and the spherical EM fit of a texel's
+//! normals with importance sampling of the result ([`mixture`]). CPU reference; what renders
+//! with it comes with the normal-map material.
+
+pub mod mixture;
+pub mod vmf;
