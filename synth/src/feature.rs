@@ -570,6 +570,24 @@ impl FeatureMap {
 mod tests {
     use super::*;
 
+    /// Asserts that `mask` finds more than `share` of the pixels `truth` marks and that more
+    /// than `share` of what it marks is truth.
+    fn assert_recalls(mask: &[bool], truth: impl Fn(u32, u32) -> bool, w: u32, h: u32, share: f64) {
+        let truths = (0..w * h).filter(|&p| truth(p % w, p / w)).count();
+        let found = (0..w * h)
+            .filter(|&p| mask[p as usize] && truth(p % w, p / w))
+            .count();
+        let marked = mask.iter().filter(|&&m| m).count();
+        assert!(
+            found as f64 > share * truths as f64,
+            "{found} of {truths} found"
+        );
+        assert!(
+            found as f64 > share * marked as f64,
+            "{found} of {marked} marked"
+        );
+    }
+
     fn brute(target: &[bool], w: u32, h: u32, toroidal: bool) -> Vec<f64> {
         let (wi, hi) = (w as i64, h as i64);
         (0..hi * wi)
@@ -735,20 +753,9 @@ mod tests {
         );
         assert!(!map.dark && map.reach == 1.0);
         let veins = (0..w * h).filter(|&p| on_vein(p % w, p / w)).count();
-        let found = (0..w * h)
-            .filter(|&p| map.mask[p as usize] && on_vein(p % w, p / w))
-            .count();
-        let marked = map.mask.iter().filter(|&&m| m).count();
         assert!((0.02..0.05).contains(&(veins as f64 / (w * h) as f64)));
         // Most vein pixels found, and most of what is marked is vein.
-        assert!(
-            found as f64 > 0.8 * veins as f64,
-            "{found} of {veins} vein pixels"
-        );
-        assert!(
-            found as f64 > 0.8 * marked as f64,
-            "{found} of {marked} marked"
-        );
+        assert_recalls(&map.mask, on_vein, w, h, 0.8);
         // The body alone: speckle by either threshold, no channel.
         assert!(!feature_map(&plain, w, h, true, 100, FeatureMask::Auto).active());
     }
@@ -833,18 +840,7 @@ mod tests {
             shares(&thin),
             connected_share(&thin.mask, w, h)
         );
-        let found = (0..w * h)
-            .filter(|&p| auto.mask[p as usize] && on_joint(p % w, p / w))
-            .count();
-        let marked = auto.mask.iter().filter(|&&m| m).count();
-        assert!(
-            found as f64 > 0.9 * joints as f64,
-            "{found} of {joints} joint pixels"
-        );
-        assert!(
-            found as f64 > 0.9 * marked as f64,
-            "{found} of {marked} marked"
-        );
+        assert_recalls(&auto.mask, on_joint, w, h, 0.9);
         // Thin lines alone on one ground: Otsu's split is the structure, the rule keeps it.
         let lines: Vec<[f32; 3]> = (0..w * h)
             .map(|p| {
