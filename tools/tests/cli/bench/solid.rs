@@ -45,6 +45,7 @@ fn bench_solid_writes_times_quality_and_figures() {
             "crossbar only",
             "no balance",
             "no feature",
+            "otsu mask",
             "extruded E_z",
             "2d synth",
             // The 64² pattern fitted to the 16² measured (--fit auto).
@@ -66,8 +67,8 @@ fn bench_solid_writes_times_quality_and_figures() {
         "terra.pat 64x64 RGB → Lanczos3 resample 16x16"
     );
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
-    // Ten variants, three axes each, plus the header.
-    assert_eq!(quality.lines().count(), 1 + 10 * 3, "{quality}");
+    // Eleven variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 11 * 3, "{quality}");
     assert!(
         quality
             .lines()
