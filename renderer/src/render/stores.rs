@@ -282,7 +282,7 @@ impl SceneStores {
     /// One bit per `STORE_KIND_*` the scene's stores use: the path tracer compiles only those
     /// lookups.
     pub fn kinds_mask(&self) -> u32 {
-        self.records().iter().fold(0, |mask, r| mask | 1 << r.kind)
+        super::kinds_mask(self.records().iter().map(|r| r.kind))
     }
 
     /// Rewrites the kernel's records from the stores' current buffers (after inserts, which
