@@ -19,6 +19,7 @@ layout(constant_id = PATH_TRACE_TEXTURE_KINDS_ID) const uint TEXTURE_KINDS = 0xf
 #include "render/bsdf.glsl"
 #include "render/glint_bsdf.glsl"
 #include "render/solid_texture.glsl"
+#include "render/image.glsl"
 #include "render/lights.glsl"
 #include "render/environment.glsl"
 #include "store/hash.glsl"
@@ -66,6 +67,17 @@ layout(binding = 12, scalar) readonly buffer StoreRecords { StoreRecord store_re
 layout(binding = 13, scalar) readonly buffer InstanceStores { uint instance_stores[]; };
 // Glint microstructures, one record per glint material (renderer/src/glint/gpu_material.rs).
 layout(binding = 14, scalar) readonly buffer GlintRecords { GlintRecord glint_records[]; };
+// Texture coordinates and MikkTSpace tangents per triangle corner, for meshes that have them
+// (renderer/src/accel/gpu_types.rs, GpuTriangleUvs).
+struct TriangleUvs {
+    vec2 uv[3];
+    uint tangents[3];  // octahedral
+    uint flipped;      // bit k: corner k's bitangent is -(n x t)
+};
+layout(binding = 15, scalar) readonly buffer BvhTriangleUvs { TriangleUvs bvh_uvs[]; };
+
+// 1 when a scene material has a normal map: 0 compiles the tangent frames and lookups out.
+layout(constant_id = PATH_TRACE_NORMAL_MAPS_ID) const uint NORMAL_MAPS = 1u;
 
 layout(push_constant, scalar) uniform Push {
     uint sample_index;
@@ -226,13 +238,84 @@ vec3 store_albedo(uint slot, vec3 pos, vec3 normal, out vec3 relief_gradient) {
 // (next-event rays below it are not traced, BSDF samples below it end the path), so the bend
 // cannot let light through the surface; and the bent normal is kept at least slightly facing
 // the viewer (v), since a view below its hemisphere would shade black.
-vec3 bend_normal(vec3 ns, vec3 g, vec3 v) {
-    vec3 n = normalize(ns - (g - dot(g, ns) * ns));
+// n kept at least slightly facing the viewer v when the unbent normal ns faces it: a view
+// below the shading hemisphere would shade black.
+vec3 facing_normal(vec3 ns, vec3 n, vec3 v) {
     float facing = dot(n, v);
     if (dot(ns, v) > 0.0 && facing < 0.05) {
         n = normalize(n + (0.05 - facing) * v);
     }
     return n;
+}
+
+vec3 bend_normal(vec3 ns, vec3 g, vec3 v) {
+    return facing_normal(ns, normalize(ns - (g - dot(g, ns) * ns)), v);
+}
+
+// Texture coordinates at a hit and what footprints and normal maps need: the world-space
+// derivatives of the position along u and v, and the interpolated MikkTSpace tangent (world)
+// with its bitangent sign.
+struct SurfaceUv {
+    vec2 uv;
+    vec3 dpdu;
+    vec3 dpdv;
+    vec3 tangent;
+    float sign;
+};
+
+// False for a mesh without texture coordinates.
+bool surface_uv(TraceHit h, out SurfaceUv su) {
+    uint offset = bvh_instances[h.instance].uv_offset;
+    su.uv = vec2(0.0);
+    su.dpdu = vec3(0.0);
+    su.dpdv = vec3(0.0);
+    su.tangent = vec3(0.0);
+    su.sign = 1.0;
+    if (offset == 0xffffffffu) {
+        return false;
+    }
+    uint slot = offset + (h.triangle - bvh_instances[h.instance].triangle_offset);
+    TriangleUvs t = bvh_uvs[slot];
+    float w = 1.0 - h.u - h.v;
+    su.uv = t.uv[0] * w + t.uv[1] * h.u + t.uv[2] * h.v;
+    vec4 o2w[3] = bvh_instances[h.instance].object_to_world;
+    vec3 e1 = -bvh_triangles[h.triangle * 3u + 1u].xyz;  // v1 - v0
+    vec3 e2 = bvh_triangles[h.triangle * 3u + 2u].xyz;   // v2 - v0
+    vec2 d1 = t.uv[1] - t.uv[0];
+    vec2 d2 = t.uv[2] - t.uv[0];
+    float det = d1.x * d2.y - d1.y * d2.x;
+    if (abs(det) > 1e-20) {
+        float inv = 1.0 / det;
+        su.dpdu = cwbvh_transform_vector(o2w, (d2.y * e1 - d1.y * e2) * inv);
+        su.dpdv = cwbvh_transform_vector(o2w, (d1.x * e2 - d2.x * e1) * inv);
+    }
+    if (NORMAL_MAPS != 0u) {
+        vec3 tan = cwbvh_decode_octahedral(t.tangents[0]) * w + cwbvh_decode_octahedral(t.tangents[1]) * h.u +
+                   cwbvh_decode_octahedral(t.tangents[2]) * h.v;
+        su.tangent = cwbvh_transform_vector(o2w, tan);
+        su.sign = (t.flipped & 1u) != 0u ? -1.0 : 1.0;
+    }
+    return true;
+}
+
+// The footprint of a ray's differentials at a hit, in texture coordinates: the position
+// differentials moved to the hit and onto its plane (Igehy 1999), then expressed in u and v by
+// least squares over dP/du, dP/dv.
+void uv_footprint(SurfaceUv su, vec3 dpx, vec3 dpy, out vec2 a, out vec2 b) {
+    float uu = dot(su.dpdu, su.dpdu);
+    float uv = dot(su.dpdu, su.dpdv);
+    float vv = dot(su.dpdv, su.dpdv);
+    float det = uu * vv - uv * uv;
+    if (det <= 1e-30) {
+        a = vec2(0.0);
+        b = vec2(0.0);
+        return;
+    }
+    float inv = 1.0 / det;
+    vec2 px = vec2(dot(su.dpdu, dpx), dot(su.dpdv, dpx));
+    vec2 py = vec2(dot(su.dpdu, dpy), dot(su.dpdv, dpy));
+    a = vec2(vv * px.x - uv * px.y, uu * px.y - uv * px.x) * inv;
+    b = vec2(vv * py.x - uv * py.y, uu * py.y - uv * py.x) * inv;
 }
 
 SurfaceHit surface_of(TraceHit h) {
@@ -316,8 +399,22 @@ void main() {
             vec2 jitter = rng_next2(rng);
             vec2 ndc = vec2((float(px.x) + jitter.x) / float(frame.width) * 2.0 - 1.0,
                             1.0 - (float(px.y) + jitter.y) / float(frame.height) * 2.0);
-            vec3 dir = normalize(frame.forward + frame.right * ndc.x + frame.up * ndc.y);
+            vec3 film_dir = frame.forward + frame.right * ndc.x + frame.up * ndc.y;
+            vec3 dir = normalize(film_dir);
             vec3 origin = frame.eye;
+            // Ray differentials per pixel step in x and y (Igehy 1999): the origin's (zero for a
+            // pinhole; the lens's spread is left out) and the direction's.
+            vec3 ro_dx = vec3(0.0);
+            vec3 ro_dy = vec3(0.0);
+            vec3 rd_dx;
+            vec3 rd_dy;
+            {
+                float fl = length(film_dir);
+                vec3 fx = frame.right * (2.0 / float(frame.width));
+                vec3 fy = -frame.up * (2.0 / float(frame.height));
+                rd_dx = (fx - dir * dot(dir, fx)) / fl;
+                rd_dy = (fy - dir * dot(dir, fy)) / fl;
+            }
             vec2 lens_u = rng_next2(rng);
             if (frame.lens_radius > 0.0) {
                 vec3 focus = frame.eye + dir * (frame.focus_distance / dot(dir, frame.forward));
@@ -382,11 +479,50 @@ void main() {
 
                 SurfaceHit s = surface_of(h);
                 Material m = materials[s.material];
+                // The differentials at the hit: moved along the ray and onto the hit's plane.
+                vec3 dpx = ro_dx + rd_dx * h.t;
+                vec3 dpy = ro_dy + rd_dy * h.t;
+                {
+                    float dn = dot(dir, s.ng);
+                    if (abs(dn) > 1e-6) {
+                        dpx -= dir * (dot(dpx, s.ng) / dn);
+                        dpy -= dir * (dot(dpy, s.ng) / dn);
+                    }
+                }
+                bool image_albedo = texture_kind_used(TEXTURE_IMAGE) && m.texture_kind == TEXTURE_IMAGE;
+                bool normal_mapped = NORMAL_MAPS != 0u && m.normal_image != IMAGE_NONE;
+                bool mesh_glint = material_is(m, MATERIAL_GLINT) && glint_records[m.glint].projection == GLINT_UV_MESH;
+                SurfaceUv su;
+                vec2 fp_a = vec2(0.0);
+                vec2 fp_b = vec2(0.0);
+                bool has_uv = false;
+                if (image_albedo || normal_mapped || mesh_glint) {
+                    has_uv = surface_uv(h, su);
+                    uv_footprint(su, dpx, dpy, fp_a, fp_b);
+                }
                 uint store_slot = instance_stores[s.instance];
                 vec3 relief_gradient = vec3(0.0);
-                vec3 albedo = store_slot == 0xffffffffu
-                                  ? solid_texture_albedo(m, s.p_object)
-                                  : store_albedo(store_slot, s.p_surface_object, s.n_object, relief_gradient);
+                vec3 albedo;
+                if (image_albedo) {
+                    albedo = has_uv ? image_lookup(m.albedo_image, su.uv, fp_a, fp_b).rgb : vec3(1.0, 0.0, 1.0);
+                } else {
+                    albedo = store_slot == 0xffffffffu
+                                 ? solid_texture_albedo(m, s.p_object)
+                                 : store_albedo(store_slot, s.p_surface_object, s.n_object, relief_gradient);
+                }
+                if (normal_mapped && has_uv) {
+                    // Plain MIP filtering: the footprint's mean normal, renormalized.
+                    vec3 nm = image_lookup(m.normal_image, su.uv, fp_a, fp_b).xyz;
+                    float nl = length(nm);
+                    vec3 t = su.tangent - s.ns * dot(s.ns, su.tangent);
+                    float tl = length(t);
+                    if (nl > 1e-6 && tl > 1e-6) {
+                        t /= tl;
+                        vec3 bt = cross(s.ns, t) * su.sign;
+                        vec3 n = normalize(t * nm.x + bt * nm.y + s.ns * nm.z);
+                        s.ns = facing_normal(s.ns, n, -dir);
+                    }
+                }
                 if (relief_gradient != vec3(0.0)) {
                     // Object to world: a rotation times a uniform scale, which slopes ignore.
                     vec4 o2w[3] = bvh_instances[s.instance].object_to_world;
@@ -420,8 +556,9 @@ void main() {
                     vec3 ex = cwbvh_transform_vector(o2w, vec3(1.0, 0.0, 0.0));
                     vec3 ez = cwbvh_transform_vector(o2w, vec3(0.0, 0.0, 1.0));
                     float scale = length(ex);
-                    gs = glint_shade(gr, s.p_surface_object, scale, path_length * pixel_angle, s.ns, -dir,
-                                     ex / scale, ez / scale, t_axis, b_axis);
+                    float footprint = mesh_glint ? max(length(fp_a), length(fp_b)) : path_length * pixel_angle;
+                    gs = glint_shade(gr, s.p_surface_object, scale, footprint, s.ns, -dir,
+                                     ex / scale, ez / scale, su.uv, su.dpdu, t_axis, b_axis);
                 } else {
                     make_frame(s.ns, t_axis, b_axis);
                 }
@@ -488,6 +625,26 @@ void main() {
                 prev_p = s.p;
                 origin = offset_origin(s.p, s.ng, wi);
                 dir = wi;
+                // The differentials leave from the hit's. A mirror reflection mirrors their
+                // directions (the normal's own change across the pixel is left out); refraction
+                // keeps them; a rough bounce keeps the spread, isotropic about the new direction,
+                // so that texture filters stay at pixel scale and the lobe's blur is left to the
+                // Monte Carlo integration.
+                ro_dx = dpx;
+                ro_dy = dpy;
+                if (bs.specular) {
+                    if (dot(wi, s.ng) * wo_side > 0.0) {
+                        rd_dx = reflect(rd_dx, s.ns);
+                        rd_dy = reflect(rd_dy, s.ns);
+                    }
+                } else {
+                    float spread = max(length(rd_dx), length(rd_dy));
+                    vec3 tx;
+                    vec3 ty;
+                    make_frame(wi, tx, ty);
+                    rd_dx = tx * spread;
+                    rd_dy = ty * spread;
+                }
                 if (depth + 1u >= frame.rr_depth) {
                     float survive = clamp(max3(beta), 0.05, 1.0);
                     if (rng_next(rng) >= survive) {

@@ -19,6 +19,7 @@ mod bake;
 pub mod diff;
 pub mod fracture;
 pub mod glint;
+pub mod image_texture;
 pub mod mesh;
 pub mod normal_map;
 pub mod output;

@@ -40,6 +40,21 @@ pub const TEXTURE_MARBLE: u32 = 1;
 pub const TEXTURE_WOOD: u32 = 2;
 /// See [`TEXTURE_NONE`].
 pub const TEXTURE_CHECKER: u32 = 3;
+/// See [`TEXTURE_NONE`]: an albedo image read at the mesh's texture coordinates.
+pub const TEXTURE_IMAGE: u32 = 4;
+
+/// Texel encodings of an image texture (`renderer::image_texture::ImageEncoding`): sRGB colour
+/// and linear alpha.
+pub const IMAGE_ENCODING_SRGB: u32 = 0;
+/// A tangent-space normal map, xyz = 2·rgb − 1.
+pub const IMAGE_ENCODING_NORMAL: u32 = 1;
+/// Most taps of an anisotropic image lookup along its footprint's long axis: beyond it the
+/// level rises instead (the footprint is blurred along its short axis).
+pub const IMAGE_MAX_ANISOTROPY: u32 = 8;
+/// Most MIP levels of an image texture (an edge of 8192 has 14).
+pub const IMAGE_MAX_LEVELS: u32 = 14;
+/// `GpuMaterial::albedo_image` / `normal_image` of a material without that image.
+pub const IMAGE_NONE: u32 = 4294967295;
 
 /// Analytic light kinds of a GPU light.
 pub const LIGHT_SPHERE: u32 = 0;
@@ -68,6 +83,9 @@ pub const PATH_TRACE_MATERIAL_KINDS_ID: u32 = 3;
 /// Specialization constant id of the path tracer's texture-kind mask (bit `TEXTURE_*` set for
 /// each procedural kind the scene's materials use).
 pub const PATH_TRACE_TEXTURE_KINDS_ID: u32 = 4;
+/// Specialization constant id of the path tracer's normal-map switch (1 when a scene material
+/// has a normal map; 0 compiles the tangent frame and the map lookup out).
+pub const PATH_TRACE_NORMAL_MAPS_ID: u32 = 5;
 /// Nearest-texel store reads.
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).
@@ -90,5 +108,7 @@ pub const GLINT_TABLE_KNOTS: u32 = 256;
 pub const GLINT_UV_PLANAR: u32 = 0;
 /// Surface coordinates of a glint material: arc lengths about the built-in sphere's centre.
 pub const GLINT_UV_SPHERICAL: u32 = 1;
+/// Surface coordinates of a glint material: the mesh's texture coordinates.
+pub const GLINT_UV_MESH: u32 = 2;
 /// `GpuMaterial::glint` of a material without a microstructure.
 pub const GLINT_NONE: u32 = 4294967295;

@@ -215,6 +215,22 @@ lazysolid_compute::push_block! {
     }
 }
 
+lazysolid_compute::push_block! {
+    /// Push block of `glsl/render_test/image_test.comp`, the kernel that runs the image-texture
+    /// lookup (`render/image.glsl`) on test queries.
+    #[derive(Clone, Copy)]
+    pub struct ImageTestPush<'a> {
+        /// Three vec2 per query: uv and the footprint's axes.
+        pub queries: DeviceAddress<'a>,
+        /// One vec4 per query.
+        pub results: DeviceAddress<'a>,
+        /// The image's record.
+        pub image: u32,
+        /// Number of queries.
+        pub n: u32,
+    }
+}
+
 /// Every kernel of the workspace with the push block its dispatches use: the compute crate's,
 /// the synthesizer's, the renderer's and the shading and glint test kernels.
 pub fn push_registry() -> Vec<PushRegistration> {
@@ -232,6 +248,9 @@ pub fn push_registry() -> Vec<PushRegistration> {
     ));
     all.push(PushRegistration::of::<GlintBsdfTestPush>(
         &kernels::render_test::GLINT_BSDF_TEST,
+    ));
+    all.push(PushRegistration::of::<ImageTestPush>(
+        &kernels::render_test::IMAGE_TEST,
     ));
     all
 }

@@ -293,6 +293,7 @@ fn two_cubes(shift: Vec3) -> Mesh {
     let two = Mesh {
         positions,
         triangles,
+        uvs: None,
         source: "two-cubes".into(),
     };
     check_closed(&two).unwrap();
@@ -396,6 +397,7 @@ fn errors_are_clear() {
     let empty = Mesh {
         positions: vec![],
         triangles: vec![],
+        uvs: None,
         source: "e".into(),
     };
     assert!(matches!(
@@ -490,6 +492,7 @@ fn two_shells(shift: Vec3, scale: f32) -> Mesh {
     let two = Mesh {
         positions,
         triangles,
+        uvs: None,
         source: "two-shells".into(),
     };
     check_closed(&two).unwrap();

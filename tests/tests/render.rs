@@ -28,6 +28,8 @@ fn material(kind: MaterialKind, color: Vec3) -> Material {
         ior: 1.5,
         texture: None,
         glint: None,
+        albedo_map: None,
+        normal_map: None,
     }
 }
 
@@ -149,6 +151,7 @@ fn sphere_light_over_a_plane_matches_the_closed_form() {
             Vec3::new(-10.0, 0.0, 10.0),
         ],
         triangles: vec![[0, 2, 1], [0, 3, 2]],
+        uvs: None,
         source: "plane".into(),
     };
     let (albedo, radiance, r, d) = (0.6f32, 20.0f32, 0.25f32, 2.0f32);

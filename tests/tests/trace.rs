@@ -200,6 +200,7 @@ fn a_single_triangle_scene_and_a_ray_starting_past_the_hit() {
     let mesh = Mesh {
         positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
         triangles: vec![[0, 1, 2]],
+        uvs: None,
         source: "triangle".into(),
     };
     let bvh = SceneBvh::build(

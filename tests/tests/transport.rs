@@ -29,6 +29,8 @@ fn material(kind: MaterialKind, color: Vec3) -> Material {
         ior: 1.5,
         texture: None,
         glint: None,
+        albedo_map: None,
+        normal_map: None,
     }
 }
 
@@ -126,6 +128,7 @@ fn parallelogram(corner: Vec3, u: Vec3, v: Vec3) -> Mesh {
     Mesh {
         positions: vec![corner, corner + u, corner + u + v, corner + v],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: None,
         source: "parallelogram".into(),
     }
 }

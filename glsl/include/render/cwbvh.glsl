@@ -7,7 +7,7 @@
 //   BvhTlasInstances    top-level leaf slot -> instance index
 //   BvhTriangles        v0 | mesh triangle, v0 - v1, v2 - v0 per leaf slot (48 bytes)
 //   BvhTriangleNormals  octahedral corner normals per leaf slot
-//   BvhInstances        world<->object rows, node and triangle offsets, material, mesh
+//   BvhInstances        world<->object rows, node, triangle and UV offsets, material, mesh
 #ifndef LAZYSOLID_RENDER_CWBVH_GLSL
 #define LAZYSOLID_RENDER_CWBVH_GLSL
 
@@ -23,6 +23,8 @@ struct BvhInstance {
     uint triangle_offset;
     uint material;
     uint mesh;
+    uint uv_offset;  // first BvhTriangleUvs record of the mesh, 0xffffffff without UVs
+    uint pad0, pad1, pad2;
 };
 layout(binding = 4, scalar) readonly buffer BvhInstances { BvhInstance bvh_instances[]; };
 

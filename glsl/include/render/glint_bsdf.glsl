@@ -37,11 +37,18 @@ struct GlintShade {
 // instance's scale, `footprint` the ray cone's width at the hit (scene units), `ns` the world
 // shading normal, `wo_world` the direction back along the ray, `dpdu_world_x` and
 // `dpdu_world_z` the object x and z axes in world (unit length).
+// With GLINT_UV_MESH, `mesh_uv` and `mesh_dpdu` are the mesh's texture coordinates and the
+// world direction of growing u, and `footprint` is the footprint's width in texture
+// coordinates (already foreshortened: it comes from ray differentials).
 GlintShade glint_shade(GlintRecord g, vec3 p, float scale, float footprint, vec3 ns, vec3 wo_world,
-                       vec3 dpdu_world_x, vec3 dpdu_world_z, out vec3 t_axis, out vec3 b_axis) {
+                       vec3 dpdu_world_x, vec3 dpdu_world_z, vec2 mesh_uv, vec3 mesh_dpdu,
+                       out vec3 t_axis, out vec3 b_axis) {
     vec2 uv;
     vec3 dpdu;
-    if (g.projection == GLINT_UV_SPHERICAL) {
+    if (g.projection == GLINT_UV_MESH) {
+        uv = mesh_uv;
+        dpdu = mesh_dpdu;
+    } else if (g.projection == GLINT_UV_SPHERICAL) {
         vec3 d = p - vec3(0.5);
         float r = max(length(d), 1e-6);
         float phi = atan(d.z, d.x);
@@ -62,6 +69,11 @@ GlintShade glint_shade(GlintRecord g, vec3 p, float scale, float footprint, vec3
         b_axis = cross(ns, t_axis);
     }
     GlintShade gs;
+    if (g.projection == GLINT_UV_MESH) {
+        gs.u = uv * g.texels_per_unit;
+        gs.sigma_p = clamp(0.5 * footprint * g.texels_per_unit, 0.5, g.max_footprint);
+        return gs;
+    }
     gs.u = uv * (scale * g.texels_per_unit);
     float cos_o = max(abs(dot(wo_world, ns)), 0.05);
     gs.sigma_p = clamp(0.5 * footprint / sqrt(cos_o) * g.texels_per_unit, 0.5, g.max_footprint);

@@ -18,7 +18,8 @@ struct Material {
     vec4 coat_albedo[PLASTIC_COAT_KNOTS / 4];  // plastic: the coat's reflectance per knot
     float coat_internal;  // plastic: the coat's reflectance to diffuse light from below
     uint glint;        // glint: index of its GlintRecord (GLINT_NONE otherwise)
-    float pad1, pad2;
+    uint albedo_image; // TEXTURE_IMAGE: its ImageRecord (IMAGE_NONE otherwise)
+    uint normal_image; // the normal map's ImageRecord (IMAGE_NONE without one)
 };
 
 // The material and texture kinds a kernel can meet, one bit per MATERIAL_* and TEXTURE_*. The

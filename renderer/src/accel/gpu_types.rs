@@ -49,6 +49,23 @@ pub struct GpuTriangleNormals {
     pub pad: u32,
 }
 
+/// Texture coordinates and MikkTSpace tangents of a triangle's three corners, in the same leaf
+/// order as [`GpuTriangle`], only for meshes that have coordinates (an instance finds its
+/// mesh's first record at [`GpuInstance::uv_offset`]): a scene without them uploads none.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangleUvs {
+    /// Texture coordinates of corners 0, 1, 2.
+    pub uv: [[f32; 2]; 3],
+    /// Octahedral unit tangents of corners 0, 1, 2.
+    pub tangents: [u32; 3],
+    /// Bit k set: corner k's bitangent is −(n × t) (a mirrored UV layout).
+    pub flipped: u32,
+}
+
+/// [`GpuInstance::uv_offset`] of an instance whose mesh has no texture coordinates.
+pub const NO_UVS: u32 = u32::MAX;
+
 /// A placed mesh as the traversal and the shading kernels see it.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -66,6 +83,10 @@ pub struct GpuInstance {
     pub material: u32,
     /// Mesh index.
     pub mesh: u32,
+    /// First [`GpuTriangleUvs`] of this mesh, [`NO_UVS`] when it has no texture coordinates.
+    pub uv_offset: u32,
+    /// Unused (alignment to 16 bytes).
+    pub pad: [u32; 3],
 }
 
 /// Rows of the 3×4 matrix of `a`.
@@ -115,7 +136,8 @@ pub struct GpuRayHit {
 
 const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
 const _: () = assert!(std::mem::size_of::<GpuTriangleNormals>() == 16);
-const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
+const _: () = assert!(std::mem::size_of::<GpuTriangleUvs>() == 40);
+const _: () = assert!(std::mem::size_of::<GpuInstance>() == 128);
 const _: () = assert!(std::mem::size_of::<GpuRay>() == 32);
 const _: () = assert!(std::mem::size_of::<GpuRayHit>() == 32);
 const _: () = assert!(std::mem::size_of::<obvhs::cwbvh::node::CwBvhNode>() == 80);

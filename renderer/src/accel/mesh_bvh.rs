@@ -1,7 +1,8 @@
 //! The bottom level: one CWBVH per mesh with its triangles reordered into leaf order.
 
-use super::gpu_types::{GpuTriangle, GpuTriangleNormals};
+use super::gpu_types::{GpuTriangle, GpuTriangleNormals, GpuTriangleUvs};
 use super::normals::{corner_normals, encode_octahedral};
+use super::tangents::corner_tangents;
 use crate::mesh::Mesh;
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::triangle::Triangle;
@@ -20,6 +21,9 @@ pub struct MeshBvh {
     pub gpu_triangles: Vec<GpuTriangle>,
     /// Corner shading normals in the same leaf order.
     pub gpu_normals: Vec<GpuTriangleNormals>,
+    /// Corner texture coordinates and tangents in the same leaf order; empty when the mesh
+    /// has no texture coordinates.
+    pub gpu_uvs: Vec<GpuTriangleUvs>,
     /// Wall time of the build (BVH only, not the records).
     pub build_time: Duration,
 }
@@ -64,11 +68,28 @@ impl MeshBvh {
                 }
             })
             .collect();
+        let gpu_uvs = match (corner_tangents(mesh, &normals), &mesh.uvs) {
+            (Some(tangents), Some(uvs)) => bvh
+                .primitive_indices
+                .iter()
+                .map(|&i| {
+                    let tri = mesh.triangles[i as usize];
+                    let t = tangents[i as usize];
+                    GpuTriangleUvs {
+                        uv: tri.map(|v| uvs[v as usize].to_array()),
+                        tangents: t.map(|c| encode_octahedral(c.truncate())),
+                        flipped: (0..3).filter(|&k| t[k].w < 0.0).map(|k| 1 << k).sum(),
+                    }
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
         MeshBvh {
             bvh,
             triangles,
             gpu_triangles,
             gpu_normals,
+            gpu_uvs,
             build_time,
         }
     }

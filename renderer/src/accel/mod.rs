@@ -14,13 +14,17 @@ mod mesh_bvh;
 mod normals;
 pub(crate) mod ray_queries;
 mod scene_bvh;
+mod tangents;
 
 pub use device::DeviceBvh;
-pub use gpu_types::{GpuInstance, GpuRay, GpuRayHit, GpuTriangle, GpuTriangleNormals};
+pub use gpu_types::{
+    GpuInstance, GpuRay, GpuRayHit, GpuTriangle, GpuTriangleNormals, GpuTriangleUvs, NO_UVS,
+};
 pub use mesh_bvh::MeshBvh;
 pub use normals::corner_normals;
 pub use ray_queries::{QueryKind, RayQueries, CWBVH_SHARED_BYTES};
 pub use scene_bvh::{InstanceDesc, SceneBvh};
+pub use tangents::corner_tangents;
 
 /// Build quality of every BVH of a render: obvhs's `medium_build` preset (PLOC plus
 /// reinsertion). Measured on this project's meshes it traces faster than the faster presets

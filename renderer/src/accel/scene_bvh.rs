@@ -1,6 +1,6 @@
 //! The two-level BVH of a scene: mesh BVHs (bottom) and a BVH over instance bounds (top).
 
-use super::gpu_types::{affine_rows, GpuInstance};
+use super::gpu_types::{affine_rows, GpuInstance, NO_UVS};
 use super::mesh_bvh::MeshBvh;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
@@ -141,10 +141,28 @@ impl SceneBvh {
         offsets
     }
 
+    /// Offset of each mesh's first record in the concatenated UV records, [`NO_UVS`] for a
+    /// mesh without texture coordinates.
+    pub fn uv_offsets(&self) -> Vec<u32> {
+        let mut n = 0u32;
+        self.meshes
+            .iter()
+            .map(|m| {
+                if m.gpu_uvs.is_empty() {
+                    NO_UVS
+                } else {
+                    n += m.gpu_uvs.len() as u32;
+                    n - m.gpu_uvs.len() as u32
+                }
+            })
+            .collect()
+    }
+
     /// The GPU records of the instances.
     pub fn gpu_instances(&self) -> Vec<GpuInstance> {
         let node_offsets = self.node_offsets();
         let tri_offsets = self.triangle_offsets();
+        let uv_offsets = self.uv_offsets();
         self.instances
             .iter()
             .zip(&self.world_to_object)
@@ -155,6 +173,8 @@ impl SceneBvh {
                 triangle_offset: tri_offsets[i.mesh],
                 material: i.material,
                 mesh: i.mesh as u32,
+                uv_offset: uv_offsets[i.mesh],
+                pad: [0; 3],
             })
             .collect()
     }

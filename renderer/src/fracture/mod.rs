@@ -100,6 +100,7 @@ impl Fragment {
         Mesh {
             positions: self.positions.clone(),
             triangles: self.triangles.clone(),
+            uvs: None,
             source,
         }
     }

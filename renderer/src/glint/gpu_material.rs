@@ -5,7 +5,7 @@
 use super::gpu_map::{GlintMapParams, GpuGlintMap};
 use super::gpu_range_table::build_range_table;
 use crate::scene::{GlintProjection, GlintSpec, Scene};
-use crate::shader_constants::{GLINT_NONE, GLINT_UV_PLANAR, GLINT_UV_SPHERICAL};
+use crate::shader_constants::{GLINT_NONE, GLINT_UV_MESH, GLINT_UV_PLANAR, GLINT_UV_SPHERICAL};
 use lazysolid_compute::gpu::{DeviceAddress, DeviceRecords, Gpu, GpuResult};
 
 /// Largest footprint width σ_P in texels: wider pixel cones are left to pixel sampling (the
@@ -102,6 +102,7 @@ fn record<'a>(
         projection: match spec.projection {
             GlintProjection::Planar => GLINT_UV_PLANAR,
             GlintProjection::Spherical => GLINT_UV_SPHERICAL,
+            GlintProjection::Mesh => GLINT_UV_MESH,
         },
         prune: (!spec.explicit) as u32,
         shadow_alpha: spec.shadow_alpha,

@@ -69,4 +69,23 @@ pub enum MeshError {
         /// Number of vertices.
         vertices: usize,
     },
+    /// Texture coordinates that do not come one per vertex.
+    #[error("{file}: {uvs} texture coordinates for {vertices} vertices (one per vertex expected)")]
+    UvCount {
+        /// The file.
+        file: PathBuf,
+        /// Number of texture coordinates.
+        uvs: usize,
+        /// Number of vertices.
+        vertices: usize,
+    },
+    /// Some faces have texture coordinates and others not: a material reading them would find
+    /// nothing on part of the surface.
+    #[error("{file}: object or group {model:?} has no texture coordinates (vt) while others have: give every face its vt, or none")]
+    PartialUvs {
+        /// The file.
+        file: PathBuf,
+        /// The first model (object or group) without them.
+        model: String,
+    },
 }

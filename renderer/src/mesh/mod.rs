@@ -9,7 +9,7 @@ mod shapes;
 pub use error::MeshError;
 pub use shapes::MAX_ICOSPHERE_SUBDIVISIONS;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 
 /// An indexed triangle mesh.
@@ -19,6 +19,10 @@ pub struct Mesh {
     pub positions: Vec<Vec3>,
     /// Triangles as indices into `positions`, counter-clockwise when seen from outside.
     pub triangles: Vec<[u32; 3]>,
+    /// Texture coordinates, one per vertex (as `positions`), when the file gives them for every
+    /// face: image textures and normal maps read them (v up, as OBJ writes them: v = 0 is the
+    /// image's bottom row). A vertex on a UV seam is as many vertices as it has coordinates.
+    pub uvs: Option<Vec<Vec2>>,
     /// Where the mesh was read from (for messages).
     pub source: PathBuf,
 }
@@ -98,6 +102,22 @@ impl Mesh {
             });
         }
         let n = self.positions.len();
+        if let Some(uvs) = &self.uvs {
+            if uvs.len() != n {
+                return Err(MeshError::UvCount {
+                    file,
+                    uvs: uvs.len(),
+                    vertices: n,
+                });
+            }
+            if let Some((i, uv)) = uvs.iter().enumerate().find(|(_, uv)| !uv.is_finite()) {
+                return Err(MeshError::NonFinite {
+                    file,
+                    vertex: i,
+                    value: format!("texture coordinate {uv:?}"),
+                });
+            }
+        }
         for (t, tri) in self.triangles.iter().enumerate() {
             if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
                 return Err(MeshError::IndexOutOfRange {

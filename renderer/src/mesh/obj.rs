@@ -4,9 +4,11 @@
 //! so a surface split into groups — a fragment's outer and cut faces — would come apart along
 //! the group borders. A vertex of a later model at exactly the position of a vertex of an
 //! earlier one is therefore the same vertex; vertices within one model are kept as written.
+//! With texture coordinates the key is the position and the coordinate together, so a UV seam
+//! stays a seam.
 
 use super::{Mesh, MeshError};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -26,22 +28,50 @@ pub(super) fn load(path: &Path) -> Result<Mesh, MeshError> {
         file: path.to_path_buf(),
         problem: e.to_string(),
     })?;
+    let has_uvs = models
+        .iter()
+        .any(|m| !m.mesh.indices.is_empty() && !m.mesh.texcoords.is_empty());
+    if has_uvs {
+        if let Some(m) = models
+            .iter()
+            .find(|m| !m.mesh.indices.is_empty() && m.mesh.texcoords.is_empty())
+        {
+            return Err(MeshError::PartialUvs {
+                file: path.to_path_buf(),
+                model: m.name.clone(),
+            });
+        }
+    }
     let mut positions: Vec<Vec3> = Vec::new();
+    let mut uvs: Vec<Vec2> = Vec::new();
     let mut triangles = Vec::new();
-    let mut earlier: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut earlier: HashMap<[u32; 5], u32> = HashMap::new();
     for model in models {
-        let bits: Vec<[u32; 3]> = model
+        let texcoords = &model.mesh.texcoords;
+        let bits: Vec<[u32; 5]> = model
             .mesh
             .positions
             .chunks_exact(3)
-            .map(|p| [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
+            .enumerate()
+            .map(|(i, p)| {
+                let uv = match texcoords.get(2 * i..2 * i + 2) {
+                    Some(t) if has_uvs => [t[0].to_bits(), t[1].to_bits()],
+                    _ => [0, 0],
+                };
+                [p[0].to_bits(), p[1].to_bits(), p[2].to_bits(), uv[0], uv[1]]
+            })
             .collect();
         let index: Vec<u32> = bits
             .iter()
             .map(|b| match earlier.get(b) {
                 Some(&i) => i,
                 None => {
-                    positions.push(Vec3::from_array(b.map(f32::from_bits)));
+                    positions.push(Vec3::new(
+                        f32::from_bits(b[0]),
+                        f32::from_bits(b[1]),
+                        f32::from_bits(b[2]),
+                    ));
+                    uvs.push(Vec2::new(f32::from_bits(b[3]), f32::from_bits(b[4])));
                     positions.len() as u32 - 1
                 }
             })
@@ -60,6 +90,7 @@ pub(super) fn load(path: &Path) -> Result<Mesh, MeshError> {
     Ok(Mesh {
         positions,
         triangles,
+        uvs: has_uvs.then_some(uvs),
         source: path.to_path_buf(),
     })
 }

@@ -176,6 +176,7 @@ pub(super) fn parse(text: &str, path: &Path) -> Result<Mesh, MeshError> {
     Ok(Mesh {
         positions,
         triangles,
+        uvs: None,
         source: path.to_path_buf(),
     })
 }

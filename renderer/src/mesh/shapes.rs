@@ -4,7 +4,7 @@
 //! oriented (counter-clockwise seen from outside) where they enclose a volume.
 
 use super::Mesh;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::PathBuf;
 
@@ -16,13 +16,15 @@ fn generated(name: &str, positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Mesh
     Mesh {
         positions,
         triangles,
+        uvs: None,
         source: PathBuf::from(format!("<{name}>")),
     }
 }
 
 impl Mesh {
     /// The square [0, 1] × {0} × [0, 1] in the xz-plane, facing +y: a floor, a wall or a
-    /// ceiling once placed (two triangles).
+    /// ceiling once placed (two triangles). Its texture coordinates are (x, 1 − z): seen from
+    /// above with −z ahead, an image lies the right way up (its top row at z = 0).
     pub fn unit_quad() -> Mesh {
         let positions = vec![
             Vec3::new(0.0, 0.0, 0.0),
@@ -30,7 +32,14 @@ impl Mesh {
             Vec3::new(1.0, 0.0, 1.0),
             Vec3::new(0.0, 0.0, 1.0),
         ];
-        generated("quad", positions, vec![[0, 2, 1], [0, 3, 2]])
+        let uvs = positions
+            .iter()
+            .map(|p| Vec2::new(p.x, 1.0 - p.z))
+            .collect();
+        Mesh {
+            uvs: Some(uvs),
+            ..generated("quad", positions, vec![[0, 2, 1], [0, 3, 2]])
+        }
     }
 
     /// The cube [0, 1]^3: 8 shared corners, 12 outward triangles.

@@ -5,11 +5,13 @@ use super::error::RenderError;
 use super::frame::GpuFrame;
 use super::stores::{BakedStoreInfo, SceneStores};
 use crate::accel::{DeviceBvh, SceneBvh};
+use crate::image_texture::{DeviceImages, ImageSet};
 use crate::kernels::render::PATH_TRACE;
 use crate::output::Film;
 use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
 use crate::shader_constants::{
-    PATH_TRACE_MATERIAL_KINDS_ID, PATH_TRACE_STORE_KINDS_ID, PATH_TRACE_TEXTURE_KINDS_ID,
+    IMAGE_NONE, PATH_TRACE_MATERIAL_KINDS_ID, PATH_TRACE_NORMAL_MAPS_ID, PATH_TRACE_STORE_KINDS_ID,
+    PATH_TRACE_TEXTURE_KINDS_ID,
 };
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
 use bytemuck::Zeroable;
@@ -65,6 +67,7 @@ pub struct PathTracer {
     environment: DeviceRecords,
     stores: SceneStores,
     glints: crate::glint::SceneGlints,
+    images: DeviceImages,
     film: GpuBuffer<[f32; 4]>,
     aovs: GpuBuffer<[f32; 4]>,
     ray_count: GpuBuffer<u32>,
@@ -86,15 +89,30 @@ impl PathTracer {
         let bvh = DeviceBvh::upload(gpu, &scene_bvh)?;
         let stores = SceneStores::build(gpu, scene)?;
         let glints = crate::glint::SceneGlints::build(gpu, scene)?;
-        let materials: Vec<GpuMaterial> = scene
-            .materials
-            .iter()
-            .zip(&glints.slots)
-            .map(|(m, &glint)| GpuMaterial {
+        let mut image_set = ImageSet::default();
+        let mut materials = Vec::with_capacity(scene.materials.len());
+        for (m, &glint) in scene.materials.iter().zip(&glints.slots) {
+            let mut add = |image: &crate::image_texture::ImageTexture| {
+                image_set
+                    .add(image)
+                    .map_err(|e| RenderError::Settings(format!("material {:?}: {e}", m.name)))
+            };
+            let albedo_image = match &m.albedo_map {
+                Some(a) => add(&a.image)?,
+                None => IMAGE_NONE,
+            };
+            let normal_image = match &m.normal_map {
+                Some(n) => add(&n.image)?,
+                None => IMAGE_NONE,
+            };
+            materials.push(GpuMaterial {
                 glint,
+                albedo_image,
+                normal_image,
                 ..GpuMaterial::from(m)
-            })
-            .collect();
+            });
+        }
+        let images = image_set.upload(gpu)?;
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
         // A binding cannot be empty: a scene without lights still gets one (unused) record.
         let light_records = if lights.is_empty() {
@@ -130,6 +148,10 @@ impl PathTracer {
                         PATH_TRACE_TEXTURE_KINDS_ID,
                         super::kinds_mask(materials.iter().map(|m| m.texture_kind)),
                     ),
+                    (
+                        PATH_TRACE_NORMAL_MAPS_ID,
+                        materials.iter().any(|m| m.normal_image != IMAGE_NONE) as u32,
+                    ),
                 ],
             )?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
@@ -143,6 +165,7 @@ impl PathTracer {
             scene_bvh,
             stores,
             glints,
+            images,
             frame,
             settings,
             samples: 0,
@@ -172,9 +195,13 @@ impl PathTracer {
         self.ray_count.write(0, &[0])?;
         let [b0, b1, b2, b3, b4] = self.bvh.bindings();
         let [s0, s1] = self.stores.bindings();
+        let [i0, i1] = self.images.bindings();
         let bindings = [
             s0,
             s1,
+            i0,
+            i1,
+            self.bvh.uv_binding(),
             b0,
             b1,
             b2,

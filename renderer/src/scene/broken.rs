@@ -93,6 +93,9 @@ pub(super) fn break_instances(
                 mesh: Mesh {
                     positions: piece.positions,
                     triangles: piece.triangles,
+                    // A cut makes new faces the source's coordinates do not cover: pieces
+                    // carry no UVs (scene checks refuse UV materials on broken instances).
+                    uvs: None,
                     source: meshes[source].mesh.source.clone(),
                 },
                 name,

@@ -9,9 +9,10 @@ use super::raw::{
 };
 use super::volume::{mean_linear, VolumeTexture};
 use super::{
-    GlintProjection, GlintSpec, Material, MaterialKind, SceneError, SolidTexture, SolidTextureKind,
-    StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
+    GlintProjection, GlintSpec, ImageMap, Material, MaterialKind, NormalMap, SceneError,
+    SolidTexture, SolidTextureKind, StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
 };
+use crate::image_texture::ImageTexture;
 use glam::Vec3;
 use lazysolid_synth::solid::lazy::MemoryPolicy;
 use lazysolid_synth::{load_solid, FitMode};
@@ -69,7 +70,7 @@ fn kind_name(kind: RawMaterialKind) -> &'static str {
 }
 
 /// The kinds that accept each optional key, for "does not apply" messages.
-const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 17] = {
+const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 18] = {
     use RawMaterialKind::*;
     [
         (
@@ -82,9 +83,10 @@ const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 17] = {
         ("ior", &[Plastic, Dielectric]),
         ("preset", &[Conductor, Glint]),
         ("texture", &[Lambertian, Plastic]),
-        ("normal_map", &[Glint]),
-        ("height_map", &[Glint]),
-        ("height_scale", &[Glint]),
+        ("albedo_map", &[Lambertian, Plastic]),
+        ("normal_map", &[Lambertian, Conductor, Plastic, Glint]),
+        ("height_map", &[Lambertian, Conductor, Plastic, Glint]),
+        ("height_scale", &[Lambertian, Conductor, Plastic, Glint]),
         ("intrinsic_roughness", &[Glint]),
         ("scale", &[Glint]),
         ("blend", &[Glint]),
@@ -98,7 +100,7 @@ const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 17] = {
 /// Fails on the first key present in `raw` that its kind does not accept.
 fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), SceneError> {
     let kind = *raw.kind.get_ref();
-    let spans: [(&str, Option<Range<usize>>); 17] = [
+    let spans: [(&str, Option<Range<usize>>); 18] = [
         ("color", raw.color.as_ref().map(Spanned::span)),
         ("k", raw.k.as_ref().map(Spanned::span)),
         ("emission", raw.emission.as_ref().map(Spanned::span)),
@@ -106,6 +108,7 @@ fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), 
         ("ior", raw.ior.as_ref().map(Spanned::span)),
         ("preset", raw.preset.as_ref().map(Spanned::span)),
         ("texture", raw.texture.as_ref().map(Spanned::span)),
+        ("albedo_map", raw.albedo_map.as_ref().map(Spanned::span)),
         ("normal_map", raw.normal_map.as_ref().map(Spanned::span)),
         ("height_map", raw.height_map.as_ref().map(Spanned::span)),
         ("height_scale", raw.height_scale.as_ref().map(Spanned::span)),
@@ -185,10 +188,16 @@ pub(super) fn resolve(
         ior: 1.0,
         texture: None,
         glint: None,
+        albedo_map: None,
+        normal_map: None,
     };
+    if kind != RawMaterialKind::Glint {
+        material.normal_map = normal_map(doc, raw, label, base)?;
+    }
     match kind {
         RawMaterialKind::Lambertian | RawMaterialKind::Plastic => {
-            (material.color, material.texture) = albedo(doc, raw, &table, label, base)?;
+            (material.color, material.texture, material.albedo_map) =
+                albedo(doc, raw, &table, label, base)?;
             if kind == RawMaterialKind::Plastic {
                 material.kind = MaterialKind::Plastic;
                 material.roughness = roughness(true)?;
@@ -229,9 +238,113 @@ pub(super) fn resolve(
     Ok(material)
 }
 
-/// The albedo of a Lambertian or plastic material: a colour or a solid texture, not both.
-/// With a texture, `color` is the mean of its two colours (a flat stand-in for previews).
+/// The optional normal map of a Lambertian, conductor or plastic material: a tangent-space
+/// normal map or a height map (`height_scale` texel units of height per unit of grey), not
+/// both; a square power-of-two image as the vMF pyramid needs.
+fn normal_map(
+    doc: &Doc,
+    raw: &RawMaterial,
+    label: &str,
+    base: &Path,
+) -> Result<Option<NormalMap>, SceneError> {
+    use crate::glint::example::{load_height_map, load_normal_map};
+    let field = |key: &str| join(label, key);
+    let (example, source) = match (&raw.normal_map, &raw.height_map) {
+        (Some(_), Some(h)) => {
+            return Err(doc.invalid(
+                h.span(),
+                field("height_map"),
+                "normal_map and height_map are exclusive: give one",
+            ))
+        }
+        (None, None) => {
+            doc.reject(
+                &raw.height_scale,
+                label,
+                "height_scale",
+                "applies only to a height_map",
+            )?;
+            return Ok(None);
+        }
+        (Some(n), None) => {
+            doc.reject(
+                &raw.height_scale,
+                label,
+                "height_scale",
+                "applies only to a height_map",
+            )?;
+            let file = base.join(n.get_ref());
+            must_exist(doc, n.span().start, field("normal_map"), &file)?;
+            let example = load_normal_map(&file)
+                .map_err(|e| doc.invalid(n.span(), field("normal_map"), e))?;
+            (example, file)
+        }
+        (None, Some(h)) => {
+            let scale = match &raw.height_scale {
+                Some(v) => doc.number(v, &field("height_scale"), |v| v > 0.0, "> 0")?,
+                None => 1.0,
+            };
+            let file = base.join(h.get_ref());
+            must_exist(doc, h.span().start, field("height_map"), &file)?;
+            let example = load_height_map(&file, scale)
+                .map_err(|e| doc.invalid(h.span(), field("height_map"), e))?;
+            // Image rows run down, v runs up: the slope along v is minus the slope along rows.
+            let flipped = example
+                .texels()
+                .iter()
+                .map(|n| glam::Vec2::new(n.x, -n.y))
+                .collect();
+            let name = file.display().to_string();
+            let example = crate::glint::NormalExample::from_normals(&name, example.size(), flipped)
+                .map_err(|e| doc.invalid(h.span(), field("height_map"), e.to_string()))?;
+            (example, file)
+        }
+    };
+    let image = ImageTexture::from_normals(&source.display().to_string(), &example);
+    Ok(Some(NormalMap {
+        source,
+        example: Arc::new(example),
+        image: Arc::new(image),
+    }))
+}
+
+/// The albedo of a Lambertian or plastic material: a colour, a solid texture or an image read
+/// at the mesh's texture coordinates, one of them. With a texture, `color` is the mean of its
+/// two colours, with an image the image's mean (flat stand-ins for previews).
 fn albedo(
+    doc: &Doc,
+    raw: &RawMaterial,
+    table: &Range<usize>,
+    label: &str,
+    base: &Path,
+) -> Result<(Vec3, Option<SolidTexture>, Option<ImageMap>), SceneError> {
+    if let Some(a) = &raw.albedo_map {
+        let why = "albedo_map replaces color and texture as albedo: give one of them";
+        doc.reject(&raw.color, label, "color", why)?;
+        if raw.texture.is_some() {
+            return Err(doc.invalid(a.span(), join(label, "albedo_map"), why));
+        }
+        let file = base.join(a.get_ref());
+        must_exist(doc, a.span().start, join(label, "albedo_map"), &file)?;
+        let image = ImageTexture::load_color(&file)
+            .map_err(|e| doc.invalid(a.span(), join(label, "albedo_map"), e.to_string()))?;
+        let top = image.levels.last().expect("a pyramid has levels")[0];
+        let mean = crate::image_texture::sample::fetch_linear(&image, top).truncate();
+        return Ok((
+            mean,
+            None,
+            Some(ImageMap {
+                source: file,
+                image: Arc::new(image),
+            }),
+        ));
+    }
+    let (color, texture) = solid_albedo(doc, raw, table, label, base)?;
+    Ok((color, texture, None))
+}
+
+/// A colour or a solid texture, not both.
+fn solid_albedo(
     doc: &Doc,
     raw: &RawMaterial,
     table: &Range<usize>,
@@ -256,7 +369,7 @@ fn albedo(
             table.clone(),
             join(label, "color"),
             format!(
-                "missing ({} material needs color or texture)",
+                "missing ({} material needs color, texture or albedo_map)",
                 a_kind(*raw.kind.get_ref())
             ),
         )),
@@ -409,7 +522,7 @@ fn glint(
         table,
         label,
         "uv",
-        "meshes carry no UVs: a glint material says where its surface coordinates come from, \"planar\" (object x, z: quads and bent quads) or \"spherical\" (about the built-in sphere's centre)",
+        "a glint material says where its surface coordinates come from: \"planar\" (object x, z: quads and bent quads), \"spherical\" (about the built-in sphere's centre) or \"mesh\" (the mesh's texture coordinates)",
     )?;
     Ok(GlintSpec {
         map: Arc::new(map),
@@ -419,6 +532,7 @@ fn glint(
         projection: match uv.get_ref() {
             RawGlintUv::Planar => GlintProjection::Planar,
             RawGlintUv::Spherical => GlintProjection::Spherical,
+            RawGlintUv::Mesh => GlintProjection::Mesh,
         },
         explicit: matches!(
             raw.evaluation.as_ref().map(|e| *e.get_ref()),

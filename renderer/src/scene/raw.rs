@@ -103,6 +103,7 @@ pub(super) enum RawGlintBlend {
 pub(super) enum RawGlintUv {
     Planar,
     Spherical,
+    Mesh,
 }
 
 /// How a glint material evaluates its P-NDF, as spelled in the file.
@@ -137,6 +138,7 @@ pub(super) struct RawMaterial {
     pub ior: Option<Spanned<f32>>,
     pub preset: Option<Spanned<RawPreset>>,
     pub texture: Option<Spanned<RawTexture>>,
+    pub albedo_map: Option<Spanned<String>>,
     pub normal_map: Option<Spanned<String>>,
     pub height_map: Option<Spanned<String>>,
     pub height_scale: Option<Spanned<f32>>,

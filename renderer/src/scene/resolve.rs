@@ -4,7 +4,7 @@
 use super::location::{element_label, join, Doc};
 use super::raw::{RawInstance, RawScene};
 use super::{broken, camera, lights, material, meshes, motion};
-use super::{Instance, Scene, SceneError};
+use super::{Instance, Material, Scene, SceneError, SceneMesh};
 use glam::{Affine3A, Quat, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
@@ -98,6 +98,7 @@ impl Scene {
                 meshes::mesh(&doc, m, &label, base)
             })
             .collect::<Result<Vec<_>, _>>()?;
+        uvs_where_read(&doc, &raw, &instances, &instance_names, &materials, &meshes)?;
         let mut instances = broken::break_instances(
             &doc,
             &raw.cut,
@@ -182,6 +183,65 @@ fn lookup(
             format!("unknown {section} {:?} ({known})", name.get_ref()),
         )
     })
+}
+
+/// Fails where a material that reads texture coordinates (an albedo or normal map, glint
+/// `uv = "mesh"`) is placed on a mesh without them, or on an instance that is cut or
+/// fractured (a cut's new faces have no coordinates).
+fn uvs_where_read(
+    doc: &Doc,
+    raw: &RawScene,
+    instances: &[Instance],
+    instance_names: &HashMap<&str, usize>,
+    materials: &[Material],
+    meshes: &[SceneMesh],
+) -> Result<(), SceneError> {
+    const READS: &str =
+        "reads texture coordinates (albedo_map, normal_map, height_map or glint uv = \"mesh\")";
+    for (i, inst) in instances.iter().enumerate() {
+        let material = &materials[inst.material];
+        let mesh = &meshes[inst.mesh];
+        if material.needs_uvs() && mesh.mesh.uvs.is_none() {
+            let span = raw.instance[i].get_ref().material.span();
+            return Err(doc.invalid(
+                span,
+                join(&element_label("instance", i, None), "material"),
+                format!(
+                    "material {:?} {READS}, but mesh {:?} ({}) has none: give the OBJ vt coordinates, or use the built-in quad",
+                    material.name,
+                    mesh.name,
+                    mesh.mesh.source.display()
+                ),
+            ));
+        }
+    }
+    let cuts = raw
+        .cut
+        .iter()
+        .enumerate()
+        .map(|(k, c)| (k, &c.get_ref().instance, "cut"));
+    let fractures = raw
+        .fracture
+        .iter()
+        .enumerate()
+        .map(|(k, f)| (k, &f.get_ref().instance, "fracture"));
+    for (k, name, section) in cuts.chain(fractures) {
+        if let Some(&i) = instance_names.get(name.get_ref().as_str()) {
+            let material = &materials[instances[i].material];
+            if material.needs_uvs() {
+                return Err(doc.invalid(
+                    name.span(),
+                    join(&element_label(section, k, None), "instance"),
+                    format!(
+                        "instance {:?} has material {:?}, which {READS}: the faces a {section} makes have none",
+                        name.get_ref(),
+                        material.name
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Validates one instance: names resolved, transform built as translate · rotate · scale with

@@ -153,8 +153,8 @@ pub enum MaterialKind {
     Glint,
 }
 
-/// Surface coordinates of a glint material, computed from the object-space hit point (meshes
-/// carry no UVs in lazysolid).
+/// Surface coordinates of a glint material: a projection of the object-space hit point, or the
+/// mesh's own texture coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GlintProjection {
     /// (x, z) of object space: the plane of the built-in quad, and of any surface that is a
@@ -164,6 +164,8 @@ pub enum GlintProjection {
     /// sphere's centre), times the distance to it: arc lengths on a sphere, stretched towards
     /// its poles (y axis).
     Spherical,
+    /// The mesh's texture coordinates (its UV unit square spans `scale` scene units).
+    Mesh,
 }
 
 /// The microstructure of a glint material.
@@ -218,6 +220,56 @@ pub struct Material {
     pub texture: Option<SolidTexture>,
     /// The microstructure of a [`MaterialKind::Glint`] material.
     pub glint: Option<GlintSpec>,
+    /// An albedo image replacing `color`, read at the mesh's texture coordinates (Lambertian,
+    /// plastic).
+    pub albedo_map: Option<ImageMap>,
+    /// A tangent-space normal map read at the mesh's texture coordinates, bending the shading
+    /// normal (Lambertian, conductor, plastic).
+    pub normal_map: Option<NormalMap>,
+}
+
+impl Material {
+    /// True when the material reads the mesh's texture coordinates (its meshes must have them).
+    pub fn needs_uvs(&self) -> bool {
+        self.albedo_map.is_some()
+            || self.normal_map.is_some()
+            || self
+                .glint
+                .as_ref()
+                .is_some_and(|g| g.projection == GlintProjection::Mesh)
+    }
+}
+
+/// An image read at texture coordinates, with its MIP pyramid.
+#[derive(Clone, Debug)]
+pub struct ImageMap {
+    /// The file.
+    pub source: PathBuf,
+    /// Its levels, as uploaded.
+    pub image: std::sync::Arc<crate::image_texture::ImageTexture>,
+}
+
+impl PartialEq for ImageMap {
+    fn eq(&self, o: &Self) -> bool {
+        self.source == o.source && std::sync::Arc::ptr_eq(&self.image, &o.image)
+    }
+}
+
+/// A tangent-space normal map (or a height map converted to one).
+#[derive(Clone, Debug)]
+pub struct NormalMap {
+    /// The file.
+    pub source: PathBuf,
+    /// The level-0 normals (+y towards +v), what the vMF fit starts from.
+    pub example: std::sync::Arc<crate::glint::NormalExample>,
+    /// Its plain MIP pyramid, as uploaded.
+    pub image: std::sync::Arc<crate::image_texture::ImageTexture>,
+}
+
+impl PartialEq for NormalMap {
+    fn eq(&self, o: &Self) -> bool {
+        self.source == o.source && std::sync::Arc::ptr_eq(&self.example, &o.example)
+    }
 }
 
 /// A solid (3D) texture evaluated at the rest-pose object-space hit point.

@@ -3,9 +3,9 @@
 use super::coat::{coat_terms, COAT_KNOTS};
 use crate::scene::{Material, MaterialKind, SolidTextureKind};
 use crate::shader_constants::{
-    MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_EMISSIVE, MATERIAL_GLINT,
-    MATERIAL_LAMBERTIAN, MATERIAL_PLASTIC, TEXTURE_CHECKER, TEXTURE_MARBLE, TEXTURE_NONE,
-    TEXTURE_WOOD,
+    IMAGE_NONE, MATERIAL_CONDUCTOR, MATERIAL_DIELECTRIC, MATERIAL_EMISSIVE, MATERIAL_GLINT,
+    MATERIAL_LAMBERTIAN, MATERIAL_PLASTIC, TEXTURE_CHECKER, TEXTURE_IMAGE, TEXTURE_MARBLE,
+    TEXTURE_NONE, TEXTURE_WOOD,
 };
 use bytemuck::{Pod, Zeroable};
 
@@ -40,8 +40,11 @@ pub struct GpuMaterial {
     pub coat_internal: f32,
     /// Glint: the index of its `GlintRecord` (`GLINT_NONE` for other kinds).
     pub glint: u32,
-    /// Keeps the record a multiple of 16 bytes.
-    pub pad: [f32; 2],
+    /// The albedo image's record (`IMAGE_NONE` without one; `texture_kind` is then not
+    /// `TEXTURE_IMAGE`).
+    pub albedo_image: u32,
+    /// The normal map's record (`IMAGE_NONE` without one).
+    pub normal_image: u32,
 }
 
 const _: () = assert!(size_of::<GpuMaterial>() == 160);
@@ -100,10 +103,16 @@ impl From<&Material> for GpuMaterial {
             k: m.k.to_array(),
             ior: m.ior,
             tex_color_a: texture.map_or([0.0; 3], |t| t.color_a.to_array()),
-            texture_kind: texture_kind_code(texture.map(|t| t.kind)),
+            texture_kind: if m.albedo_map.is_some() {
+                TEXTURE_IMAGE
+            } else {
+                texture_kind_code(texture.map(|t| t.kind))
+            },
             tex_color_b: texture.map_or([0.0; 3], |t| t.color_b.to_array()),
             tex_scale: texture.map_or(0.0, |t| t.scale),
             glint: crate::shader_constants::GLINT_NONE,
+            albedo_image: IMAGE_NONE,
+            normal_image: IMAGE_NONE,
             ..Default::default()
         }
         .with_coat()
@@ -127,6 +136,8 @@ mod tests {
             roughness: 0.25,
             ior: 1.5,
             glint: None,
+            albedo_map: None,
+            normal_map: None,
             texture: Some(SolidTexture {
                 kind: SolidTextureKind::Wood,
                 color_a: Vec3::X,
@@ -153,6 +164,8 @@ mod tests {
         assert_eq!(std::mem::offset_of!(GpuMaterial, texture_kind), 60);
         assert_eq!(std::mem::offset_of!(GpuMaterial, tex_scale), 76);
         assert_eq!(std::mem::offset_of!(GpuMaterial, coat_internal), 144);
+        assert_eq!(std::mem::offset_of!(GpuMaterial, normal_image), 156);
+        assert_eq!(g.albedo_image, IMAGE_NONE);
         assert_eq!(g.coat_albedo, coat_terms(0.25, 1.5).albedo);
     }
 }

@@ -1,0 +1,12 @@
+//! 2D textures read at a surface's texture coordinates: albedo images and tangent-space normal
+//! maps, each with its MIP pyramid, uploaded together for the path tracer
+//! (`glsl/include/render/image.glsl`) with a CPU twin of the lookup ([`sample`]).
+
+mod error;
+mod gpu;
+mod pyramid;
+pub mod sample;
+
+pub use error::ImageError;
+pub use gpu::{DeviceImages, GpuImageRecord, ImageSet, MAX_IMAGE_LEVELS};
+pub use pyramid::{ImageEncoding, ImageTexture, MAX_IMAGE_EDGE, MAX_IMAGE_TEXELS};
