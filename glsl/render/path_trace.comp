@@ -76,8 +76,12 @@ struct TriangleUvs {
 };
 layout(binding = 15, scalar) readonly buffer BvhTriangleUvs { TriangleUvs bvh_uvs[]; };
 
-// 1 when a scene material has a normal map: 0 compiles the tangent frames and lookups out.
-layout(constant_id = PATH_TRACE_NORMAL_MAPS_ID) const uint NORMAL_MAPS = 1u;
+// Bit 0: a scene material has a normal map (0 compiles the tangent frames and lookups out);
+// bit 1: one of them is filtered by vMF mixtures (0 compiles the mixture BSDF out).
+layout(constant_id = PATH_TRACE_NORMAL_MAPS_ID) const uint NORMAL_MAPS = 3u;
+// Lobes per texel of the vMF-filtered maps (the scene's largest J; at least 1).
+layout(constant_id = PATH_TRACE_VMF_LOBES_ID) const uint VMF_LOBES = 4u;
+#include "render/normal_vmf.glsl"
 
 layout(push_constant, scalar) uniform Push {
     uint sample_index;
@@ -238,16 +242,6 @@ vec3 store_albedo(uint slot, vec3 pos, vec3 normal, out vec3 relief_gradient) {
 // (next-event rays below it are not traced, BSDF samples below it end the path), so the bend
 // cannot let light through the surface; and the bent normal is kept at least slightly facing
 // the viewer (v), since a view below its hemisphere would shade black.
-// n kept at least slightly facing the viewer v when the unbent normal ns faces it: a view
-// below the shading hemisphere would shade black.
-vec3 facing_normal(vec3 ns, vec3 n, vec3 v) {
-    float facing = dot(n, v);
-    if (dot(ns, v) > 0.0 && facing < 0.05) {
-        n = normalize(n + (0.05 - facing) * v);
-    }
-    return n;
-}
-
 vec3 bend_normal(vec3 ns, vec3 g, vec3 v) {
     return facing_normal(ns, normalize(ns - (g - dot(g, ns) * ns)), v);
 }
@@ -490,7 +484,7 @@ void main() {
                     }
                 }
                 bool image_albedo = texture_kind_used(TEXTURE_IMAGE) && m.texture_kind == TEXTURE_IMAGE;
-                bool normal_mapped = NORMAL_MAPS != 0u && m.normal_image != IMAGE_NONE;
+                bool normal_mapped = (NORMAL_MAPS & 1u) != 0u && m.normal_image != IMAGE_NONE;
                 bool mesh_glint = material_is(m, MATERIAL_GLINT) && glint_records[m.glint].projection == GLINT_UV_MESH;
                 SurfaceUv su;
                 vec2 fp_a = vec2(0.0);
@@ -510,17 +504,36 @@ void main() {
                                  ? solid_texture_albedo(m, s.p_object)
                                  : store_albedo(store_slot, s.p_surface_object, s.n_object, relief_gradient);
                 }
+                bool use_vmf = false;
+                VmfShade vs;
                 if (normal_mapped && has_uv) {
-                    // Plain MIP filtering: the footprint's mean normal, renormalized.
-                    vec3 nm = image_lookup(m.normal_image, su.uv, fp_a, fp_b).xyz;
-                    float nl = length(nm);
+                    uint nfilter = image_records[m.normal_image].normal_filter;
                     vec3 t = su.tangent - s.ns * dot(s.ns, su.tangent);
                     float tl = length(t);
-                    if (nl > 1e-6 && tl > 1e-6) {
+                    if (tl > 1e-6) {
                         t /= tl;
                         vec3 bt = cross(s.ns, t) * su.sign;
-                        vec3 n = normalize(t * nm.x + bt * nm.y + s.ns * nm.z);
-                        s.ns = facing_normal(s.ns, n, -dir);
+                        if ((NORMAL_MAPS & 2u) != 0u && nfilter == NORMAL_FILTER_VMF) {
+                            // The footprint's mixture, drawn texel by texel (normal_vmf.glsl).
+                            vec3 u_texel = vec3(rng_next2(rng), rng_next(rng));
+                            vs = vmf_shade(vmf_texel(m.normal_image, su.uv, fp_a, fp_b, u_texel), t, bt, s.ns, -dir);
+                            use_vmf = true;
+                        } else {
+                            vec3 nm;
+                            if (nfilter == NORMAL_FILTER_NONE) {
+                                // The finest level's texel under the hit: the map's own facets.
+                                uvec2 size = image_level_size(m.normal_image, 0u);
+                                nm = image_fetch(m.normal_image, 0u, int(floor(su.uv.x * float(size.x))),
+                                                 int(floor((1.0 - su.uv.y) * float(size.y)))).xyz;
+                            } else {
+                                // Plain MIP: the footprint's mean normal, renormalized.
+                                nm = image_lookup(m.normal_image, su.uv, fp_a, fp_b).xyz;
+                            }
+                            if (length(nm) > 1e-6) {
+                                vec3 n = normalize(t * nm.x + bt * nm.y + s.ns * nm.z);
+                                s.ns = facing_normal(s.ns, n, -dir);
+                            }
+                        }
                     }
                 }
                 if (relief_gradient != vec3(0.0)) {
@@ -530,9 +543,16 @@ void main() {
                     float scale = length(cwbvh_transform_vector(o2w, vec3(1.0, 0.0, 0.0)));
                     s.ns = bend_normal(s.ns, g / scale, -dir);
                 }
+                if (depth == 0u && use_vmf) {
+                    vec3 mean = vec3(0.0);
+                    for (uint j = 0u; j < uint(VMF_LOBES); j++) {
+                        mean += vs.mu[j] * vs.alpha[j];
+                    }
+                    aov_normal = length(mean) > 0.0 ? normalize(mean) : s.ns;
+                }
                 if (depth == 0u) {
                     aov_albedo = material_is(m, MATERIAL_EMISSIVE) ? m.emission / max(max3(m.emission), 1e-6) : albedo;
-                    aov_normal = s.ns;
+                    aov_normal = use_vmf ? aov_normal : s.ns;
                     aov_depth = h.t;
                 }
                 if (material_is(m, MATERIAL_EMISSIVE)) {
@@ -567,7 +587,7 @@ void main() {
                 float wo_side = dot(-dir, s.ng);
 
                 // Next-event estimation: one light or the environment, chosen uniformly.
-                if (strategies > 0u && (glint || bsdf_has_smooth_lobe(m))) {
+                if (strategies > 0u && (glint || use_vmf || bsdf_has_smooth_lobe(m))) {
                     vec2 u_light = rng_next2(rng);
                     float u_pick = rng_next(rng);
                     uint pick = min(uint(u_pick * float(strategies)), strategies - 1u);
@@ -590,7 +610,9 @@ void main() {
                     bool same_side = dot(wi, s.ng) * wo_side > 0.0;
                     if (ok && lpdf > 0.0 && max3(li) > 0.0 && (same_side || transmissive)) {
                         vec3 wi_l = vec3(dot(wi, t_axis), dot(wi, b_axis), dot(wi, s.ns));
-                        vec3 f = glint ? glint_eval(gr, m, gs, wo, wi_l) : bsdf_eval(m, albedo, wo, wi_l);
+                        float vmf_pdf = 0.0;
+                        vec3 f = use_vmf ? vmf_eval(m, albedo, vs, -dir, wi, vmf_pdf)
+                                         : glint ? glint_eval(gr, m, gs, wo, wi_l) : bsdf_eval(m, albedo, wo, wi_l);
                         if (max3(f) > 0.0) {
                             vec3 o2 = offset_origin(s.p, s.ng, wi);
                             float tmax = dist < 1.0 / 0.0 ? dist * (1.0 - 1e-4) - 1e-4 : dist;
@@ -600,7 +622,8 @@ void main() {
                             if (!lights_occlude(o2, wi, tmax, skip) &&
                                 !cwbvh_trace(o2, wi, 0.0, tmax, true, sh)) {
                                 float lp = select_pdf * lpdf;
-                                float bp = glint ? glint_pdf(gr, gs, wo, wi_l) : bsdf_pdf(m, albedo, wo, wi_l);
+                                float bp = use_vmf ? vmf_pdf
+                                                   : glint ? glint_pdf(gr, gs, wo, wi_l) : bsdf_pdf(m, albedo, wo, wi_l);
                                 float w = power_heuristic(lp, bp);
                                 radiance += beta * f * li * (w / lp);
                             }
@@ -611,7 +634,14 @@ void main() {
                 // Continue the path by sampling the BSDF.
                 BsdfSample bs;
                 vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
-                bool sampled = glint ? glint_sample(gr, m, gs, wo, u_bsdf, bs) : bsdf_sample(m, albedo, wo, u_bsdf, bs);
+                bool sampled;
+                if (use_vmf) {
+                    sampled = vmf_sample(m, albedo, vs, -dir, u_bsdf, rng_next(rng), bs);
+                    // Already a world direction: expressed in the shading frame for the line below.
+                    bs.wi = vec3(dot(bs.wi, t_axis), dot(bs.wi, b_axis), dot(bs.wi, s.ns));
+                } else {
+                    sampled = glint ? glint_sample(gr, m, gs, wo, u_bsdf, bs) : bsdf_sample(m, albedo, wo, u_bsdf, bs);
+                }
                 if (!sampled) {
                     break;
                 }

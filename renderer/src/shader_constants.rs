@@ -53,6 +53,22 @@ pub const IMAGE_ENCODING_NORMAL: u32 = 1;
 pub const IMAGE_MAX_ANISOTROPY: u32 = 8;
 /// Most MIP levels of an image texture (an edge of 8192 has 14).
 pub const IMAGE_MAX_LEVELS: u32 = 14;
+/// How a normal map is read over a footprint (`renderer::scene::NormalFilter`): the finest
+/// level's nearest texel.
+pub const NORMAL_FILTER_NONE: u32 = 0;
+/// The footprint's mean normal from the plain MIP pyramid, renormalized.
+pub const NORMAL_FILTER_MIP: u32 = 1;
+/// A vMF mixture per texel of every level.
+pub const NORMAL_FILTER_VMF: u32 = 2;
+/// Largest vMF concentration the path tracer derives from a lobe's mean length (the CPU fit's
+/// `MAX_KAPPA`, 1e5): a lobe 0.26° wide.
+pub const VMF_MAX_KAPPA: u32 = 100000;
+/// Most vMF lobes per texel (`renderer::normal_map::pyramid::LOBES_PER_TEXEL`'s end): the
+/// size of the path tracer's per-hit lobe arrays.
+pub const VMF_MAX_LOBES: u32 = 8;
+/// Specialization constant id of the path tracer's vMF lobes per texel (the largest `J` of the
+/// scene's vMF-filtered normal maps; 0 compiles the mixture BSDF out).
+pub const PATH_TRACE_VMF_LOBES_ID: u32 = 6;
 /// `GpuMaterial::albedo_image` / `normal_image` of a material without that image.
 pub const IMAGE_NONE: u32 = 4294967295;
 

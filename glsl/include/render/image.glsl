@@ -14,7 +14,8 @@ struct ImageRecord {
     uint levels;
     uint encoding;   // IMAGE_ENCODING_*
     uint level_offset[IMAGE_MAX_LEVELS];
-    uint pad0, pad1;
+    uint normal_filter;  // NORMAL_FILTER_* of a normal map
+    uint vmf_record;     // its VmfRecord (render/normal_vmf.glsl) when filtered by vMF
 };
 layout(binding = 16, scalar) readonly buffer ImageRecords { ImageRecord image_records[]; };
 layout(binding = 17, scalar) readonly buffer ImageTexels { uint image_texels[]; };

@@ -18,6 +18,17 @@ void make_frame(vec3 n, out vec3 t, out vec3 b) {
     b = vec3(c, s + n.y * n.y * a, -n.y);
 }
 
+// n kept at least slightly facing the viewer v when the unbent normal ns faces it: a view
+// below the shading hemisphere would shade black. Normal maps, relief and vMF lobes all go
+// through it, so every filter of a map sees the same surface.
+vec3 facing_normal(vec3 ns, vec3 n, vec3 v) {
+    float facing = dot(n, v);
+    if (dot(ns, v) > 0.0 && facing < 0.05) {
+        n = normalize(n + (0.05 - facing) * v);
+    }
+    return n;
+}
+
 // World direction v in the local shading frame (t, b, n): z along n.
 vec3 to_local(vec3 v, vec3 t, vec3 b, vec3 n) {
     return vec3(dot(v, t), dot(v, b), dot(v, n));

@@ -2,9 +2,14 @@
 //! `glsl/include/render/image.glsl`) and every level of every image in one texel buffer.
 
 use super::{ImageError, ImageTexture, MAX_IMAGE_TEXELS};
-use crate::shader_constants::IMAGE_MAX_LEVELS;
+use crate::normal_map::pyramid::VmfPyramid;
+use crate::shader_constants::{IMAGE_MAX_LEVELS, NORMAL_FILTER_VMF};
 use bytemuck::{Pod, Zeroable};
 use lazysolid_compute::gpu::{BufferArg, Gpu, GpuBuffer, GpuResult};
+
+/// Most vMF lobes of a scene (all levels of all maps, at the scene's stride): one 128 MiB
+/// storage buffer of (α, α·r) in f32.
+pub const MAX_VMF_LOBES: u64 = (128 << 20) / 16;
 
 /// Most MIP levels of one image (from [`IMAGE_MAX_LEVELS`]).
 pub const MAX_IMAGE_LEVELS: usize = IMAGE_MAX_LEVELS as usize;
@@ -23,9 +28,25 @@ pub struct GpuImageRecord {
     pub encoding: u32,
     /// First texel of each level in the texel buffer.
     pub level_offset: [u32; MAX_IMAGE_LEVELS],
+    /// A normal map's `NORMAL_FILTER_*` (0 for colour images).
+    pub normal_filter: u32,
+    /// A vMF-filtered normal map's first lobe of each level in the lobe buffer is
+    /// `vmf_level_offset[l]` of its [`GpuVmfRecord`], at this index (0 otherwise).
+    pub vmf_record: u32,
+}
+
+/// Where a vMF-filtered normal map's lobes lie: every texel holds the scene's `VMF_LOBES`
+/// lobes as (α, α·r) (zero weight for lobes beyond the map's own `J`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuVmfRecord {
+    /// First lobe of each level in the lobe buffer.
+    pub level_offset: [u32; MAX_IMAGE_LEVELS],
     /// Keeps the record a multiple of 16 bytes.
     pub pad: [u32; 2],
 }
+
+const _: () = assert!(size_of::<GpuVmfRecord>() == 64);
 
 const _: () = assert!(size_of::<GpuImageRecord>() == 80);
 
@@ -34,9 +55,77 @@ const _: () = assert!(size_of::<GpuImageRecord>() == 80);
 pub struct ImageSet {
     records: Vec<GpuImageRecord>,
     texels: Vec<u32>,
+    vmf_records: Vec<GpuVmfRecord>,
+    vmf_lobes: Vec<[f32; 4]>,
+    vmf_stride: usize,
 }
 
 impl ImageSet {
+    /// An empty set whose vMF texels hold `vmf_stride` lobes each (the scene's largest `J`).
+    pub fn with_vmf_stride(vmf_stride: usize) -> ImageSet {
+        ImageSet {
+            vmf_stride,
+            ..Default::default()
+        }
+    }
+
+    /// Adds a normal map's plain MIP levels (`image`), read with `filter`
+    /// (`NORMAL_FILTER_*`), and with [`NORMAL_FILTER_VMF`] its mixtures; returns its record
+    /// index.
+    ///
+    /// # Errors
+    /// As [`ImageSet::add`], and [`ImageError::Total`] when the lobes exceed one device
+    /// buffer.
+    ///
+    /// # Panics
+    /// When a vMF map comes without its pyramid, or its `J` exceeds the set's stride
+    /// (caller errors).
+    pub fn add_normal_map(
+        &mut self,
+        image: &ImageTexture,
+        filter: u32,
+        pyramid: Option<&VmfPyramid>,
+    ) -> Result<u32, ImageError> {
+        let index = self.add(image)?;
+        let record = &mut self.records[index as usize];
+        record.normal_filter = filter;
+        if filter == NORMAL_FILTER_VMF {
+            let pyramid = pyramid.expect("a vMF-filtered map comes with its pyramid");
+            let j = pyramid.lobes_per_texel;
+            assert!(
+                j <= self.vmf_stride,
+                "{j} lobes, stride {}",
+                self.vmf_stride
+            );
+            let texels: usize = pyramid.levels.iter().map(|l| l.size * l.size).sum();
+            let total = (self.vmf_lobes.len() + texels * self.vmf_stride) as u64;
+            if total > MAX_VMF_LOBES {
+                return Err(ImageError::Total {
+                    texels: total,
+                    max: MAX_VMF_LOBES,
+                });
+            }
+            let mut vmf = GpuVmfRecord::default();
+            for (l, level) in pyramid.levels.iter().enumerate() {
+                vmf.level_offset[l] = self.vmf_lobes.len() as u32;
+                for texel in level.lobes.chunks_exact(j) {
+                    for k in 0..self.vmf_stride {
+                        self.vmf_lobes.push(match texel.get(k) {
+                            Some(lobe) => {
+                                let (a, ar) = lobe.moments();
+                                [a as f32, ar.x as f32, ar.y as f32, ar.z as f32]
+                            }
+                            None => [0.0; 4],
+                        });
+                    }
+                }
+            }
+            record.vmf_record = self.vmf_records.len() as u32;
+            self.vmf_records.push(vmf);
+        }
+        Ok(index)
+    }
+
     /// Adds `image`; returns its record index (what a material stores).
     ///
     /// # Errors
@@ -96,9 +185,21 @@ impl ImageSet {
         } else {
             self.texels.clone()
         };
+        let vmf_records = if self.vmf_records.is_empty() {
+            vec![GpuVmfRecord::default()]
+        } else {
+            self.vmf_records.clone()
+        };
+        let vmf_lobes = if self.vmf_lobes.is_empty() {
+            vec![[0.0; 4]]
+        } else {
+            self.vmf_lobes.clone()
+        };
         Ok(DeviceImages {
             records: GpuBuffer::from_slice(gpu, "image records", &records)?,
             texels: GpuBuffer::from_slice(gpu, "image texels", &texels)?,
+            vmf_records: GpuBuffer::from_slice(gpu, "vmf records", &vmf_records)?,
+            vmf_lobes: GpuBuffer::from_slice(gpu, "vmf lobes", &vmf_lobes)?,
         })
     }
 }
@@ -107,6 +208,8 @@ impl ImageSet {
 pub struct DeviceImages {
     records: GpuBuffer<GpuImageRecord>,
     texels: GpuBuffer<u32>,
+    vmf_records: GpuBuffer<GpuVmfRecord>,
+    vmf_lobes: GpuBuffer<[f32; 4]>,
 }
 
 impl DeviceImages {
@@ -118,8 +221,19 @@ impl DeviceImages {
         ]
     }
 
+    /// The bindings of `render/vmf.glsl`, by block name.
+    pub fn vmf_bindings(&self) -> [(&'static str, BufferArg<'_>); 2] {
+        [
+            ("VmfRecords", self.vmf_records.arg()),
+            ("VmfLobes", self.vmf_lobes.arg()),
+        ]
+    }
+
     /// Exact GPU bytes.
     pub fn bytes(&self) -> u64 {
-        self.records.bytes() + self.texels.bytes()
+        self.records.bytes()
+            + self.texels.bytes()
+            + self.vmf_records.bytes()
+            + self.vmf_lobes.bytes()
     }
 }

@@ -8,5 +8,7 @@ mod pyramid;
 pub mod sample;
 
 pub use error::ImageError;
-pub use gpu::{DeviceImages, GpuImageRecord, ImageSet, MAX_IMAGE_LEVELS};
+pub use gpu::{
+    DeviceImages, GpuImageRecord, GpuVmfRecord, ImageSet, MAX_IMAGE_LEVELS, MAX_VMF_LOBES,
+};
 pub use pyramid::{ImageEncoding, ImageTexture, MAX_IMAGE_EDGE, MAX_IMAGE_TEXELS};

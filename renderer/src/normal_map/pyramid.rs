@@ -17,7 +17,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 /// Fewest and most lobes per texel: the thesis finds 3–4 "excellent", 6 more so.
-pub const LOBES_PER_TEXEL: std::ops::RangeInclusive<usize> = 1..=8;
+pub const LOBES_PER_TEXEL: std::ops::RangeInclusive<usize> =
+    1..=crate::shader_constants::VMF_MAX_LOBES as usize;
 
 /// One level: `size`² texels of `lobes_per_texel` lobes each, row by row.
 #[derive(Clone, Debug, PartialEq)]

@@ -86,6 +86,64 @@ pub fn convolved_exponent(kappa: f64, s: f64) -> f64 {
     kappa * s / (kappa + s)
 }
 
+/// The mean clamped cosine `E[max(0, n · l)]` over the normals n of a unit-mass lobe of
+/// concentration `κ` whose axis makes the cosine `t` with l: the diffuse response of a lobe of
+/// normals (Lambert's law averaged over the lobe). Without the clamp it would be `A(κ) t`; the
+/// clamp matters where the lobe straddles the light's horizon, which a grazing light makes
+/// common.
+///
+/// `n · l` is taken as normal with the lobe's exact mean `A(κ) t` and variance
+/// `t² Var(cos θ) + (1 − t²) A(κ)/κ` (from `E[cos² θ] = 1 − 2A(κ)/κ`), and the clamped mean of
+/// a normal variable is `m Φ(m/σ) + σ φ(m/σ)`. Against [`clamped_cosine_mean_exact`] it errs by
+/// at most 0.024 for κ in [1, 2], 0.01 from κ = 5 on and 0.001 from κ = 30 on, better than
+/// Hill's spherical-Gaussian irradiance fit (0.016 at κ = 10, on the horizon) wherever
+/// normal-map lobes are (measured by the tests below).
+pub fn clamped_cosine_mean(t: f64, kappa: f64) -> f64 {
+    let a = mean_length(kappa);
+    let m = a * t;
+    let var = t * t * (1.0 - 2.0 * a / kappa - a * a) + (1.0 - t * t) * a / kappa;
+    let sd = var.max(1e-12).sqrt();
+    let z = m / sd;
+    let density = (-0.5 * z * z).exp() / (2.0 * PI).sqrt();
+    let cdf = 0.5 * (1.0 + erf(z / std::f64::consts::SQRT_2));
+    m * cdf + sd * density
+}
+
+/// The error function by Abramowitz and Stegun 7.1.26 (absolute error below 1.5e-7), the form
+/// the path tracer's GLSL twin uses.
+pub fn erf(x: f64) -> f64 {
+    let s = x.signum();
+    let x = x.abs();
+    let t = 1.0 / (1.0 + 0.327_591_1 * x);
+    let poly = ((((1.061_405_429 * t - 1.453_152_027) * t + 1.421_413_741) * t - 0.284_496_736)
+        * t
+        + 0.254_829_592)
+        * t;
+    s * (1.0 - poly * (-x * x).exp())
+}
+
+/// [`clamped_cosine_mean`] by quadrature over the lobe (cosine to its axis by
+/// [`integrate_cosine`], azimuth by the midpoint rule).
+pub fn clamped_cosine_mean_exact(t: f64, kappa: f64) -> f64 {
+    let lobe = VmfLobe::new(1.0, DVec3::Z, kappa);
+    let s = (1.0 - t * t).max(0.0).sqrt();
+    const AZIMUTHS: u32 = 512;
+    integrate_cosine(
+        |c| {
+            let sin = (1.0 - c * c).max(0.0).sqrt();
+            let ring: f64 = (0..AZIMUTHS)
+                .map(|k| {
+                    let phi = (f64::from(k) + 0.5) / f64::from(AZIMUTHS) * 2.0 * PI;
+                    (sin * phi.cos() * s + c * t).max(0.0)
+                })
+                .sum::<f64>()
+                / f64::from(AZIMUTHS);
+            lobe.density_at_cosine(c) * ring * 2.0 * PI
+        },
+        kappa,
+    )
+}
+
 /// ∫₋₁¹ f(t) dt for a function concentrated towards t = 1 with width about 1/κ: 5-point
 /// Gauss–Legendre on intervals that shrink geometrically towards 1.
 pub(crate) fn integrate_cosine(f: impl Fn(f64) -> f64, kappa: f64) -> f64 {
@@ -219,6 +277,33 @@ impl VmfLobe {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_clamped_cosine_of_a_lobe_follows_the_fit_and_differs_from_the_unclamped_mean() {
+        let worst = |kappas: &[f64]| {
+            let mut w = 0.0f64;
+            for &kappa in kappas {
+                for i in 0..=20 {
+                    let t = -1.0 + 0.1 * f64::from(i);
+                    let exact = clamped_cosine_mean_exact(t, kappa);
+                    w = w.max((clamped_cosine_mean(t, kappa) - exact).abs());
+                }
+            }
+            w
+        };
+        assert!(worst(&[1.0, 2.0]) < 0.024, "{}", worst(&[1.0, 2.0]));
+        assert!(worst(&[5.0, 10.0]) < 0.01, "{}", worst(&[5.0, 10.0]));
+        assert!(
+            worst(&[30.0, 100.0, 1000.0]) < 1e-3,
+            "{}",
+            worst(&[30.0, 100.0, 1000.0])
+        );
+        assert!((erf(0.5) - 0.520_499_877_8).abs() < 2e-7);
+        // At the horizon of a wide lobe the clamp lifts the mean well above A(κ) t = 0.
+        assert!(clamped_cosine_mean_exact(0.0, 5.0) > 0.1);
+        // A sharp lobe is the clamped cosine itself.
+        assert!((clamped_cosine_mean_exact(0.6, 1e4) - 0.6).abs() < 1e-3);
+    }
 
     #[test]
     fn the_mean_length_inverts_and_the_approximation_error_is_small() {

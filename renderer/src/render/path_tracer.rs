@@ -7,11 +7,13 @@ use super::stores::{BakedStoreInfo, SceneStores};
 use crate::accel::{DeviceBvh, SceneBvh};
 use crate::image_texture::{DeviceImages, ImageSet};
 use crate::kernels::render::PATH_TRACE;
+use crate::normal_map::pyramid::VmfPyramid;
 use crate::output::Film;
-use crate::scene::{Environment, RenderSettings, Scene, MAX_DEPTH};
+use crate::scene::{Environment, NormalFilter, RenderSettings, Scene, MAX_DEPTH};
 use crate::shader_constants::{
-    IMAGE_NONE, PATH_TRACE_MATERIAL_KINDS_ID, PATH_TRACE_NORMAL_MAPS_ID, PATH_TRACE_STORE_KINDS_ID,
-    PATH_TRACE_TEXTURE_KINDS_ID,
+    IMAGE_NONE, NORMAL_FILTER_MIP, NORMAL_FILTER_NONE, NORMAL_FILTER_VMF,
+    PATH_TRACE_MATERIAL_KINDS_ID, PATH_TRACE_NORMAL_MAPS_ID, PATH_TRACE_STORE_KINDS_ID,
+    PATH_TRACE_TEXTURE_KINDS_ID, PATH_TRACE_VMF_LOBES_ID,
 };
 use crate::shading::{GpuEnvironment, GpuLight, GpuMaterial};
 use bytemuck::Zeroable;
@@ -51,6 +53,10 @@ pub struct RenderStats {
     pub instanced_triangles: u64,
     /// GPU bytes of the BVHs.
     pub bvh_bytes: u64,
+    /// Time to fit the vMF pyramids of the scene's normal maps (CPU, every core).
+    pub vmf_fit_time: Duration,
+    /// GPU bytes of the image textures, normal maps and vMF lobes.
+    pub image_bytes: u64,
 }
 
 /// A scene on the device with its film.
@@ -89,9 +95,18 @@ impl PathTracer {
         let bvh = DeviceBvh::upload(gpu, &scene_bvh)?;
         let stores = SceneStores::build(gpu, scene)?;
         let glints = crate::glint::SceneGlints::build(gpu, scene)?;
-        let mut image_set = ImageSet::default();
+        let vmf_start = Instant::now();
+        let pyramids = vmf_pyramids(scene)?;
+        let vmf_fit_time = vmf_start.elapsed();
+        let vmf_lobes = pyramids
+            .iter()
+            .flatten()
+            .map(|p| p.lobes_per_texel)
+            .max()
+            .unwrap_or(0);
+        let mut image_set = ImageSet::with_vmf_stride(vmf_lobes);
         let mut materials = Vec::with_capacity(scene.materials.len());
-        for (m, &glint) in scene.materials.iter().zip(&glints.slots) {
+        for ((m, &glint), pyramid) in scene.materials.iter().zip(&glints.slots).zip(&pyramids) {
             let mut add = |image: &crate::image_texture::ImageTexture| {
                 image_set
                     .add(image)
@@ -102,7 +117,9 @@ impl PathTracer {
                 None => IMAGE_NONE,
             };
             let normal_image = match &m.normal_map {
-                Some(n) => add(&n.image)?,
+                Some(n) => image_set
+                    .add_normal_map(&n.image, normal_filter_code(n.filter), pyramid.as_ref())
+                    .map_err(|e| RenderError::Settings(format!("material {:?}: {e}", m.name)))?,
                 None => IMAGE_NONE,
             };
             materials.push(GpuMaterial {
@@ -132,6 +149,8 @@ impl PathTracer {
             tlas_time: scene_bvh.tlas_time,
             instanced_triangles: scene_bvh.instanced_triangles(),
             bvh_bytes: bvh.bytes(),
+            vmf_fit_time,
+            image_bytes: images.bytes(),
         };
         Ok(PathTracer {
             gpu: gpu.clone(),
@@ -150,8 +169,10 @@ impl PathTracer {
                     ),
                     (
                         PATH_TRACE_NORMAL_MAPS_ID,
-                        materials.iter().any(|m| m.normal_image != IMAGE_NONE) as u32,
+                        materials.iter().any(|m| m.normal_image != IMAGE_NONE) as u32
+                            | ((vmf_lobes > 0) as u32) << 1,
                     ),
+                    (PATH_TRACE_VMF_LOBES_ID, vmf_lobes.max(1) as u32),
                 ],
             )?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
@@ -196,11 +217,14 @@ impl PathTracer {
         let [b0, b1, b2, b3, b4] = self.bvh.bindings();
         let [s0, s1] = self.stores.bindings();
         let [i0, i1] = self.images.bindings();
+        let [v0, v1] = self.images.vmf_bindings();
         let bindings = [
             s0,
             s1,
             i0,
             i1,
+            v0,
+            v1,
             self.bvh.uv_binding(),
             b0,
             b1,
@@ -386,6 +410,49 @@ fn check_settings(source: &std::path::Path, s: &RenderSettings) -> Result<(), Re
         return bad(format!("{}x{} pixels is more than 2^26", s.width, s.height));
     }
     Ok(())
+}
+
+/// The vMF pyramid of every material whose normal map is filtered by vMF, fitted once per map
+/// file and lobe count (materials sharing one map share it).
+fn vmf_pyramids(scene: &Scene) -> Result<Vec<Option<VmfPyramid>>, RenderError> {
+    let mut fitted: Vec<(&std::path::Path, usize, VmfPyramid)> = Vec::new();
+    let mut out = Vec::with_capacity(scene.materials.len());
+    for m in &scene.materials {
+        let Some(n) = m
+            .normal_map
+            .as_ref()
+            .filter(|n| n.filter == NormalFilter::Vmf)
+        else {
+            out.push(None);
+            continue;
+        };
+        if let Some((_, _, p)) = fitted
+            .iter()
+            .find(|(f, j, _)| *f == n.source.as_path() && *j == n.lobes)
+        {
+            out.push(Some(p.clone()));
+            continue;
+        }
+        let p = VmfPyramid::build(&n.example, n.lobes).map_err(|e| {
+            RenderError::Settings(format!(
+                "material {:?}: {}: {e}",
+                m.name,
+                n.source.display()
+            ))
+        })?;
+        fitted.push((n.source.as_path(), n.lobes, p.clone()));
+        out.push(Some(p));
+    }
+    Ok(out)
+}
+
+/// The device code of a normal filter.
+fn normal_filter_code(f: NormalFilter) -> u32 {
+    match f {
+        NormalFilter::None => NORMAL_FILTER_NONE,
+        NormalFilter::Mip => NORMAL_FILTER_MIP,
+        NormalFilter::Vmf => NORMAL_FILTER_VMF,
+    }
 }
 
 fn check_scene(scene: &Scene) -> Result<(), RenderError> {

@@ -4,13 +4,13 @@
 use super::check::ColorKind;
 use super::location::{join, Doc};
 use super::raw::{
-    RawGlintBlend, RawGlintEvaluation, RawGlintUv, RawMaterial, RawMaterialKind, RawPreset,
-    RawStoreFilter, RawStoreKind, RawTexture, RawTextureKind,
+    RawGlintBlend, RawGlintEvaluation, RawGlintUv, RawMaterial, RawMaterialKind, RawNormalFilter,
+    RawPreset, RawStoreFilter, RawStoreKind, RawTexture, RawTextureKind,
 };
 use super::volume::{mean_linear, VolumeTexture};
 use super::{
-    GlintProjection, GlintSpec, ImageMap, Material, MaterialKind, NormalMap, SceneError,
-    SolidTexture, SolidTextureKind, StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
+    GlintProjection, GlintSpec, ImageMap, Material, MaterialKind, NormalFilter, NormalMap,
+    SceneError, SolidTexture, SolidTextureKind, StoreFilter, StoreKind, StoreSpec, SynthesizedSpec,
 };
 use crate::image_texture::ImageTexture;
 use glam::Vec3;
@@ -20,6 +20,10 @@ use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
 use toml::Spanned;
+
+/// vMF lobes per texel when a material gives no `vmf_lobes`: the thesis finds 3–4 lobes
+/// "excellent" (seed 000 §7.4).
+pub const DEFAULT_VMF_LOBES: usize = 4;
 
 /// Index of refraction of the plastic coat when the file gives none (a typical polymer).
 pub(super) const DEFAULT_PLASTIC_IOR: f32 = 1.5;
@@ -70,7 +74,7 @@ fn kind_name(kind: RawMaterialKind) -> &'static str {
 }
 
 /// The kinds that accept each optional key, for "does not apply" messages.
-const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 18] = {
+const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 20] = {
     use RawMaterialKind::*;
     [
         (
@@ -87,6 +91,8 @@ const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 18] = {
         ("normal_map", &[Lambertian, Conductor, Plastic, Glint]),
         ("height_map", &[Lambertian, Conductor, Plastic, Glint]),
         ("height_scale", &[Lambertian, Conductor, Plastic, Glint]),
+        ("normal_filter", &[Lambertian, Conductor, Plastic]),
+        ("vmf_lobes", &[Lambertian, Conductor, Plastic]),
         ("intrinsic_roughness", &[Glint]),
         ("scale", &[Glint]),
         ("blend", &[Glint]),
@@ -100,7 +106,7 @@ const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 18] = {
 /// Fails on the first key present in `raw` that its kind does not accept.
 fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), SceneError> {
     let kind = *raw.kind.get_ref();
-    let spans: [(&str, Option<Range<usize>>); 18] = [
+    let spans: [(&str, Option<Range<usize>>); 20] = [
         ("color", raw.color.as_ref().map(Spanned::span)),
         ("k", raw.k.as_ref().map(Spanned::span)),
         ("emission", raw.emission.as_ref().map(Spanned::span)),
@@ -112,6 +118,11 @@ fn reject_inapplicable(doc: &Doc, raw: &RawMaterial, label: &str) -> Result<(), 
         ("normal_map", raw.normal_map.as_ref().map(Spanned::span)),
         ("height_map", raw.height_map.as_ref().map(Spanned::span)),
         ("height_scale", raw.height_scale.as_ref().map(Spanned::span)),
+        (
+            "normal_filter",
+            raw.normal_filter.as_ref().map(Spanned::span),
+        ),
+        ("vmf_lobes", raw.vmf_lobes.as_ref().map(Spanned::span)),
         (
             "intrinsic_roughness",
             raw.intrinsic_roughness.as_ref().map(Spanned::span),
@@ -258,12 +269,10 @@ fn normal_map(
             ))
         }
         (None, None) => {
-            doc.reject(
-                &raw.height_scale,
-                label,
-                "height_scale",
-                "applies only to a height_map",
-            )?;
+            let why = "applies only with a normal_map or height_map";
+            doc.reject(&raw.height_scale, label, "height_scale", why)?;
+            doc.reject(&raw.normal_filter, label, "normal_filter", why)?;
+            doc.reject(&raw.vmf_lobes, label, "vmf_lobes", why)?;
             return Ok(None);
         }
         (Some(n), None) => {
@@ -300,11 +309,36 @@ fn normal_map(
             (example, file)
         }
     };
+    let filter = match raw.normal_filter.as_ref().map(|f| *f.get_ref()) {
+        Some(RawNormalFilter::None) => NormalFilter::None,
+        Some(RawNormalFilter::Mip) => NormalFilter::Mip,
+        Some(RawNormalFilter::Vmf) | None => NormalFilter::Vmf,
+    };
+    let range = crate::normal_map::pyramid::LOBES_PER_TEXEL;
+    let lobes = match &raw.vmf_lobes {
+        Some(j) => {
+            if filter != NormalFilter::Vmf {
+                return Err(doc.invalid(
+                    j.span(),
+                    field("vmf_lobes"),
+                    "applies only to normal_filter = \"vmf\"",
+                ));
+            }
+            doc.integer(
+                j,
+                &field("vmf_lobes"),
+                *range.start() as u32..=*range.end() as u32,
+            )? as usize
+        }
+        None => DEFAULT_VMF_LOBES,
+    };
     let image = ImageTexture::from_normals(&source.display().to_string(), &example);
     Ok(Some(NormalMap {
         source,
         example: Arc::new(example),
         image: Arc::new(image),
+        filter,
+        lobes,
     }))
 }
 

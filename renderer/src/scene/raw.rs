@@ -106,6 +106,15 @@ pub(super) enum RawGlintUv {
     Mesh,
 }
 
+/// How a normal map is filtered over a footprint, as spelled in the file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RawNormalFilter {
+    None,
+    Mip,
+    Vmf,
+}
+
 /// How a glint material evaluates its P-NDF, as spelled in the file.
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
@@ -139,6 +148,8 @@ pub(super) struct RawMaterial {
     pub preset: Option<Spanned<RawPreset>>,
     pub texture: Option<Spanned<RawTexture>>,
     pub albedo_map: Option<Spanned<String>>,
+    pub normal_filter: Option<Spanned<RawNormalFilter>>,
+    pub vmf_lobes: Option<Spanned<u32>>,
     pub normal_map: Option<Spanned<String>>,
     pub height_map: Option<Spanned<String>>,
     pub height_scale: Option<Spanned<f32>>,

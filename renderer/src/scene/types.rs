@@ -255,6 +255,20 @@ impl PartialEq for ImageMap {
     }
 }
 
+/// How a normal map is read over a ray's footprint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NormalFilter {
+    /// The finest level's nearest texel, whatever the footprint: the map's own facets, the
+    /// reference when rendered with many samples per pixel (and aliased with few).
+    None,
+    /// The footprint's mean normal from a MIP pyramid of averaged normals, renormalized: the
+    /// baseline that flattens bumps at a distance (seed 000 Fig. 7.3).
+    Mip,
+    /// A mixture of von Mises–Fisher lobes per texel of every level (seed 000 ch. 7), chosen
+    /// stochastically over the footprint and convolved with the BSDF's lobe in closed form.
+    Vmf,
+}
+
 /// A tangent-space normal map (or a height map converted to one).
 #[derive(Clone, Debug)]
 pub struct NormalMap {
@@ -264,11 +278,18 @@ pub struct NormalMap {
     pub example: std::sync::Arc<crate::glint::NormalExample>,
     /// Its plain MIP pyramid, as uploaded.
     pub image: std::sync::Arc<crate::image_texture::ImageTexture>,
+    /// How it is read over a footprint.
+    pub filter: NormalFilter,
+    /// vMF lobes per texel (`J`, [`crate::normal_map::pyramid::LOBES_PER_TEXEL`]).
+    pub lobes: usize,
 }
 
 impl PartialEq for NormalMap {
     fn eq(&self, o: &Self) -> bool {
-        self.source == o.source && std::sync::Arc::ptr_eq(&self.example, &o.example)
+        self.source == o.source
+            && std::sync::Arc::ptr_eq(&self.example, &o.example)
+            && self.filter == o.filter
+            && self.lobes == o.lobes
     }
 }
 

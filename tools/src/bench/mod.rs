@@ -8,6 +8,7 @@ mod hash;
 pub mod host_memory;
 mod lazy;
 mod multiscale;
+mod normalmaps;
 mod plot;
 mod prims;
 mod psh;
@@ -51,6 +52,10 @@ pub enum BenchCommand {
     /// and brute force (bytes, build, query rate), and the constant storage against the
     /// explicit method's materialized map (`--part`).
     Glints(glints::GlintsArgs),
+    /// Normal maps from near to far (seed 000 ch. 7): unfiltered, plain MIP and vMF filtering
+    /// against a many-sample reference (FLIP, far-field error), and the vMF fit's time and
+    /// memory per map size.
+    Normalmaps(normalmaps::NormalMapsArgs),
     /// Thesis Table 4.1: memory and lookup speed of every sparse texture structure over a mesh
     /// at one equivalent resolution, seen from a fixed 800×800 viewpoint, with pictures.
     Textures(textures::TexturesArgs),
@@ -85,6 +90,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Cuts(a) => &a.common,
         BenchCommand::Glints(a) => &a.common,
         BenchCommand::Textures(a) => &a.common,
+        BenchCommand::Normalmaps(a) => &a.common,
     };
     check_writable_dir("--out-dir", &common.out_dir)?;
     match command {
@@ -99,5 +105,6 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Cuts(args) => cuts::run(&args, global),
         BenchCommand::Glints(args) => glints::run(&args, global),
         BenchCommand::Textures(args) => textures::run(&args, global),
+        BenchCommand::Normalmaps(args) => normalmaps::run(&args, global),
     }
 }

@@ -5,7 +5,7 @@ use crate::support::{lazysolid, run};
 
 /// The help of the tool and of every subcommand.
 fn every_help() -> Vec<(String, String)> {
-    let commands: [&[&str]; 20] = [
+    let commands: [&[&str]; 21] = [
         &[],
         &["device"],
         &["diff"],
@@ -22,6 +22,7 @@ fn every_help() -> Vec<(String, String)> {
         &["bench", "synth"],
         &["bench", "textures"],
         &["bench", "glints"],
+        &["bench", "normalmaps"],
         &["bench", "solid"],
         &["bench", "lazy"],
         &["bench", "cuts"],

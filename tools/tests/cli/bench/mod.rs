@@ -5,6 +5,7 @@ mod cuts;
 mod glints;
 mod hash;
 mod lazy;
+mod normalmaps;
 mod prims;
 mod psh;
 mod solid;
