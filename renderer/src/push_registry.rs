@@ -5,7 +5,9 @@ use crate::accel::ray_queries::TraceRaysPush;
 use crate::glint::{GlintMinMaxMipPush, GlintRangeLevelPush, GlintRangeQueryPush};
 use crate::kernels::render::{
     GLINT_MINMAX_MIP, GLINT_RANGE_LEVEL, GLINT_RANGE_QUERY, PATH_TRACE, TRACE_RAYS,
+    VMF_EM_ACCUMULATE, VMF_EM_UPDATE,
 };
+use crate::normal_map::gpu_fit::{VmfEmAccumulatePush, VmfEmUpdatePush};
 use crate::render::path_tracer::PathTracePush;
 use lazysolid_compute::gpu::PushRegistration;
 
@@ -18,5 +20,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         PushRegistration::of::<GlintRangeLevelPush>(&GLINT_RANGE_LEVEL),
         PushRegistration::of::<GlintMinMaxMipPush>(&GLINT_MINMAX_MIP),
         PushRegistration::of::<GlintRangeQueryPush>(&GLINT_RANGE_QUERY),
+        PushRegistration::of::<VmfEmAccumulatePush>(&VMF_EM_ACCUMULATE),
+        PushRegistration::of::<VmfEmUpdatePush>(&VMF_EM_UPDATE),
     ]
 }

@@ -66,6 +66,11 @@ pub const VMF_MAX_KAPPA: u32 = 100000;
 /// Most vMF lobes per texel (`renderer::normal_map::pyramid::LOBES_PER_TEXEL`'s end): the
 /// size of the path tracer's per-hit lobe arrays.
 pub const VMF_MAX_LOBES: u32 = 8;
+/// Covered normals one invocation of the vMF EM accumulation reads: with up to
+/// [`VMF_MAX_LOBES`] lobes its loops stay under lavapipe's 65 535 iterations per invocation.
+pub const VMF_EM_CHUNK: u32 = 2048;
+/// EM iterations per texel at most (`renderer::normal_map::mixture::MAX_EM_ITERATIONS`).
+pub const VMF_EM_MAX_ITERATIONS: u32 = 30;
 /// Specialization constant id of the path tracer's vMF lobes per texel (the largest `J` of the
 /// scene's vMF-filtered normal maps; 0 compiles the mixture BSDF out).
 pub const PATH_TRACE_VMF_LOBES_ID: u32 = 6;

@@ -14,7 +14,7 @@ use glam::DVec3;
 
 /// Iterations after which the fit stops even if it still moves: the thesis "seldom needs more
 /// than 10".
-pub const MAX_EM_ITERATIONS: u32 = 30;
+pub const MAX_EM_ITERATIONS: u32 = crate::shader_constants::VMF_EM_MAX_ITERATIONS;
 
 /// Change of the mean log-likelihood per normal under which the fit has converged.
 pub const EM_TOLERANCE: f64 = 1e-7;

@@ -5,6 +5,7 @@
 //! linear nine-coefficient SH distribution that Lambertian shading needs ([`sh`]). CPU
 //! reference; what renders with it comes with the normal-map material.
 
+pub mod gpu_fit;
 pub mod mixture;
 pub mod pyramid;
 pub mod sh;

@@ -59,17 +59,8 @@ impl VmfPyramid {
         }
         let j = lobes_per_texel;
         let size = map.size();
-        let normals: Vec<DVec3> = map.texels().iter().map(|&n| texel_normal(n)).collect();
-        let finest = VmfLevel {
-            size,
-            lobes: normals
-                .iter()
-                .flat_map(|&n| {
-                    (0..j).map(move |i| VmfLobe::new(if i == 0 { 1.0 } else { 0.0 }, n, MAX_KAPPA))
-                })
-                .collect(),
-        };
-        let mut levels = vec![finest];
+        let normals = map_normals(map);
+        let mut levels = vec![finest_level(&normals, size, j)];
         while levels.last().expect("one level").size > 1 {
             let child = levels.last().expect("one level");
             let edge = child.size / 2;
@@ -81,17 +72,7 @@ impl VmfPyramid {
                     let covered: Vec<DVec3> = (0..span * span)
                         .map(|i| normals[(ty * span + i / span) * size + tx * span + i % span])
                         .collect();
-                    let starts: Vec<DVec3> = [(0, 0), (1, 0), (0, 1), (1, 1)]
-                        .iter()
-                        .flat_map(|&(dx, dy)| {
-                            let c = (2 * ty + dy) * child.size + 2 * tx + dx;
-                            child.lobes[c * j..(c + 1) * j]
-                                .iter()
-                                .filter(|l| l.alpha > 0.0)
-                                .map(|l| l.mu)
-                        })
-                        .collect();
-                    let (mixture, _) = fit(&covered, None, &farthest_lobes(&starts, j));
+                    let (mixture, _) = fit(&covered, None, &level_start(child, j, tx, ty));
                     mixture.lobes
                 })
                 .collect();
@@ -110,6 +91,41 @@ impl VmfPyramid {
         let t = y * l.size + x;
         &l.lobes[t * j..(t + 1) * j]
     }
+}
+
+/// The unit normals of a map's texels, row by row.
+pub fn map_normals(map: &NormalExample) -> Vec<DVec3> {
+    map.texels().iter().map(|&n| texel_normal(n)).collect()
+}
+
+/// Level 0: one sharp lobe of weight 1 per texel about its normal (the other `j − 1` lobes
+/// weightless).
+pub fn finest_level(normals: &[DVec3], size: usize, j: usize) -> VmfLevel {
+    VmfLevel {
+        size,
+        lobes: normals
+            .iter()
+            .flat_map(|&n| {
+                (0..j).map(move |i| VmfLobe::new(if i == 0 { 1.0 } else { 0.0 }, n, MAX_KAPPA))
+            })
+            .collect(),
+    }
+}
+
+/// Where EM starts for texel (tx, ty) of the level above `child`: the `j` farthest apart of its
+/// four children's weighted lobe directions (Hochbaum–Shmoys, T:3436–3448).
+pub fn level_start(child: &VmfLevel, j: usize, tx: usize, ty: usize) -> Vec<VmfLobe> {
+    let starts: Vec<DVec3> = [(0, 0), (1, 0), (0, 1), (1, 1)]
+        .iter()
+        .flat_map(|&(dx, dy)| {
+            let c = (2 * ty + dy) * child.size + 2 * tx + dx;
+            child.lobes[c * j..(c + 1) * j]
+                .iter()
+                .filter(|l| l.alpha > 0.0)
+                .map(|l| l.mu)
+        })
+        .collect();
+    farthest_lobes(&starts, j)
 }
 
 /// The plain MIP of averaged normals (renormalized), finest first: the baseline the mixture

@@ -6,6 +6,7 @@ use super::NormalMapsArgs;
 use crate::bench::harness::{time_cpu, Bench, Throughput};
 use lazysolid_renderer::glint::synthetic::{bumps_and_scratches, BumpExtent};
 use lazysolid_renderer::glint::NormalExample;
+use lazysolid_renderer::normal_map::gpu_fit::GpuVmfFitter;
 use lazysolid_renderer::normal_map::pyramid::{VmfPyramid, LOBES_PER_TEXEL};
 
 /// Refuses sizes and lobe counts the fit does not take, before anything is measured.
@@ -40,9 +41,10 @@ fn pyramid_texels(n: usize) -> u64 {
     }
 }
 
-/// Times the fits and notes the memory of each representation.
+/// Times the fits on the CPU and on the device and notes the memory of each representation.
 pub(super) fn run(
     bench: &mut Bench,
+    gpu: &lazysolid_compute::gpu::Gpu,
     args: &NormalMapsArgs,
     notes: &mut Vec<(String, f64)>,
 ) -> anyhow::Result<()> {
@@ -68,6 +70,20 @@ pub(super) fn run(
                 },
             )?;
             bench.set_builder("cpu");
+            let fitter = GpuVmfFitter::new(gpu, &map)?;
+            bench.case(
+                &case,
+                (n * n) as u64,
+                "EM on the device (f32, starts on the host)",
+                Throughput::Items("texel"),
+                Some("EM on the CPU"),
+                || {
+                    let (p, ms) = time_cpu(|| fitter.build(j));
+                    p?;
+                    Ok(ms)
+                },
+            )?;
+            bench.set_builder("gpu");
             notes.push((
                 format!("{n}² vMF J={j} bytes (f32 α, α·r)"),
                 (texels * j as u64 * 16) as f64,

@@ -6,8 +6,9 @@
 //!   filtered at a few samples per pixel, against a reference (the unfiltered map at many
 //!   samples per pixel): FLIP over the image and the mean relative error and bias in the far
 //!   field (pixels whose primary hit is farther than `--far-distance`), where plain MIP fails.
-//! - `fit`: the vMF pyramid's EM fit time (CPU, every core) and its memory against the plain
-//!   MIP, per map size and lobe count.
+//! - `fit`: the vMF pyramid's EM fit time on the CPU (every core, f64) and on the device (f32,
+//!   each level's starts chosen on the host) and its memory against the plain MIP, per map size
+//!   and lobe count.
 
 mod fit;
 mod quality;
@@ -71,12 +72,12 @@ pub fn run(args: &NormalMapsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let scenes = quality::load_scenes(args)?;
     super::plot::ensure_font()?;
     let gpu = global.gpu()?;
-    let cases = (args.fit_sizes.len() * args.lobes.len()) as u64;
+    let cases = (2 * args.fit_sizes.len() * args.lobes.len()) as u64;
     let mut bench = Bench::new("bench normalmaps", &gpu, &args.common, cases)?;
     let mut notes = Vec::new();
     let dir = bench.artifact_dir()?;
     quality::run(&mut bench, &gpu, args, &scenes, &dir, &mut notes)?;
-    fit::run(&mut bench, args, &mut notes)?;
+    fit::run(&mut bench, &gpu, args, &mut notes)?;
     bench.finish(&notes)?;
     Ok(())
 }

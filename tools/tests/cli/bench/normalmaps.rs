@@ -41,7 +41,7 @@ fn bench_normalmaps_scores_the_filters_and_times_the_fit() {
         ],
     );
     let json = bench.json();
-    assert_eq!(json["rows"].as_array().map(Vec::len), Some(2));
+    assert_eq!(json["rows"].as_array().map(Vec::len), Some(4));
     assert_eq!(
         json["derived"]["16² vMF J=4 bytes (f32 α, α·r)"].as_f64(),
         Some(((256 + 64 + 16 + 4 + 1) * 4 * 16) as f64)
