@@ -15,7 +15,7 @@
 #   --out-dir DIR    results folder [results/gpu-bench-<UTC time>]
 #   --device D       device name part or index [the first non-CPU device]
 #   --suites LIST    comma-separated steps of: device, tests, prims, hash, psh, textures,
-#                    solid, lazy, cuts, trace, synth, glints, multiscale [all]
+#                    solid, lazy, cuts, trace, synth, glints, multiscale, normalmaps [all]
 #   --skip-tests     leave out the test subset (CI runs it separately)
 #
 # Writes DIR/summary.csv (step, status, seconds, limit, files), DIR/<step>.log and each suite's
@@ -23,13 +23,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-SUITES=(prims hash psh textures solid lazy cuts trace synth glints multiscale)
+SUITES=(prims hash psh textures solid lazy cuts trace synth glints multiscale normalmaps)
 # Seconds per step in the full run: each suite's lavapipe time scaled by the thesis' GPU
 # speed-ups, plus its CPU baselines, which no GPU speeds up (docs/gpu.md has the estimate per
 # suite). They sum to 600 s.
 declare -A LIMIT=(
-  [device]=10 [tests]=70 [prims]=25 [hash]=55 [psh]=40 [textures]=50 [solid]=60 [lazy]=105
-  [cuts]=30 [trace]=15 [synth]=90 [glints]=30 [multiscale]=20
+  [device]=10 [tests]=70 [prims]=25 [hash]=55 [psh]=40 [textures]=50 [solid]=60 [lazy]=90
+  [cuts]=30 [trace]=15 [synth]=90 [glints]=30 [multiscale]=20 [normalmaps]=15
 )
 # Seconds per suite in the quick run: only a guard against a hang (the quick run takes about
 # 5 minutes on lavapipe with 2 cores, the debug build and validation; the tests 30 minutes).
@@ -48,6 +48,7 @@ declare -A FULL=(
   [synth]="--exemplars leather --res 256,512 --quality-seeds 1"
   [glints]="--res 128,256,512"
   [multiscale]="--res 256"
+  [normalmaps]="--res 320x240 --spp 1,4,16 --reference-spp 256 --fit-sizes 128,256,512"
 )
 # The quick run: each suite's smallest meaningful case, one run, no warm-up. Exemplar analysis
 # and candidate precompute grow with the exemplar, so lazy and cuts take a 16² exemplar
@@ -65,6 +66,7 @@ declare -A QUICK=(
   [synth]="--quick --exemplars leather --res 64 --quality-seeds 1 --energy-samples 256"
   [glints]="--quick --res 32 --queries 500 --coverage 512 --render-res 32x24 --spp 1"
   [multiscale]="--graphs @TERRA_LOOP@ --res 64 --deeper 1 --quality-res 32 --energy-samples 64"
+  [normalmaps]="--res 32x24 --spp 1 --reference-spp 4 --fit-sizes 16 --lobes 4"
 )
 
 usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; }

@@ -30,7 +30,7 @@ pub struct NormalMapsArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "scenes/normal-maps/receding-plane.toml,scenes/normal-maps/v-groove.toml"
+        default_value = "scenes/normal-maps/receding-plane.toml,scenes/normal-maps/v-groove.toml,scenes/normal-maps/sphere.toml"
     )]
     pub scenes: Vec<PathBuf>,
     /// Image size of every render.
