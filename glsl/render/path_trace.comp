@@ -576,9 +576,8 @@ void main() {
                     vec3 ex = cwbvh_transform_vector(o2w, vec3(1.0, 0.0, 0.0));
                     vec3 ez = cwbvh_transform_vector(o2w, vec3(0.0, 0.0, 1.0));
                     float scale = length(ex);
-                    float footprint = mesh_glint ? max(length(fp_a), length(fp_b)) : path_length * pixel_angle;
-                    gs = glint_shade(gr, s.p_surface_object, scale, footprint, s.ns, -dir,
-                                     ex / scale, ez / scale, su.uv, su.dpdu, t_axis, b_axis);
+                    gs = glint_shade(gr, s.p_surface_object, scale, path_length * pixel_angle, s.ns, -dir,
+                                     ex / scale, ez / scale, su.uv, su.dpdu, fp_a, fp_b, t_axis, b_axis);
                 } else {
                     make_frame(s.ns, t_axis, b_axis);
                 }

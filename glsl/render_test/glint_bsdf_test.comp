@@ -61,7 +61,7 @@ void main() {
     GlintRecord g = GlintBsdfRecords(pc.records).v[uint(next1())];
 
     vec3 t_axis, b_axis;
-    GlintShade gs = glint_shade(g, p, scale, footprint, ns, wo_world, ex, ez, vec2(0.0), ex, t_axis, b_axis);
+    GlintShade gs = glint_shade(g, p, scale, footprint, ns, wo_world, ex, ez, vec2(0.0), ex, vec2(0.0), vec2(0.0), t_axis, b_axis);
     vec3 f = glint_eval(g, m, gs, wo, wi);
     float pdf = glint_pdf(g, gs, wo, wi);
     BsdfSample s;

@@ -188,7 +188,7 @@ lazysolid_compute::push_block! {
         pub map: lazysolid_renderer::glint::GlintMapParams<'a>,
         /// Its range table.
         pub ranges: DeviceAddress<'a>,
-        /// 10 floats per case.
+        /// 12 floats per case.
         pub cases: DeviceAddress<'a>,
         /// 6 floats per case.
         pub results: DeviceAddress<'a>,

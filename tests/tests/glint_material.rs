@@ -34,14 +34,26 @@ fn scaled_map(mode: BlendMode, scale: f32) -> (ByExampleMap, RangeTable) {
 }
 
 /// Footprints and half vectors: random centres over several patches, widths from under a
-/// texel to 6 texels, s near a normal of the footprint (where D_P is large) or anywhere.
+/// texel to 6 texels, every other one stretched up to 4× along a random direction (a grazing
+/// view's footprint), s near a normal of the footprint (where D_P is large) or anywhere.
 fn cases(m: &ByExampleMap, n: usize, seed: u64) -> Vec<(Footprint, Vec2)> {
     let mut r = rng(seed);
+    // The stretches come from their own stream, so the other draws are those of isotropic cases.
+    let mut stretches = rng(seed + 1000);
     (0..n)
         .map(|i| {
+            let sigma = [0.6, 1.5, 3.0, 6.0][i % 4];
+            let angle: f32 = stretches.random_range(0.0..std::f32::consts::TAU);
+            let factor: f32 = stretches.random_range(0.5..4.0);
+            let stretch = if (i / 4) % 2 == 1 {
+                Vec2::from_angle(angle) * sigma * factor
+            } else {
+                Vec2::ZERO
+            };
             let fp = Footprint {
                 center: Vec2::new(r.random_range(-100.0..100.0), r.random_range(-100.0..100.0)),
-                sigma: [0.6, 1.5, 3.0, 6.0][i % 4],
+                sigma,
+                stretch,
             };
             let s = if i % 3 == 0 {
                 Vec2::new(r.random_range(-0.6..0.6), r.random_range(-0.6..0.6))
@@ -225,10 +237,7 @@ fn sampled_half_vectors_match_the_evaluated_pndf() {
     for mode in [BlendMode::Histogram, BlendMode::None] {
         let (m, table) = scaled_map(mode, 0.3);
         let sigma_r = 0.02;
-        let fp = Footprint {
-            center: Vec2::new(37.3, -12.8),
-            sigma: 4.0,
-        };
+        let fp = Footprint::isotropic(Vec2::new(37.3, -12.8), 4.0);
         let bins = Bins {
             c: Vec2::ZERO,
             r: 0.5,
@@ -308,6 +317,8 @@ fn gpu_pndf_and_sampling_match_the_cpu_twin() {
                     x.x,
                     x.y,
                     x.z,
+                    fp.stretch.x,
+                    fp.stretch.y,
                 ]
             })
             .collect();

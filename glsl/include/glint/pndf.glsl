@@ -123,8 +123,38 @@ vec2 glint_pruning_margin(vec2 lo, vec2 hi, float sigma_r) {
     return GLINT_ROUGHNESS_CUTOFF * sigma_r + GLINT_JACOBIAN_CUTOFF * GLINT_SIGMA_H * 2.0 * (hi - lo);
 }
 
+// One element's integral against a footprint stretched by m (covariance sigma_p^2 I + m m^T;
+// see element_stretched in pndf.rs).
+float glint_element_stretched(vec2 u_i, vec2 n, mat2 j, vec2 center, float sigma_p, vec2 m, vec2 s,
+                              float sigma_r) {
+    float ih = 1.0 / (GLINT_SIGMA_H * GLINT_SIGMA_H);
+    float ir = 1.0 / (sigma_r * sigma_r);
+    float s2 = sigma_p * sigma_p;
+    float long2 = s2 + dot(m, m);
+    float p00 = (1.0 - m.x * m.x / long2) / s2;
+    float p01 = -(m.x * m.y / long2) / s2;
+    float p11 = (1.0 - m.y * m.y / long2) / s2;
+    vec2 a = s - n;
+    vec2 e = center - u_i;
+    mat2 jt = transpose(j);
+    mat2 mm = jt * j * ir;
+    float a00 = mm[0][0] + ih + p00;
+    float a01 = mm[1][0] + p01;
+    float a11 = mm[1][1] + ih + p11;
+    vec2 pe = vec2(p00 * e.x + p01 * e.y, p01 * e.x + p11 * e.y);
+    vec2 b = jt * a * ir + pe;
+    float c = dot(a, a) * ir + dot(e, pe);
+    float det = a00 * a11 - a01 * a01;
+    float quad = (a11 * b.x * b.x - 2.0 * a01 * b.x * b.y + a00 * b.y * b.y) / det;
+    float ci = 1.0 / (2.0 * GLINT_PI * GLINT_SIGMA_H * GLINT_SIGMA_H * 2.0 * GLINT_PI * sigma_r * sigma_r);
+    return ci / (2.0 * GLINT_PI * sigma_p * sqrt(long2)) * (2.0 * GLINT_PI / sqrt(det)) * exp(-0.5 * (c - quad));
+}
+
 // One element's integral against the footprint (see element in pndf.rs).
-float glint_element(vec2 u_i, vec2 n, mat2 j, vec2 center, float sigma_p, vec2 s, float sigma_r) {
+float glint_element(vec2 u_i, vec2 n, mat2 j, vec2 center, float sigma_p, vec2 m, vec2 s, float sigma_r) {
+    if (m != vec2(0.0)) {
+        return glint_element_stretched(u_i, n, j, center, sigma_p, m, s, sigma_r);
+    }
     float ih = 1.0 / (GLINT_SIGMA_H * GLINT_SIGMA_H);
     float ir = 1.0 / (sigma_r * sigma_r);
     float ip = 1.0 / (sigma_p * sigma_p);
@@ -147,12 +177,17 @@ int glint_floor_div(int a, int b) {
     return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
-// D_P(s) for the footprint (center, sigma_p) in texels. prune = false sums every texel of the
-// box (the explicit reference); `texels` counts the elements evaluated.
-float glint_pndf(GlintMap m, uint64_t entries, vec2 center, float sigma_p, vec2 s, float sigma_r,
-                 bool prune, out uint texels) {
+// D_P(s) for the footprint (center, sigma_p, stretch) in texels (covariance sigma_p^2 I +
+// stretch stretch^T). prune = false sums every texel of the box (the explicit reference);
+// `texels` counts the elements evaluated.
+float glint_pndf(GlintMap m, uint64_t entries, vec2 center, float sigma_p, vec2 stretch, vec2 s,
+                 float sigma_r, bool prune, out uint texels) {
     texels = 0u;
-    float r = GLINT_FOOTPRINT_CUTOFF * sigma_p;
+    vec2 r = vec2(GLINT_FOOTPRINT_CUTOFF * sigma_p);
+    if (stretch != vec2(0.0)) {
+        float s2 = sigma_p * sigma_p;
+        r = vec2(sqrt(s2 + stretch.x * stretch.x), sqrt(s2 + stretch.y * stretch.y)) * GLINT_FOOTPRINT_CUTOFF;
+    }
     ivec2 lo = ivec2(ceil(center - r));
     ivec2 hi = ivec2(floor(center + r));
     if (lo.x > hi.x || lo.y > hi.y) {
@@ -164,7 +199,7 @@ float glint_pndf(GlintMap m, uint64_t entries, vec2 center, float sigma_p, vec2 
             for (int x = lo.x; x <= hi.x; x++) {
                 vec2 u = vec2(x, y);
                 GlintPoint q = glint_point(m, u);
-                sum += glint_element(u, q.normal, q.jacobian_exact, center, sigma_p, s, sigma_r);
+                sum += glint_element(u, q.normal, q.jacobian_exact, center, sigma_p, stretch, s, sigma_r);
                 texels++;
             }
         }
@@ -191,7 +226,7 @@ float glint_pndf(GlintMap m, uint64_t entries, vec2 center, float sigma_p, vec2 
                     texels++;
                     vec2 u = vec2(p);
                     GlintPoint q = glint_point(m, u);
-                    sum += glint_element(u, q.normal, q.jacobian_exact, center, sigma_p, s, sigma_r);
+                    sum += glint_element(u, q.normal, q.jacobian_exact, center, sigma_p, stretch, s, sigma_r);
                     continue;
                 }
                 vec2 ilo, ihi;

@@ -27,10 +27,13 @@ struct GlintRecord {
     float max_footprint;    // largest sigma_P in texels
 };
 
-// Where a ray meets a glint surface: footprint centre u (texels) and width sigma_p (texels).
+// Where a ray meets a glint surface: footprint centre u (texels), width sigma_p (texels) and
+// stretch (texels; covariance sigma_p^2 I + stretch stretch^T, zero for the projections' pixel
+// cone).
 struct GlintShade {
     vec2 u;
     float sigma_p;
+    vec2 stretch;
 };
 
 // The footprint and glint frame at a hit. `p` is the object-space hit point, `scale` the
@@ -38,11 +41,12 @@ struct GlintShade {
 // shading normal, `wo_world` the direction back along the ray, `dpdu_world_x` and
 // `dpdu_world_z` the object x and z axes in world (unit length).
 // With GLINT_UV_MESH, `mesh_uv` and `mesh_dpdu` are the mesh's texture coordinates and the
-// world direction of growing u, and `footprint` is the footprint's width in texture
-// coordinates (already foreshortened: it comes from ray differentials).
+// world direction of growing u, and `fp_a`, `fp_b` the footprint's two axes in texture
+// coordinates (from ray differentials, so already foreshortened): the footprint is the
+// anisotropic Gaussian of covariance (a a^T + b b^T) / 4 in texels (Footprint::from_axes).
 GlintShade glint_shade(GlintRecord g, vec3 p, float scale, float footprint, vec3 ns, vec3 wo_world,
                        vec3 dpdu_world_x, vec3 dpdu_world_z, vec2 mesh_uv, vec3 mesh_dpdu,
-                       out vec3 t_axis, out vec3 b_axis) {
+                       vec2 fp_a, vec2 fp_b, out vec3 t_axis, out vec3 b_axis) {
     vec2 uv;
     vec3 dpdu;
     if (g.projection == GLINT_UV_MESH) {
@@ -69,9 +73,24 @@ GlintShade glint_shade(GlintRecord g, vec3 p, float scale, float footprint, vec3
         b_axis = cross(ns, t_axis);
     }
     GlintShade gs;
+    gs.stretch = vec2(0.0);
     if (g.projection == GLINT_UV_MESH) {
         gs.u = uv * g.texels_per_unit;
-        gs.sigma_p = clamp(0.5 * footprint * g.texels_per_unit, 0.5, g.max_footprint);
+        vec2 a = 0.5 * fp_a * g.texels_per_unit;
+        vec2 b = 0.5 * fp_b * g.texels_per_unit;
+        float sxx = a.x * a.x + b.x * b.x;
+        float sxy = a.x * a.y + b.x * b.y;
+        float syy = a.y * a.y + b.y * b.y;
+        float half_trace = 0.5 * (sxx + syy);
+        float root = sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+        float large = half_trace + root;
+        float small = max(half_trace - root, 0.0);
+        gs.sigma_p = clamp(sqrt(small), 0.5, g.max_footprint);
+        float long_sd = clamp(sqrt(large), gs.sigma_p, g.max_footprint);
+        vec2 dir = sxx >= syy ? vec2(large - syy, sxy) : vec2(sxy, large - sxx);
+        float dl = length(dir);
+        dir = dl > 0.0 ? dir / dl : vec2(1.0, 0.0);
+        gs.stretch = dir * sqrt(max(long_sd * long_sd - gs.sigma_p * gs.sigma_p, 0.0));
         return gs;
     }
     gs.u = uv * (scale * g.texels_per_unit);
@@ -86,7 +105,7 @@ vec3 glint_eval_local(GlintRecord g, Material m, GlintShade gs, vec3 wo, vec3 wi
     }
     vec3 h = normalize(wo + wi);
     uint texels;
-    float d = glint_pndf(g.map, g.ranges, gs.u, gs.sigma_p, h.xy, g.sigma_r, g.prune != 0u, texels);
+    float d = glint_pndf(g.map, g.ranges, gs.u, gs.sigma_p, gs.stretch, h.xy, g.sigma_r, g.prune != 0u, texels);
     vec3 f = fresnel_conductor(dot(wo, h), m.color, m.k);
     return f * (d * ggx_g2(wo, wi, g.shadow_alpha) / (4.0 * wo.z));
 }

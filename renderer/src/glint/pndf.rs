@@ -48,20 +48,67 @@ pub const JACOBIAN_CUTOFF: f32 = 3.0;
 /// Deepest stack of the traversal: 3 pending siblings per level for up to 16 levels.
 pub const STACK_DEPTH: usize = 48;
 
-/// An isotropic Gaussian pixel footprint on the target plane (texels).
+/// A Gaussian pixel footprint on the target plane (texels): covariance σ_P² I + m mᵀ, isotropic
+/// when the stretch m is zero, elongated along m otherwise (a grazing view's footprint, from
+/// ray differentials).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Footprint {
     /// Centre u_P.
     pub center: Vec2,
-    /// Standard deviation σ_P (> 0).
+    /// Standard deviation σ_P (> 0) across the footprint.
     pub sigma: f32,
+    /// The stretch m: the footprint's extra spread along its long axis (zero: isotropic).
+    pub stretch: Vec2,
 }
 
 impl Footprint {
-    /// The texels the sum visits: the integer points of u_P ± [`FOOTPRINT_CUTOFF`] σ_P
-    /// (inclusive bounds).
+    /// An isotropic footprint.
+    pub fn isotropic(center: Vec2, sigma: f32) -> Footprint {
+        Footprint {
+            center,
+            sigma,
+            stretch: Vec2::ZERO,
+        }
+    }
+
+    /// The footprint whose covariance is `a aᵀ + b bᵀ` (two axes in texels), with σ_P at least
+    /// `min_sigma` and its long axis's standard deviation at most `max_sigma`: σ_P² is the
+    /// smaller eigenvalue, the stretch the larger one's excess along its eigenvector.
+    pub fn from_axes(center: Vec2, a: Vec2, b: Vec2, min_sigma: f32, max_sigma: f32) -> Footprint {
+        let (sxx, sxy, syy) = (
+            a.x * a.x + b.x * b.x,
+            a.x * a.y + b.x * b.y,
+            a.y * a.y + b.y * b.y,
+        );
+        let half_trace = 0.5 * (sxx + syy);
+        let root = (0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy).sqrt();
+        let (large, small) = (half_trace + root, (half_trace - root).max(0.0));
+        let sigma = small.sqrt().clamp(min_sigma, max_sigma);
+        let long = large.sqrt().clamp(sigma, max_sigma);
+        // The larger eigenvalue's eigenvector (either form, whichever is better conditioned).
+        let dir = if sxx >= syy {
+            Vec2::new(large - syy, sxy)
+        } else {
+            Vec2::new(sxy, large - sxx)
+        };
+        let dir = dir.try_normalize().unwrap_or(Vec2::X);
+        Footprint {
+            center,
+            sigma,
+            stretch: dir * (long * long - sigma * sigma).max(0.0).sqrt(),
+        }
+    }
+
+    /// The texels the sum visits: the integer points of u_P ± [`FOOTPRINT_CUTOFF`] standard
+    /// deviations along each axis (inclusive bounds).
     pub fn texel_box(&self) -> (IVec2, IVec2) {
-        let r = FOOTPRINT_CUTOFF * self.sigma;
+        let r = if self.stretch == Vec2::ZERO {
+            Vec2::splat(FOOTPRINT_CUTOFF * self.sigma)
+        } else {
+            let s2 = self.sigma * self.sigma;
+            let m = self.stretch;
+            Vec2::new((s2 + m.x * m.x).sqrt(), (s2 + m.y * m.y).sqrt()) * FOOTPRINT_CUTOFF
+        };
         (
             (self.center - r).ceil().as_ivec2(),
             (self.center + r).floor().as_ivec2(),
@@ -89,6 +136,9 @@ pub fn pruning_margin(iv: &NormalInterval, sigma_r: f32) -> Vec2 {
 /// One element's contribution ∫ G_P G_i du for the texel at `u_i` with normal `n`, Jacobian
 /// `j`. Twin of `glint_element`.
 pub fn element(u_i: Vec2, n: Vec2, j: Mat2, fp: &Footprint, s: Vec2, sigma_r: f32) -> f32 {
+    if fp.stretch != Vec2::ZERO {
+        return element_stretched(u_i, n, j, fp, s, sigma_r);
+    }
     let (ih, ir, ip) = (
         1.0 / (SIGMA_H * SIGMA_H),
         1.0 / (sigma_r * sigma_r),
@@ -106,6 +156,37 @@ pub fn element(u_i: Vec2, n: Vec2, j: Mat2, fp: &Footprint, s: Vec2, sigma_r: f3
     let quad = (a11 * b.x * b.x - 2.0 * a01 * b.x * b.y + a00 * b.y * b.y) / det;
     let ci = 1.0 / (2.0 * PI * SIGMA_H * SIGMA_H * 2.0 * PI * sigma_r * sigma_r);
     ci / (2.0 * PI * fp.sigma * fp.sigma) * (2.0 * PI / det.sqrt()) * (-0.5 * (c - quad)).exp()
+}
+
+/// [`element`] for a stretched footprint: the footprint's precision matrix
+/// P = (I − m mᵀ / (σ² + |m|²)) / σ² (Sherman–Morrison) where the isotropic form has I / σ², and
+/// its normalization 1 / (2π σ √(σ² + |m|²)). Twin of `glint_element` with a stretch.
+fn element_stretched(u_i: Vec2, n: Vec2, j: Mat2, fp: &Footprint, s: Vec2, sigma_r: f32) -> f32 {
+    let (ih, ir) = (1.0 / (SIGMA_H * SIGMA_H), 1.0 / (sigma_r * sigma_r));
+    let s2 = fp.sigma * fp.sigma;
+    let m = fp.stretch;
+    let long2 = s2 + m.length_squared();
+    let (p00, p01, p11) = (
+        (1.0 - m.x * m.x / long2) / s2,
+        -(m.x * m.y / long2) / s2,
+        (1.0 - m.y * m.y / long2) / s2,
+    );
+    let a = s - n;
+    let e = fp.center - u_i;
+    let jt = j.transpose();
+    let mm = jt * j * ir;
+    let (a00, a01, a11) = (
+        mm.x_axis.x + ih + p00,
+        mm.y_axis.x + p01,
+        mm.y_axis.y + ih + p11,
+    );
+    let pe = Vec2::new(p00 * e.x + p01 * e.y, p01 * e.x + p11 * e.y);
+    let b = jt * a * ir + pe;
+    let c = a.length_squared() * ir + e.dot(pe);
+    let det = a00 * a11 - a01 * a01;
+    let quad = (a11 * b.x * b.x - 2.0 * a01 * b.x * b.y + a00 * b.y * b.y) / det;
+    let ci = 1.0 / (2.0 * PI * SIGMA_H * SIGMA_H * 2.0 * PI * sigma_r * sigma_r);
+    ci / (2.0 * PI * fp.sigma * long2.sqrt()) * (2.0 * PI / det.sqrt()) * (-0.5 * (c - quad)).exp()
 }
 
 /// The aligned edge of the start squares of a box of extent `extent` texels: the power of two
@@ -329,4 +410,125 @@ pub(crate) fn gaussian2(d: Vec2, c: Mat2) -> f32 {
     let det = c.determinant();
     let inv = c.inverse();
     (-0.5 * d.dot(inv * d)).exp() / (2.0 * PI * det.sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ∫ G_P(u) G_h(u − u_i) G_r(s − n − J(u − u_i)) du by the midpoint rule on a fine grid: the
+    /// integral the element's closed form is.
+    fn element_by_quadrature(
+        u_i: Vec2,
+        n: Vec2,
+        j: Mat2,
+        fp: &Footprint,
+        s: Vec2,
+        sigma_r: f32,
+    ) -> f64 {
+        let s2 = f64::from(fp.sigma * fp.sigma);
+        let m = fp.stretch.as_dvec2();
+        let cov =
+            glam::DMat2::from_cols_array(&[s2 + m.x * m.x, m.x * m.y, m.x * m.y, s2 + m.y * m.y]);
+        let inv = cov.inverse();
+        let gauss2 = |d: glam::DVec2, inv: glam::DMat2, det: f64| {
+            (-0.5 * d.dot(inv * d)).exp() / (2.0 * std::f64::consts::PI * det.sqrt())
+        };
+        let h2 = f64::from(SIGMA_H * SIGMA_H);
+        let r2 = f64::from(sigma_r * sigma_r);
+        let (step, half) = (0.01f64, 4.0f64);
+        let mut sum = 0.0;
+        let steps = (2.0 * half / step) as i32;
+        for iy in 0..steps {
+            for ix in 0..steps {
+                let d = glam::DVec2::new(
+                    -half + (f64::from(ix) + 0.5) * step,
+                    -half + (f64::from(iy) + 0.5) * step,
+                );
+                let u = u_i.as_dvec2() + d;
+                let gp = gauss2(u - fp.center.as_dvec2(), inv, cov.determinant());
+                let gh = gauss2(d, glam::DMat2::IDENTITY / h2, h2 * h2);
+                let a = (s - n).as_dvec2() - j.as_dmat2() * d;
+                let gr = gauss2(a, glam::DMat2::IDENTITY / r2, r2 * r2);
+                sum += gp * gh * gr * step * step;
+            }
+        }
+        sum
+    }
+
+    #[test]
+    fn a_stretched_footprint_integrates_like_the_quadrature_and_an_unstretched_one_is_unchanged() {
+        let u_i = Vec2::new(3.0, -2.0);
+        let n = Vec2::new(0.1, -0.05);
+        let j = Mat2::from_cols(Vec2::new(0.02, 0.01), Vec2::new(-0.015, 0.03));
+        let sigma_r = 0.05;
+        for (center, sigma, stretch, s) in [
+            (
+                Vec2::new(3.4, -1.7),
+                1.2,
+                Vec2::new(2.0, 1.0),
+                Vec2::new(0.12, -0.04),
+            ),
+            (
+                Vec2::new(2.1, -2.5),
+                0.8,
+                Vec2::new(-0.5, 2.5),
+                Vec2::new(0.08, -0.07),
+            ),
+        ] {
+            let fp = Footprint {
+                center,
+                sigma,
+                stretch,
+            };
+            let closed = f64::from(element(u_i, n, j, &fp, s, sigma_r));
+            let numeric = element_by_quadrature(u_i, n, j, &fp, s, sigma_r);
+            assert!(
+                (closed - numeric).abs() <= 2e-3 * numeric.abs().max(1e-3),
+                "{closed} vs {numeric}"
+            );
+        }
+        let iso = Footprint::isotropic(Vec2::new(3.4, -1.7), 1.2);
+        let closed = f64::from(element(u_i, n, j, &iso, Vec2::new(0.12, -0.04), sigma_r));
+        let numeric = element_by_quadrature(u_i, n, j, &iso, Vec2::new(0.12, -0.04), sigma_r);
+        assert!((closed - numeric).abs() <= 2e-3 * numeric.abs());
+    }
+
+    #[test]
+    fn footprint_axes_become_width_and_stretch_with_the_same_covariance() {
+        let (a, b) = (Vec2::new(6.0, 2.0), Vec2::new(-0.5, 1.5));
+        let fp = Footprint::from_axes(Vec2::ZERO, a, b, 0.1, 100.0);
+        let s2 = fp.sigma * fp.sigma;
+        let m = fp.stretch;
+        let cov = [s2 + m.x * m.x, m.x * m.y, s2 + m.y * m.y];
+        let want = [
+            a.x * a.x + b.x * b.x,
+            a.x * a.y + b.x * b.y,
+            a.y * a.y + b.y * b.y,
+        ];
+        for (c, w) in cov.iter().zip(want) {
+            assert!(
+                (c - w).abs() < 1e-3 * w.abs().max(1.0),
+                "{cov:?} vs {want:?}"
+            );
+        }
+        // A round footprint has no stretch; limits clamp both widths.
+        let round = Footprint::from_axes(
+            Vec2::ZERO,
+            Vec2::new(2.0, 0.0),
+            Vec2::new(0.0, 2.0),
+            0.5,
+            8.0,
+        );
+        assert!(round.stretch.length() < 1e-3 && (round.sigma - 2.0).abs() < 1e-5);
+        let thin = Footprint::from_axes(
+            Vec2::ZERO,
+            Vec2::new(50.0, 0.0),
+            Vec2::new(0.0, 0.1),
+            0.5,
+            8.0,
+        );
+        assert_eq!(thin.sigma, 0.5);
+        assert!((thin.sigma.hypot(thin.stretch.length()) - 8.0).abs() < 1e-4);
+    }
 }

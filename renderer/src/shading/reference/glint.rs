@@ -61,10 +61,9 @@ pub struct GlintShade {
 impl GlintShade {
     /// The footprint the P-NDF is evaluated over.
     pub fn footprint(&self) -> Footprint {
-        Footprint {
-            center: self.u,
-            sigma: self.sigma_p,
-        }
+        // The projections' pixel cone is isotropic (a mesh's texture coordinates, which give
+        // the device a stretched footprint, have no CPU twin here).
+        Footprint::isotropic(self.u, self.sigma_p)
     }
 }
 
