@@ -75,18 +75,29 @@ vec4 image_trilinear(uint img, vec2 uv, float lod) {
     return a;
 }
 
-// The filtered value over a footprint with axes a and b (texture-coordinate units) centred at
-// uv: up to IMAGE_MAX_ANISOTROPY trilinear taps along the long axis, at the level of the short
-// axis (or of the long one over the taps, if larger).
-vec4 image_lookup(uint img, vec2 uv, vec2 a, vec2 b) {
+// The taps of an anisotropic lookup over a footprint with axes a and b (texture-coordinate
+// units): the long axis they are spread along, their count n (at most IMAGE_MAX_ANISOTROPY)
+// and the level, that of the short axis or of the long one over the taps if larger
+// (image_texture/sample.rs, footprint_taps).
+void image_footprint_taps(uint img, vec2 a, vec2 b, out vec2 axis, out float n, out float lod) {
     vec2 size = vec2(float(image_records[img].width), float(image_records[img].height));
     float la = length(a * size);
     float lb = length(b * size);
     float major = la >= lb ? la : lb;
     float minor = la >= lb ? lb : la;
-    vec2 axis = la >= lb ? a : b;
-    float n = clamp(ceil(major / max(minor, 1e-6)), 1.0, float(IMAGE_MAX_ANISOTROPY));
-    float lod = log2(max(max(major / n, minor), 1e-6));
+    axis = la >= lb ? a : b;
+    n = clamp(ceil(major / max(minor, 1e-6)), 1.0, float(IMAGE_MAX_ANISOTROPY));
+    lod = log2(max(max(major / n, minor), 1e-6));
+}
+
+// The filtered value over a footprint with axes a and b (texture-coordinate units) centred at
+// uv: up to IMAGE_MAX_ANISOTROPY trilinear taps along the long axis, at the level of the short
+// axis (or of the long one over the taps, if larger).
+vec4 image_lookup(uint img, vec2 uv, vec2 a, vec2 b) {
+    vec2 axis;
+    float n;
+    float lod;
+    image_footprint_taps(img, a, b, axis, n, lod);
     uint taps = uint(n);
     vec4 sum = vec4(0.0);
     for (uint k = 0u; k < taps; k++) {

@@ -31,14 +31,11 @@ struct VmfShade {
 // one of the two levels, then one of the four bilinear texels (stochastic texture filtering).
 // Averaged over samples, the drawn mixtures are the filtered mixture.
 uint vmf_texel(uint img, vec2 uv, vec2 a, vec2 b, vec3 u) {
-    vec2 size = vec2(float(image_records[img].width), float(image_records[img].height));
-    float la = length(a * size);
-    float lb = length(b * size);
-    float major = la >= lb ? la : lb;
-    float minor = la >= lb ? lb : la;
-    vec2 axis = la >= lb ? a : b;
-    float n = clamp(ceil(major / max(minor, 1e-6)), 1.0, float(IMAGE_MAX_ANISOTROPY));
-    float lod = clamp(log2(max(max(major / n, minor), 1e-6)), 0.0, float(image_records[img].levels - 1u));
+    vec2 axis;
+    float n;
+    float lod;
+    image_footprint_taps(img, a, b, axis, n, lod);
+    lod = clamp(lod, 0.0, float(image_records[img].levels - 1u));
     float tap = min(floor(u.x * n), n - 1.0);
     float v = u.x * n - tap;  // still uniform in [0, 1)
     vec2 p = uv + axis * ((tap + 0.5) / n - 0.5);

@@ -249,44 +249,36 @@ pub(super) fn resolve(
     Ok(material)
 }
 
-/// The optional normal map of a Lambertian, conductor or plastic material: a tangent-space
-/// normal map or a height map (`height_scale` texel units of height per unit of grey), not
-/// both; a square power-of-two image as the vMF pyramid needs.
-fn normal_map(
+/// A material's example map: `normal_map` (tangent-space PNG) or `height_map` (its grey times
+/// `height_scale`, default 1, in texel units), not both, as [`NormalExample`]s with the file
+/// and whether it came from heights; `None` when neither is given.
+fn map_example(
     doc: &Doc,
     raw: &RawMaterial,
     label: &str,
     base: &Path,
-) -> Result<Option<NormalMap>, SceneError> {
+) -> Result<Option<(crate::glint::NormalExample, std::path::PathBuf, bool)>, SceneError> {
     use crate::glint::example::{load_height_map, load_normal_map};
     let field = |key: &str| join(label, key);
-    let (example, source) = match (&raw.normal_map, &raw.height_map) {
-        (Some(_), Some(h)) => {
-            return Err(doc.invalid(
-                h.span(),
-                field("height_map"),
-                "normal_map and height_map are exclusive: give one",
-            ))
-        }
+    match (&raw.normal_map, &raw.height_map) {
+        (Some(_), Some(h)) => Err(doc.invalid(
+            h.span(),
+            field("height_map"),
+            "normal_map and height_map are exclusive: give one",
+        )),
         (None, None) => {
-            let why = "applies only with a normal_map or height_map";
+            let why = "applies only to a height_map";
             doc.reject(&raw.height_scale, label, "height_scale", why)?;
-            doc.reject(&raw.normal_filter, label, "normal_filter", why)?;
-            doc.reject(&raw.vmf_lobes, label, "vmf_lobes", why)?;
-            return Ok(None);
+            Ok(None)
         }
         (Some(n), None) => {
-            doc.reject(
-                &raw.height_scale,
-                label,
-                "height_scale",
-                "applies only to a height_map",
-            )?;
+            let why = "applies only to a height_map";
+            doc.reject(&raw.height_scale, label, "height_scale", why)?;
             let file = base.join(n.get_ref());
             must_exist(doc, n.span().start, field("normal_map"), &file)?;
             let example = load_normal_map(&file)
                 .map_err(|e| doc.invalid(n.span(), field("normal_map"), e))?;
-            (example, file)
+            Ok(Some((example, file, false)))
         }
         (None, Some(h)) => {
             let scale = match &raw.height_scale {
@@ -297,17 +289,40 @@ fn normal_map(
             must_exist(doc, h.span().start, field("height_map"), &file)?;
             let example = load_height_map(&file, scale)
                 .map_err(|e| doc.invalid(h.span(), field("height_map"), e))?;
-            // Image rows run down, v runs up: the slope along v is minus the slope along rows.
-            let flipped = example
-                .texels()
-                .iter()
-                .map(|n| glam::Vec2::new(n.x, -n.y))
-                .collect();
-            let name = file.display().to_string();
-            let example = crate::glint::NormalExample::from_normals(&name, example.size(), flipped)
-                .map_err(|e| doc.invalid(h.span(), field("height_map"), e.to_string()))?;
-            (example, file)
+            Ok(Some((example, file, true)))
         }
+    }
+}
+
+/// The optional normal map of a Lambertian, conductor or plastic material: a tangent-space
+/// normal map or a height map (`height_scale` texel units of height per unit of grey), not
+/// both; a square power-of-two image as the vMF pyramid needs.
+fn normal_map(
+    doc: &Doc,
+    raw: &RawMaterial,
+    label: &str,
+    base: &Path,
+) -> Result<Option<NormalMap>, SceneError> {
+    let field = |key: &str| join(label, key);
+    let Some((example, source, from_heights)) = map_example(doc, raw, label, base)? else {
+        let why = "applies only with a normal_map or height_map";
+        doc.reject(&raw.normal_filter, label, "normal_filter", why)?;
+        doc.reject(&raw.vmf_lobes, label, "vmf_lobes", why)?;
+        return Ok(None);
+    };
+    let example = if from_heights {
+        // Image rows run down, v runs up: the slope along v is minus the slope along rows.
+        let flipped = example
+            .texels()
+            .iter()
+            .map(|n| glam::Vec2::new(n.x, -n.y))
+            .collect();
+        let name = source.display().to_string();
+        let span = raw.height_map.as_ref().map_or(0..0, Spanned::span);
+        crate::glint::NormalExample::from_normals(&name, example.size(), flipped)
+            .map_err(|e| doc.invalid(span, field("height_map"), e.to_string()))?
+    } else {
+        example
     };
     let filter = match raw.normal_filter.as_ref().map(|f| *f.get_ref()) {
         Some(RawNormalFilter::None) => NormalFilter::None,
@@ -449,56 +464,18 @@ fn glint(
 ) -> Result<GlintSpec, SceneError> {
     use crate::glint::{BlendMode, ByExampleMap};
     let field = |key: &str| join(label, key);
-    let example = match (&raw.normal_map, &raw.height_map) {
-        (Some(_), Some(h)) => {
-            return Err(doc.invalid(
-                h.span(),
-                field("height_map"),
-                "normal_map and height_map are exclusive: give one example",
-            ))
-        }
-        (None, None) => {
-            return Err(doc.invalid(
-                table.clone(),
-                field("normal_map"),
-                "missing (a glint material needs its example: normal_map or height_map, a PNG)",
-            ))
-        }
-        (Some(n), None) => {
-            doc.reject(
-                &raw.height_scale,
-                label,
-                "height_scale",
-                "applies only to a height_map",
-            )?;
-            let file = base.join(n.get_ref());
-            must_exist(doc, n.span().start, field("normal_map"), &file)?;
-            crate::glint::example::load_normal_map(&file)
-                .map_err(|e| doc.invalid(n.span(), field("normal_map"), e))?
-        }
-        (None, Some(h)) => {
-            let scale = match &raw.height_scale {
-                Some(v) => doc.number(v, &field("height_scale"), |v| v > 0.0, "> 0")?,
-                None => 1.0,
-            };
-            let file = base.join(h.get_ref());
-            must_exist(doc, h.span().start, field("height_map"), &file)?;
-            crate::glint::example::load_height_map(&file, scale)
-                .map_err(|e| doc.invalid(h.span(), field("height_map"), e))?
-        }
+    let Some((example, source, from_heights)) = map_example(doc, raw, label, base)? else {
+        return Err(doc.invalid(
+            table.clone(),
+            field("normal_map"),
+            "missing (a glint material needs its example: normal_map or height_map, a PNG)",
+        ));
     };
-    let example_field = if raw.normal_map.is_some() {
-        "normal_map"
-    } else {
+    let example_field = if from_heights {
         "height_map"
+    } else {
+        "normal_map"
     };
-    let source = base.join(
-        raw.normal_map
-            .as_ref()
-            .or(raw.height_map.as_ref())
-            .map(|s| s.get_ref().clone())
-            .unwrap_or_default(),
-    );
     let size = example.size() as u32;
     let patch = match &raw.patch {
         Some(p) => {
