@@ -133,6 +133,38 @@ fn test_scenes_load() {
     assert_eq!(s.meshes[1].mesh.triangles.len(), 12);
 }
 
+/// Every render scene the repository ships loads (the multiscale folder holds exemplar graphs,
+/// not render scenes), and the normal-map scenes carry their maps, filters and UVs.
+#[test]
+fn every_shipped_scene_loads() {
+    let mut loaded = 0;
+    for folder in ["", "test", "normal-maps"] {
+        let dir = repo().join("scenes").join(folder);
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        files.sort();
+        for file in files {
+            Scene::load(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+            loaded += 1;
+        }
+    }
+    assert!(loaded >= 15, "{loaded} scenes");
+    for name in ["receding-plane", "v-groove", "sphere"] {
+        let s = example(&format!("normal-maps/{name}.toml"));
+        let m = s.materials[0].normal_map.as_ref().expect("a normal map");
+        assert_eq!(
+            m.filter,
+            lazysolid_renderer::scene::NormalFilter::Vmf,
+            "{name}"
+        );
+        assert_eq!(m.lobes, 4);
+        assert!(s.meshes[0].mesh.uvs.is_some(), "{name}: the mesh has UVs");
+    }
+}
+
 /// Every wall of the interior faces the inside of the room [-1, 1] × [0, 2] × [-1, 1] and lies
 /// on its side of it.
 #[test]
