@@ -385,7 +385,7 @@ fn missing_required_fields_name_the_table() {
     expect(
         &edit(15, ""),
         12,
-        "material \"white\".color: missing (a lambertian material needs color or texture)",
+        "material \"white\".color: missing (a lambertian material needs color, texture or albedo_map)",
     );
     expect(
         &append("[[material]]\nname = \"glass\"\nkind = \"dielectric\"\n"),
