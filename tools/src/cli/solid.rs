@@ -527,6 +527,15 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         run.consistency.spread,
         run.consistency.candidate_spread
     );
+    println!(
+        "extrusion: same role coordinate one voxel along its normal x / y / z {:.1} / {:.1} / {:.1} %; coherent one pixel along the plane {:.1} / {:.1} / {:.1} %",
+        100.0 * run.consistency.normal_repeat[0],
+        100.0 * run.consistency.normal_repeat[1],
+        100.0 * run.consistency.normal_repeat[2],
+        100.0 * run.consistency.in_plane_coherence[0],
+        100.0 * run.consistency.in_plane_coherence[1],
+        100.0 * run.consistency.in_plane_coherence[2]
+    );
     for (axis, q) in quality.iter().enumerate() {
         println!(
             "slice perpendicular to {} vs {}: SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}, histogram distance {:.4}, period repetition {:.3}, energy {:.1}",
