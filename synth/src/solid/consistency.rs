@@ -133,8 +133,7 @@ pub fn triple_consistency(
         .map(|&t| triple_spread(exemplars, t))
         .sum::<f64>()
         / all.len().max(1) as f64;
-    let (normal_repeat, in_plane_coherence) =
-        extrusion_shares(&triples, synthesis.window.size, m as u32);
+    let (normal_repeat, in_plane_coherence) = extrusion_shares(&triples, synthesis.window.size, m);
     TripleConsistency {
         candidate_share: share,
         spread,
