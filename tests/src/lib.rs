@@ -97,6 +97,19 @@ fn asset(folder: &str, name: &str) -> std::path::PathBuf {
     path
 }
 
+/// Writes `text` as `dir/scene.toml`, loads it (relative paths from `dir`) and renders it on
+/// the test device: for tests whose scene is written next to the files it names.
+pub fn render_scene_text(dir: &std::path::Path, text: &str) -> lazysolid_renderer::output::Film {
+    use lazysolid_renderer::{render::PathTracer, scene::Scene};
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    with_gpu(|gpu| {
+        let mut t = PathTracer::new(gpu, &scene).unwrap();
+        t.render(|_| {}).unwrap()
+    })
+}
+
 /// Path of a mesh installed by `scripts/fetch-assets.sh`; panics with the fix when it is absent.
 pub fn asset_mesh(name: &str) -> std::path::PathBuf {
     asset("meshes", name)

@@ -398,11 +398,7 @@ fn to_rgb8(film: &lazysolid_renderer::output::Film) -> image::RgbImage {
         exposure_ev: 0.0,
         operator: Operator::AcesFitted,
     };
-    let mut img = image::RgbImage::new(film.width(), film.height());
-    for (p, c) in img.pixels_mut().zip(film.color()) {
-        *p = image::Rgb(t.to_srgb8(*c).unwrap());
-    }
-    img
+    lazysolid_renderer::output::tonemapped_rgb8(film, &t).unwrap()
 }
 
 /// Largest FLIP mean between the glint scene rendered with the pruned P-NDF and with the

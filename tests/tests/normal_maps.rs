@@ -10,23 +10,11 @@ use lazysolid_renderer::normal_map::gpu_fit::GpuVmfFitter;
 use lazysolid_renderer::normal_map::pyramid::{level_start, VmfPyramid};
 use lazysolid_renderer::normal_map::vmf::{mean_length, VmfLobe};
 use lazysolid_renderer::output::Film;
-use lazysolid_renderer::render::PathTracer;
-use lazysolid_renderer::scene::Scene;
-use lazysolid_tests::with_gpu;
+use lazysolid_tests::{render_scene_text, with_gpu};
 use std::path::{Path, PathBuf};
 
 fn maps() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/normal-maps")
-}
-
-fn render(dir: &Path, text: &str) -> Film {
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, text).unwrap();
-    let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
-    with_gpu(|gpu| {
-        let mut t = PathTracer::new(gpu, &scene).unwrap();
-        t.render(|_| {}).unwrap()
-    })
 }
 
 fn grey(c: &[f32; 3]) -> f64 {
@@ -111,8 +99,8 @@ fn the_mixture_bsdf_samples_what_it_evaluates() {
         ),
     ];
     for material in &materials {
-        let nee = render(dir.path(), &plane_scene(material, ANALYTIC, 96));
-        let sampled = render(dir.path(), &plane_scene(material, EMISSIVE, 96));
+        let nee = render_scene_text(dir.path(), &plane_scene(material, ANALYTIC, 96));
+        let sampled = render_scene_text(dir.path(), &plane_scene(material, EMISSIVE, 96));
         let (mean, error, level) = difference(&nee, &sampled);
         println!("{material}: NEE − BSDF sampling {mean:.5} ± {error:.5} (image mean {level:.4})");
         assert!(level > 0.01, "the plane is lit ({level})");
@@ -143,8 +131,8 @@ fn the_finest_vmf_level_shades_as_the_unfiltered_map() {
         .replace("look_at = [0.0, 0.0, -3.0]", "look_at = [0.0, 0.0, -2.3]")
         .replace("fov_y = 40.0", "fov_y = 10.0")
     };
-    let unfiltered = render(dir.path(), &close("none"));
-    let vmf = render(dir.path(), &close("vmf"));
+    let unfiltered = render_scene_text(dir.path(), &close("none"));
+    let vmf = render_scene_text(dir.path(), &close("vmf"));
     let (mean, error, level) = difference(&vmf, &unfiltered);
     println!("vMF − unfiltered close up: {mean:.5} ± {error:.5} (image mean {level:.4})");
     assert!(

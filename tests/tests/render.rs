@@ -200,12 +200,7 @@ fn same_seed_same_image_other_seed_other_image() {
 }
 
 fn to_rgb8(film: &Film) -> image::RgbImage {
-    let t = tone_map();
-    let mut img = image::RgbImage::new(film.width(), film.height());
-    for (p, c) in img.pixels_mut().zip(film.color()) {
-        *p = image::Rgb(t.to_srgb8(*c).unwrap());
-    }
-    img
+    lazysolid_renderer::output::tonemapped_rgb8(film, &tone_map()).unwrap()
 }
 
 /// A thin lens focused on the subject keeps it as sharp as a pinhole does; focused far behind

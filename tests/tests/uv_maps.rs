@@ -9,10 +9,9 @@ use lazysolid_renderer::glint::NormalExample;
 use lazysolid_renderer::image_texture::{sample, ImageSet, ImageTexture};
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_renderer::output::Film;
-use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::Scene;
 use lazysolid_tests::kernels::render_test::IMAGE_TEST;
-use lazysolid_tests::{with_gpu, ImageTestPush};
+use lazysolid_tests::{render_scene_text, with_gpu, ImageTestPush};
 use rand::{Rng, SeedableRng};
 use std::path::Path;
 
@@ -165,16 +164,6 @@ fn the_image_lookup_on_the_device_matches_its_cpu_twin() {
     });
 }
 
-/// Renders `scene_text` (with the files already in `dir`).
-fn render(dir: &Path, scene_text: &str) -> Film {
-    let path = write(dir, "scene.toml", scene_text);
-    let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
-    with_gpu(|gpu| {
-        let mut t = PathTracer::new(gpu, &scene).unwrap();
-        t.render(|_| {}).unwrap()
-    })
-}
-
 /// The built-in quad seen from straight above, filling the frame, with −z up in the picture:
 /// the quad's texture coordinates put the image's top row there.
 fn quad_scene(material: &str) -> String {
@@ -217,7 +206,7 @@ fn a_textured_quad_shows_its_image_the_right_way_up() {
     let colours = [[255, 0, 0], [0, 255, 0], [0, 0, 255], [255, 255, 255]];
     let img = image::RgbImage::from_fn(2, 2, |x, y| image::Rgb(colours[(y * 2 + x) as usize]));
     img.save(dir.path().join("quadrants.png")).unwrap();
-    let film = render(
+    let film = render_scene_text(
         dir.path(),
         &quad_scene("kind = \"lambertian\"\nalbedo_map = \"quadrants.png\""),
     );
@@ -256,7 +245,7 @@ fn a_normal_map_bends_the_shading_normal_along_the_mesh_tangent_frame() {
     for (k, (n, want)) in cases.into_iter().enumerate() {
         let name = format!("normal{k}.png");
         constant_normal_png(&dir.path().join(&name), n);
-        let film = render(
+        let film = render_scene_text(
             dir.path(),
             &quad_scene(&format!(
                 "kind = \"lambertian\"\ncolor = [0.5, 0.5, 0.5]\nnormal_map = \"{name}\""
@@ -392,17 +381,10 @@ radiance = [20.0, 20.0, 20.0]
             scratches.display()
         )
     };
-    let planar = render(dir.path(), &scene("planar"));
-    let mesh = render(dir.path(), &scene("mesh"));
-    let srgb = |f: &Film| {
-        let tm = lazysolid_renderer::output::ToneMap::default();
-        let px = f
-            .color()
-            .iter()
-            .flat_map(|&c| tm.to_srgb8(c).unwrap())
-            .collect();
-        image::RgbImage::from_raw(f.width(), f.height(), px).unwrap()
-    };
+    let planar = render_scene_text(dir.path(), &scene("planar"));
+    let mesh = render_scene_text(dir.path(), &scene("mesh"));
+    let srgb =
+        |f: &Film| lazysolid_renderer::output::tonemapped_rgb8(f, &Default::default()).unwrap();
     let flip = lazysolid_renderer::diff::flip_images(&srgb(&planar), &srgb(&mesh))
         .unwrap()
         .mean;

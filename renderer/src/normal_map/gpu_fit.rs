@@ -76,10 +76,12 @@ fn from_device(lobes: &[[f32; 5]]) -> Vec<VmfLobe> {
         .collect()
 }
 
-/// The device's buffers for one map: its normals, reused by every level.
+/// The device's buffers for one map: its normals, reused by every level (and kept on the
+/// host for the finest level and the starts).
 pub struct GpuVmfFitter {
     gpu: Gpu,
     size: usize,
+    host_normals: Vec<DVec3>,
     normals: GpuBuffer<[f32; 4]>,
 }
 
@@ -89,13 +91,15 @@ impl GpuVmfFitter {
     /// # Errors
     /// Allocation and upload errors.
     pub fn new(gpu: &Gpu, map: &NormalExample) -> GpuResult<GpuVmfFitter> {
-        let normals: Vec<[f32; 4]> = map_normals(map)
+        let host_normals = map_normals(map);
+        let normals: Vec<[f32; 4]> = host_normals
             .iter()
             .map(|n| [n.x as f32, n.y as f32, n.z as f32, 0.0])
             .collect();
         Ok(GpuVmfFitter {
             gpu: gpu.clone(),
             size: map.size(),
+            host_normals,
             normals: GpuBuffer::from_slice(gpu, "vmf normals", &normals)?,
         })
     }
@@ -180,13 +184,7 @@ impl GpuVmfFitter {
                 LOBES_PER_TEXEL.end()
             )));
         }
-        let normals: Vec<DVec3> = self
-            .normals
-            .read()?
-            .iter()
-            .map(|n| DVec3::new(f64::from(n[0]), f64::from(n[1]), f64::from(n[2])))
-            .collect();
-        let mut levels = vec![finest_level(&normals, self.size, j)];
+        let mut levels = vec![finest_level(&self.host_normals, self.size, j)];
         while levels.last().expect("one level").size > 1 {
             let child = levels.last().expect("one level");
             let edge = child.size / 2;

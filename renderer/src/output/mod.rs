@@ -18,6 +18,6 @@ pub use exr_io::{read_exr_rgb, write_exr};
 pub use film::Film;
 pub(crate) use lazysolid_compute::atomic_file::write_atomically;
 pub(crate) use png_io::write_rgb8;
-pub use png_io::{write_layer_png, write_png, LayerMapping};
+pub use png_io::{tonemapped_rgb8, write_layer_png, write_png, LayerMapping};
 pub(crate) use tonemap::encode8;
 pub use tonemap::{srgb_eotf, srgb_oetf, Operator, ToneMap};

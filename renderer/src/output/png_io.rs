@@ -95,6 +95,23 @@ pub fn write_png(
     write_rgb8(path, film.width(), film.height(), &data)
 }
 
+/// The film's colour layer as the 8-bit sRGB image [`write_png`] would write, in memory: what
+/// FLIP comparisons of renders take.
+///
+/// # Errors
+/// A NaN in the colour layer, named with its pixel (the file is `<in memory>`).
+pub fn tonemapped_rgb8(film: &Film, tone_map: &ToneMap) -> Result<image::RgbImage, OutputError> {
+    let data = encode_pixels(
+        Path::new("<in memory>"),
+        "color",
+        film.width(),
+        film.color(),
+        |c| tone_map.to_srgb8(c),
+    )?;
+    Ok(image::RgbImage::from_raw(film.width(), film.height(), data)
+        .expect("a film's layer has width × height pixels"))
+}
+
 /// Writes a three-component layer (a film's albedo or normal, or any buffer of that shape) as
 /// an 8-bit PNG, for looking at what the integrator saw at the first hit.
 ///

@@ -9,7 +9,7 @@ use crate::bench::plot::{line_chart, Series};
 use anyhow::Context;
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_renderer::diff::flip_images;
-use lazysolid_renderer::output::{write_png, Film, ToneMap};
+use lazysolid_renderer::output::{tonemapped_rgb8, write_png, Film, ToneMap};
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::{NormalFilter, Scene};
 use std::io::Write;
@@ -88,14 +88,8 @@ fn far_errors(reference: &Film, test: &Film, far: &[bool]) -> (f64, f64) {
     }
 }
 
-fn srgb(film: &Film) -> image::RgbImage {
-    let tm = ToneMap::default();
-    let pixels = film
-        .color()
-        .iter()
-        .flat_map(|&c| tm.to_srgb8(c).unwrap_or([255, 0, 255]))
-        .collect();
-    image::RgbImage::from_raw(film.width(), film.height(), pixels).expect("film-sized buffer")
+fn srgb(film: &Film) -> anyhow::Result<image::RgbImage> {
+    Ok(tonemapped_rgb8(film, &ToneMap::default())?)
 }
 
 /// One measured render.
@@ -150,7 +144,7 @@ pub(super) fn run(
             dir.join(format!("{name}-reference.png")),
             &ToneMap::default(),
         )?;
-        let ref_image = srgb(&reference);
+        let ref_image = srgb(&reference)?;
         bench.status(format!("{name}: second reference (noise floor)"));
         let (second, _) = render(
             gpu,
@@ -166,7 +160,7 @@ pub(super) fn run(
             scene: name.clone(),
             filter: "reference (2nd seed)",
             spp: args.reference_spp,
-            flip: f64::from(flip_images(&ref_image, &srgb(&second))?.mean),
+            flip: f64::from(flip_images(&ref_image, &srgb(&second)?)?.mean),
             far_mre: floor_mre,
             far_bias: floor_bias,
             render_ms: ref_ms,
@@ -182,7 +176,7 @@ pub(super) fn run(
                 bench.status(format!("{name}: {label}, {spp} spp"));
                 let (film, ms) = render(gpu, &variant(scene, filter, spp, seed))?;
                 let (far_mre, far_bias) = far_errors(&reference, &film, &far);
-                let flip = f64::from(flip_images(&ref_image, &srgb(&film))?.mean);
+                let flip = f64::from(flip_images(&ref_image, &srgb(&film)?)?.mean);
                 let file = format!(
                     "{name}-{}-{spp}spp.png",
                     label.replace(' ', "-").to_lowercase()
