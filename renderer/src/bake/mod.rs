@@ -25,7 +25,7 @@ use lazysolid_synth::solid::lazy::{
     CutInfo, GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy,
     SharedLazy, StoredMatter, SynthesisInfo,
 };
-use lazysolid_synth::solid::SolidExemplars;
+use lazysolid_synth::solid::{Orientation, SolidExemplars};
 use lazysolid_synth::{load_solid, FitMode, SynthError};
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -48,7 +48,9 @@ pub(crate) struct Baker<'a> {
 /// the candidates through the user's cache.
 fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, SynthError> {
     let image = load_solid(&spec.exemplar, FitMode::Auto, None)?.exemplar;
-    let exemplars = SolidExemplars::new(image, [None, None, None])?;
+    // Oriented as `lazysolid solid` does by default, so a scene's matter is the command's.
+    let (exemplars, _) =
+        SolidExemplars::new(image, [None, None, None])?.with_orientation(Orientation::Auto);
     let cache = DiskCache::user().ok();
     let options = LazyOptions {
         policy: Some(spec.policy),

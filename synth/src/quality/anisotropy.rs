@@ -11,7 +11,7 @@
 //!
 //! For a volume, every slice family adds up the same three sums `M_xx`, `M_yy`, `M_zz` (the
 //! squared differences along each world axis), each seen by two families
-//! ([`ROLE_AXES`]: the slices ⊥ x have u = y, v = z; ⊥ y have u = x, v = z; ⊥ z have
+//! ([`ROLE_AXES`](crate::solid::ROLE_AXES): the slices ⊥ x have u = y, v = z; ⊥ y have u = x, v = z; ⊥ z have
 //! u = x, v = y). Their differences therefore obey, in **every** volume,
 //!
 //! ```text
@@ -27,27 +27,9 @@
 //! along one image axis): a bound on every solid synthesizer that uses one image for all three
 //! roles, measured by [`VolumeAnisotropy`] (`docs/solid.md`).
 
+use super::gradient_moments::{family_moments, moments};
 use super::image::LinearImage;
-use crate::solid::{ROLES, ROLE_AXES};
-
-/// The gradient energies of an image along u and along v (sums of squared central
-/// differences of the luminance over the pixels with both neighbours on each axis).
-fn energies(luma: &[f32], w: usize, h: usize) -> [f64; 2] {
-    let mut e = [0.0f64; 2];
-    if w < 3 || h < 3 {
-        return e;
-    }
-    for y in 1..h - 1 {
-        for x in 1..w - 1 {
-            let at = |xx: usize, yy: usize| f64::from(luma[yy * w + xx]);
-            let gu = 0.5 * (at(x + 1, y) - at(x - 1, y));
-            let gv = 0.5 * (at(x, y + 1) - at(x, y - 1));
-            e[0] += gu * gu;
-            e[1] += gv * gv;
-        }
-    }
-    e
-}
+use crate::solid::ROLES;
 
 fn ratio([uu, vv]: [f64; 2]) -> f64 {
     if uu + vv > 0.0 {
@@ -59,7 +41,8 @@ fn ratio([uu, vv]: [f64; 2]) -> f64 {
 
 /// The anisotropy `(J_uu − J_vv) / (J_uu + J_vv)` of an image (module doc); 0 for a flat one.
 pub fn anisotropy(image: &LinearImage) -> f64 {
-    ratio(energies(&image.luminance(), image.width, image.height))
+    let [uu, vv, _] = moments(&image.luminance(), image.width, image.height);
+    ratio([uu, vv])
 }
 
 /// The anisotropy of each slice family of a volume, from every slice's own figure.
@@ -81,31 +64,7 @@ impl VolumeAnisotropy {
     /// # Panics
     /// When `colours` does not hold `n³` voxels (a caller's bug).
     pub fn measure(colours: &[[u8; 3]], n: usize) -> VolumeAnisotropy {
-        assert_eq!(
-            colours.len(),
-            n * n * n,
-            "voxel count of a cube of side {n}"
-        );
-        let mut sums = [[0.0f64; 2]; ROLES];
-        let mut rgb = vec![[0u8; 3]; n * n];
-        for (role, sum) in sums.iter_mut().enumerate() {
-            let [a, b] = ROLE_AXES[role];
-            for at in 1..n.saturating_sub(1) {
-                for j in 0..n {
-                    for i in 0..n {
-                        let mut p = [0usize; 3];
-                        p[role] = at;
-                        p[a] = i;
-                        p[b] = j;
-                        rgb[j * n + i] = colours[(p[2] * n + p[1]) * n + p[0]];
-                    }
-                }
-                let luma = LinearImage::from_rgb8(&rgb, n, n).luminance();
-                let e = energies(&luma, n, n);
-                sum[0] += e[0];
-                sum[1] += e[1];
-            }
-        }
+        let sums = family_moments(colours, n).map(|[uu, vv, _]| [uu, vv]);
         let d = sums.map(|[uu, vv]| uu - vv);
         let trace = sums.iter().map(|[uu, vv]| uu + vv).sum::<f64>() / ROLES as f64;
         VolumeAnisotropy {

@@ -19,12 +19,15 @@
 
 pub mod anisotropy;
 pub mod blockiness;
+pub mod diagonal;
+mod gradient_moments;
 mod image;
 pub mod layout;
 pub mod swd;
 
 pub use anisotropy::{anisotropy, reachable_gap, VolumeAnisotropy};
 pub use blockiness::{axis_share, Blockiness};
+pub use diagonal::{diagonal_correlation, VolumeDiagonal};
 pub use image::LinearImage;
 pub use layout::layout_repetition;
 pub use swd::{PatchSets, SwdCalibration, SwdParams, SwdReport};
@@ -38,6 +41,8 @@ pub struct ImageFigures {
     pub blockiness: Blockiness,
     /// Balance of the gradient energy between u and v ([`anisotropy()`](fn@anisotropy)).
     pub anisotropy: f64,
+    /// Which diagonal the gradients prefer ([`diagonal_correlation`]).
+    pub diagonal: f64,
     /// Correlation of the large structures one exemplar period away
     /// ([`layout_repetition`]): 1 for a tiling.
     pub layout: f64,
@@ -50,6 +55,7 @@ pub struct ExemplarFigures {
     swd: SwdCalibration,
     axis_share: f64,
     anisotropy: f64,
+    diagonal: f64,
     period: [usize; 2],
 }
 
@@ -61,6 +67,7 @@ impl ExemplarFigures {
             swd: SwdCalibration::new(&e, SwdParams::default()),
             axis_share: axis_share(&e),
             anisotropy: anisotropy(&e),
+            diagonal: diagonal_correlation(&e),
             period: [width as usize, height as usize],
         }
     }
@@ -68,6 +75,11 @@ impl ExemplarFigures {
     /// The exemplar's [`anisotropy()`](fn@anisotropy).
     pub fn anisotropy(&self) -> f64 {
         self.anisotropy
+    }
+
+    /// The exemplar's [`diagonal_correlation`].
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
     }
 
     /// The SWD calibration.
@@ -82,6 +94,7 @@ impl ExemplarFigures {
             swd: self.swd.measure(&image),
             blockiness: Blockiness::against(&image, self.axis_share),
             anisotropy: anisotropy(&image),
+            diagonal: diagonal_correlation(&image),
             layout: layout_repetition(&image, self.period[0], self.period[1]),
         }
     }

@@ -5,7 +5,7 @@
 use super::roles::SolidExemplars;
 use super::slices::slice;
 use super::volume::SolidSynthesis;
-use crate::quality::{ExemplarFigures, VolumeAnisotropy};
+use crate::quality::{ExemplarFigures, VolumeAnisotropy, VolumeDiagonal};
 use crate::{
     histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar, SynthResult,
 };
@@ -34,6 +34,12 @@ pub struct AxisQuality {
     /// The same figure of the axis's exemplar: no volume matches it on every axis unless
     /// `a_x − a_y + a_z = 0`.
     pub exemplar_anisotropy: f64,
+    /// `J_uv / √(J_uu J_vv)` of the gradients over all of this axis's slices: which
+    /// diagonal the structures prefer (`synth/quality/diagonal.rs`).
+    pub diagonal: f64,
+    /// The same figure of the axis's exemplar: a negative one cannot be met on all three axes
+    /// with the same sign in every role (`solid/orientation.rs`).
+    pub exemplar_diagonal: f64,
 }
 
 /// One exemplar's calibrated figures, computed once and applied to every image scored
@@ -74,6 +80,8 @@ impl ImageScorer {
             blockiness: figures.blockiness.ratio,
             anisotropy: figures.anisotropy,
             exemplar_anisotropy: self.0.anisotropy(),
+            diagonal: figures.diagonal,
+            exemplar_diagonal: self.0.diagonal(),
         })
     }
 }
@@ -95,6 +103,7 @@ pub fn axis_quality(
     let n = synthesis.window.size[0];
     let m = exemplars.side();
     let volume = VolumeAnisotropy::measure(colours, n as usize);
+    let diagonal = VolumeDiagonal::measure(colours, n as usize);
     let mut out = Vec::with_capacity(3);
     for (axis, scorer) in scorers.iter().enumerate() {
         let (rgb, coords) = slice(synthesis, colours, axis, n / 2);
@@ -103,6 +112,7 @@ pub fn axis_quality(
         let mut q = scorer.score(energy, e, &rgb, n, n, repetition, samples)?;
         // The mid slice alone is one sample; the identity holds for the families.
         q.anisotropy = volume.axes[axis];
+        q.diagonal = diagonal.axes[axis];
         out.push(q);
     }
     Ok(out.try_into().expect("three axes"))

@@ -19,6 +19,7 @@ mod jitter;
 pub mod lazy;
 mod loop_budget;
 mod nrrd;
+mod orientation;
 mod plan;
 mod relief;
 mod roles;
@@ -58,6 +59,9 @@ pub use gpu::GpuSolidSynthesizer;
 pub use jitter::jitter3;
 pub use loop_budget::{LOOP_BUDGET, LOOP_LIMIT};
 pub use nrrd::{decode_nrrd, encode_nrrd, RgbVolume};
+pub use orientation::{
+    exemplar_diagonal, mirrored, role_to_mirror, Mirroring, Orientation, MIN_DIAGONAL_CORRELATION,
+};
 pub use plan::{plan_boxes, plan_levels, LevelPlan, Subpass, VolumeBox, CLASSES_3D, SUBPASSES_3D};
 pub use relief::{role_texel, voxel_texel, SolidRelief};
 pub use roles::{

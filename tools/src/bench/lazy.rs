@@ -26,7 +26,7 @@ use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
     finest_growth_cpu, lazy_key, GpuLazySolid, LazyOptions, LazyReport, MemoryPolicy,
 };
-use lazysolid_synth::solid::{pack_rgb, voxel_colour, LevelSchedule, SolidExemplars};
+use lazysolid_synth::solid::{pack_rgb, voxel_colour, LevelSchedule, Orientation, SolidExemplars};
 use lazysolid_synth::{load_solid, FitMode};
 use std::cell::RefCell;
 use std::path::PathBuf;
@@ -87,13 +87,16 @@ pub struct SolidExemplarArg {
 
 impl SolidExemplarArg {
     /// Loads the exemplar as the three roles of a solid texture, fitted by the rule of
-    /// `lazysolid solid --fit auto`, and prints how.
+    /// `lazysolid solid --fit auto` and oriented by its default rule, and prints how.
     pub fn load(&self) -> anyhow::Result<SolidExemplars> {
         let path = assets::exemplar("--exemplar", &self.exemplar, self.exemplar_dir.as_deref())?;
         let fitted = load_solid(&path, FitMode::Auto, None)
             .with_context(|| format!("loading --exemplar {}", path.display()))?;
         println!("exemplar fit: {}", fitted.fit);
-        Ok(SolidExemplars::new(fitted.exemplar, [None, None, None])?)
+        let (exemplars, mirroring) = SolidExemplars::new(fitted.exemplar, [None, None, None])?
+            .with_orientation(Orientation::Auto);
+        println!("orientation: {mirroring}");
+        Ok(exemplars)
     }
 }
 

@@ -27,6 +27,9 @@
 //!   channel (`synth/feature.rs`; the rule before 2026-12-03, second session);
 //! - `otsu mask`: the features found by Otsu's split always, as before 2026-12-05 (the rule
 //!   takes the minimum-error split where Otsu's takes part of the body; `synth/feature.rs`);
+//! - `as given`: every role sees its image as given, where the orientation rule mirrored one
+//!   (`solid/orientation.rs`; the rule before 2026-12-05, third session), scored against the
+//!   images as given;
 //! - `keep current`: the correction's current triple competes even when it is none of the
 //!   gathered candidates (the rule before 2026-12-03);
 //! - `crossbar only`: candidates without the coherence filter (each pixel's 12 smallest
@@ -41,7 +44,7 @@ use crate::cli::candidate_builder::Candidates;
 use crate::cli::fit_mode::Fit;
 use crate::cli::solid::{synthesize_cube, CubeRequest, SolidRun};
 use crate::cli::synth::write_png;
-use crate::cli::tuning::{Schedule, SolidOrder};
+use crate::cli::tuning::{RoleOrientation, Schedule, SolidOrder};
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -51,8 +54,9 @@ use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::solid::{
     analyze_solid, axis_quality, candidates_key, oblique, role_scorers, slice, AxisQuality,
-    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, SolidExemplars, SolidSynthesis,
-    TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND, DEFAULT_SOLID_PARALLEL_LEVELS, ROLE_NAMES,
+    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, Mirroring, SolidExemplars,
+    SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND,
+    DEFAULT_SOLID_PARALLEL_LEVELS, ROLE_NAMES,
 };
 use lazysolid_synth::{
     analyze, default_passes_for, default_plane_jitter, load_solid, pack, period_repetition, unpack,
@@ -131,6 +135,10 @@ pub struct SolidArgs {
     pub schedule: Schedule,
     #[command(flatten)]
     pub order: SolidOrder,
+    /// Whether a role may see its exemplar mirrored (`lazysolid solid --orientation`); with
+    /// the ablations, a case whose role the rule mirrored is also synthesized as given.
+    #[arg(long, value_enum, default_value_t = RoleOrientation::Auto)]
+    pub orientation: RoleOrientation,
 }
 
 /// One quality row: a variant of one case, per axis.
@@ -152,8 +160,9 @@ fn load_fitted(args: &SolidArgs, name: &str, side: u32) -> anyhow::Result<Fitted
         .with_context(|| format!("loading {}", path.display()))
 }
 
-/// A case's exemplars (one name for all roles, or three joined by `+`) and how each was fitted.
-fn exemplars_of(
+/// A case's exemplars as given (one name for all roles, or three joined by `+`) and how each
+/// was fitted.
+fn given_exemplars(
     args: &SolidArgs,
     case: &str,
     side: u32,
@@ -172,6 +181,18 @@ fn exemplars_of(
     let roles = [Some(a.exemplar.clone()), Some(b.exemplar), Some(c.exemplar)];
     // All three roles given: the main image (the first again) is dropped.
     Ok((SolidExemplars::new(a.exemplar, roles)?, fits))
+}
+
+/// A case's exemplars oriented by `--orientation` (`lazysolid solid`'s default rule), what
+/// the rule did, the exemplars as given and how each was fitted.
+fn exemplars_of(
+    args: &SolidArgs,
+    case: &str,
+    side: u32,
+) -> anyhow::Result<(SolidExemplars, Mirroring, SolidExemplars, Vec<ExemplarFit>)> {
+    let (given, fits) = given_exemplars(args, case, side)?;
+    let (oriented, mirroring) = given.clone().with_orientation(args.orientation.into());
+    Ok((oriented, mirroring, given, fits))
 }
 
 /// The `extruded` ablation: `E_z` at (x, y) everywhere along z, with the triples that say so.
@@ -345,10 +366,11 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let mut quality = Vec::new();
     let mut peak = Vec::new();
     let mut fit_lines: Vec<(String, Vec<String>)> = Vec::new();
+    let mut orientation_lines: Vec<(String, Mirroring)> = Vec::new();
 
     for case in cases {
         for &side in candidate_sides {
-            let (exemplars, _) = exemplars_of(args, case, side)?;
+            let (exemplars, ..) = exemplars_of(args, case, side)?;
             let analysis = analyze_solid(&exemplars);
             // Both builders, side by side; the host's pruned searches must give the kernels'
             // candidates bit for bit.
@@ -397,9 +419,10 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 "{case} {side}²: the host's candidates differ from the GPU's"
             );
         }
-        let (exemplars, fits) = exemplars_of(args, case, args.side)?;
+        let (exemplars, mirroring, given, fits) = exemplars_of(args, case, args.side)?;
         let fits: Vec<String> = fits.iter().map(ToString::to_string).collect();
         fit_lines.push((case.clone(), fits.clone()));
+        orientation_lines.push((case.clone(), mirroring));
         let key = candidates_key(&exemplars, &CandidateParams::default());
         for (i, &n) in sizes.iter().enumerate() {
             let request = CubeRequest {
@@ -610,6 +633,22 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     q(&reordered.synthesis, &reordered.colours)?,
                     Some(reordered.consistency),
                 );
+                // The orientation rule's ablation, where it mirrored a role: every role as
+                // given (the rule before 2026-12-05, third session).
+                if mirroring.mirrored.is_some() {
+                    let as_given = synthesize_cube(&gpu, given.clone(), &request, Some(&cache))?;
+                    // Scored against the images as given, which its slices were made from.
+                    let axes = axis_quality(
+                        &energy,
+                        &role_scorers(&given),
+                        &given,
+                        &as_given.synthesis,
+                        &as_given.colours,
+                        args.energy_samples,
+                    )?;
+                    push("as given", axes, Some(as_given.consistency));
+                    drawn.push(("-as-given", as_given));
+                }
                 drawn.push(("-keep-current", keep));
                 drawn.push((
                     if other_order == 0 {
@@ -654,15 +693,19 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     for (case, fits) in &fit_lines {
         println!("{case}: exemplar fit: {}", fits.join("; "));
     }
+    for (case, mirroring) in &orientation_lines {
+        println!("{case}: orientation: {mirroring}");
+    }
     println!(
         "{:<28} {:<14} {}  {:>6} {:>6}",
         "case",
         "variant",
         (0..3)
             .map(|a| format!(
-                "{:>7} {:>5} {:>5} {:>5} {:>8}",
+                "{:>7} {:>5} {:>6} {:>5} {:>5} {:>8}",
                 format!("SWDr {}", ROLE_NAMES[a]),
                 "block",
+                "diag",
                 "hist",
                 "rep",
                 "E"
@@ -673,7 +716,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "spread"
     );
     let mut csv = String::from(
-        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,candidate_share,spread,candidate_spread\n",
+        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,candidate_share,spread,candidate_spread\n",
     );
     for row in &quality {
         let (share, spread) = row.consistency.map_or((String::new(), String::new()), |c| {
@@ -689,8 +732,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             row.axes
                 .iter()
                 .map(|q| format!(
-                    "{:>7.2} {:>5.2} {:>5.3} {:>5.2} {:>8.1}",
-                    q.swd_ratio, q.blockiness, q.histogram, q.repetition, q.energy
+                    "{:>7.2} {:>5.2} {:>+6.2} {:>5.3} {:>5.2} {:>8.1}",
+                    q.swd_ratio, q.blockiness, q.diagonal, q.histogram, q.repetition, q.energy
                 ))
                 .collect::<Vec<_>>()
                 .join("  "),
@@ -705,7 +748,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 )
             });
             csv.push_str(&format!(
-                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{:.4},{:.4},{c}\n",
+                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{:.4},{:.4},{:.4},{:.4},{c}\n",
                 row.case,
                 row.variant,
                 ["x", "y", "z"][a],
@@ -716,7 +759,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q.histogram,
                 q.repetition,
                 q.anisotropy,
-                q.exemplar_anisotropy
+                q.exemplar_anisotropy,
+                q.diagonal,
+                q.exemplar_diagonal
             ));
         }
     }

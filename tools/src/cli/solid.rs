@@ -9,7 +9,7 @@ use super::components::components;
 use super::fit_mode::Fit;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
-use super::tuning::{Features, Schedule, SolidOrder};
+use super::tuning::{Features, RoleOrientation, Schedule, SolidOrder};
 use super::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -106,6 +106,11 @@ pub struct SolidArgs {
     pub order: SolidOrder,
     #[command(flatten)]
     pub features: Features,
+    /// Whether a role may see its exemplar mirrored left-right: auto does so where the
+    /// exemplars' diagonal preferences cannot all hold in one volume (docs/solid.md,
+    /// "Diagonal orientation"; the line `orientation:` tells what was done)
+    #[arg(long, value_enum, default_value_t = RoleOrientation::Auto)]
+    pub orientation: RoleOrientation,
 }
 
 fn parse_offset3(s: &str) -> Result<[i32; 3], String> {
@@ -384,9 +389,10 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         args.fit.into(),
         args.exemplar_side,
     )?;
-    let exemplars = exemplars
+    let (exemplars, mirroring) = exemplars
         .with_feature_weight(args.features.feature_weight)?
-        .with_feature_mask(args.features.feature_mask.into());
+        .with_feature_mask(args.features.feature_mask.into())
+        .with_orientation(args.orientation.into());
     let candidate_params = CandidateParams {
         strip: args.strip,
         s: args.s,
@@ -485,6 +491,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     for fit in &fits {
         println!("exemplar fit: {fit}");
     }
+    println!("orientation: {mirroring}");
     for line in &features.lines {
         println!("{line}");
     }
@@ -559,6 +566,15 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         quality[1].anisotropy,
         quality[2].anisotropy,
         reachable_gap(a),
+    );
+    println!(
+        "diagonal correlation J_uv / sqrt(J_uu J_vv): exemplars {:+.3} / {:+.3} / {:+.3}, slices x / y / z {:+.3} / {:+.3} / {:+.3} (a negative sign in all three roles has no consistent volume; docs/solid.md, \"Diagonal orientation\")",
+        quality[0].exemplar_diagonal,
+        quality[1].exemplar_diagonal,
+        quality[2].exemplar_diagonal,
+        quality[0].diagonal,
+        quality[1].diagonal,
+        quality[2].diagonal,
     );
     println!(
         "wrote {} and its slices ({}, ...)",

@@ -4,6 +4,7 @@
 
 use clap::{Args, ValueEnum};
 use lazysolid_synth::feature::FeatureMask;
+use lazysolid_synth::solid::Orientation;
 use lazysolid_synth::{DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY};
 
 /// The per-level schedule of the pyramid synthesis: how strongly each level is jittered and
@@ -79,6 +80,30 @@ impl From<Mask> for FeatureMask {
             Mask::Auto => FeatureMask::Auto,
             Mask::Otsu => FeatureMask::Otsu,
             Mask::MinimumError => FeatureMask::MinimumError,
+        }
+    }
+}
+
+/// `--orientation`: whether a role may see its exemplar mirrored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum RoleOrientation {
+    /// Mirror one role's image left-right where the three roles' diagonal preferences have
+    /// no consistent 3D structure (a negative diagonal correlation in all three, each at least
+    /// 0.05 in size; the run prints what it did)
+    #[default]
+    Auto,
+    /// Every role sees its image as given
+    Keep,
+    /// As auto, whatever the size of the correlations
+    Mirror,
+}
+
+impl From<RoleOrientation> for Orientation {
+    fn from(o: RoleOrientation) -> Orientation {
+        match o {
+            RoleOrientation::Auto => Orientation::Auto,
+            RoleOrientation::Keep => Orientation::Keep,
+            RoleOrientation::Mirror => Orientation::Mirror,
         }
     }
 }

@@ -47,6 +47,8 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         "energy",
         "gradient anisotropy (u - v)/(u + v): exemplars ",
         "every volume has x - y + z = 0",
+        "orientation: diagonal correlation ",
+        "diagonal correlation J_uv / sqrt(J_uu J_vv): exemplars ",
         "render (GPU)",
         "feature channel of ",
         "% of the pixels, distance clamped at 4 px, deviation ",

@@ -15,8 +15,10 @@ fn bench_solid_writes_times_quality_and_figures() {
                 "bench",
                 "solid",
                 "--quick",
+                // Veins on the negative diagonal: the orientation rule mirrors E_y, so the
+                // "as given" ablation runs too.
                 "--exemplars",
-                "terra",
+                "granite1",
                 "--three",
                 "",
             ])
@@ -32,13 +34,13 @@ fn bench_solid_writes_times_quality_and_figures() {
             .args(["--runs", "1", "--warmup", "0"]),
         out.path(),
         &[
-            "terra 16² candidates",
+            "granite1 16² candidates",
             "lazysolid gpu kernels (wall)",
             "lazysolid host, pruned (wall)",
             "lazysolid gpu synthesis (wall)",
             "lazysolid end-to-end cold (wall)",
             "lazysolid end-to-end warm (wall)",
-            "terra 16³ peak GPU MiB",
+            "granite1 16³ peak GPU MiB",
             "own role",
             "mean colour",
             "keep current",
@@ -46,10 +48,12 @@ fn bench_solid_writes_times_quality_and_figures() {
             "no balance",
             "no feature",
             "otsu mask",
+            "as given",
             "extruded E_z",
             "2d synth",
-            // The 64² pattern fitted to the 16² measured (--fit auto).
-            "terra: exemplar fit: terra.pat 64x64 RGB → Lanczos3 resample 16x16",
+            // The 100² pattern fitted to the 16² measured (--fit auto).
+            "granite1: exemplar fit: granite1.pat 100x100 grey → Lanczos3 resample 16x16",
+            "granite1: orientation: diagonal correlation -0.307 / -0.307 / -0.307: E_y mirrored left-right",
         ],
     );
     let implementations = bench.column("implementation");
@@ -64,26 +68,27 @@ fn bench_solid_writes_times_quality_and_figures() {
             .unwrap();
     assert_eq!(
         json[0]["exemplars"][0],
-        "terra.pat 64x64 RGB → Lanczos3 resample 16x16"
+        "granite1.pat 100x100 grey → Lanczos3 resample 16x16"
     );
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
-    // Eleven variants, three axes each, plus the header.
-    assert_eq!(quality.lines().count(), 1 + 11 * 3, "{quality}");
+    // Twelve variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 12 * 3, "{quality}");
     assert!(
         quality
             .lines()
             .next()
             .unwrap()
-            .contains(",anisotropy,exemplar_anisotropy,"),
+            .contains(",anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,"),
         "{quality}"
     );
     for name in [
-        "terra-16-slices.png",
-        "terra-16-keep-current-slices.png",
-        "terra-16-no-balance-slices.png",
-        "terra-16-no-feature-slices.png",
-        "terra-16-ordered-finest-slices.png",
-        "terra-slab.png",
+        "granite1-16-slices.png",
+        "granite1-16-as-given-slices.png",
+        "granite1-16-keep-current-slices.png",
+        "granite1-16-no-balance-slices.png",
+        "granite1-16-no-feature-slices.png",
+        "granite1-16-ordered-finest-slices.png",
+        "granite1-slab.png",
         "quality.json",
     ] {
         assert!(figures.join(name).exists(), "{name}");
