@@ -26,7 +26,7 @@ use lazysolid_synth::solid::{
     solid_passes_or_default, triple_consistency, CandidateBuilder, CandidateParams,
     GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency, VolumeBox,
     DEFAULT_BALANCE, DEFAULT_S, DEFAULT_SOLID_PARALLEL_LEVELS, DEFAULT_STRIP, MAX_SOLID_SIDE,
-    MIN_SOLID_SIDE, ROLE_NAMES,
+    MIN_SOLID_SIDE, QUALITY_SLICES, ROLE_NAMES,
 };
 use lazysolid_synth::{load_solid, EnergyKernel, ExemplarFit, FitMode, SynthParams};
 use std::path::{Path, PathBuf};
@@ -545,7 +545,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     for (axis, q) in quality.iter().enumerate() {
         println!(
-            "slice perpendicular to {} vs {}: SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}, histogram distance {:.4}, period repetition {:.3}, energy {:.1}",
+            "slice perpendicular to {} vs {}: SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}, histogram distance {:.4}, period repetition {:.3}, energy {:.1}; over {} slices SWD ratio {:.2} (sd {:.2}), blockiness {:.2}",
             ["x", "y", "z"][axis],
             ROLE_NAMES[axis],
             q.swd,
@@ -554,6 +554,10 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             q.histogram,
             q.repetition,
             q.energy,
+            QUALITY_SLICES,
+            q.slices_swd_ratio,
+            q.slices_swd_ratio_sd,
+            q.slices_blockiness,
         );
     }
     let a = quality.map(|q| q.exemplar_anisotropy);

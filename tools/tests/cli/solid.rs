@@ -44,6 +44,7 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         "slice perpendicular to z vs E_z: SWD",
         "blockiness",
         "period repetition",
+        "; over 8 slices SWD ratio ",
         "energy",
         "gradient anisotropy (u - v)/(u + v): exemplars ",
         "every volume has x - y + z = 0",
