@@ -41,7 +41,7 @@ pub struct AxisQuality {
     /// with the same sign in every role (`solid/orientation.rs`).
     pub exemplar_diagonal: f64,
     /// Mean of `swd_ratio` over [`QUALITY_SLICES`] evenly spaced slices perpendicular to the
-    /// axis (for a 2D image, its own): at 128³ the mid slice alone moves by up to ±0.3
+    /// axis (for a 2D synthesis, its own, or the bench's mean over eight seeds): at 128³ the mid slice alone moves by up to ±0.3
     /// between seeds and between slices of one volume, the mean of eight by at most 0.11
     /// (granite1, seeds 3 and 5, both orientations).
     pub slices_swd_ratio: f64,
@@ -49,6 +49,18 @@ pub struct AxisQuality {
     pub slices_swd_ratio_sd: f64,
     /// Mean of `blockiness` over those slices.
     pub slices_blockiness: f64,
+}
+
+impl AxisQuality {
+    /// Sets the `slices_*` means from several images' `(SWD ratio, blockiness)`.
+    pub fn set_means(&mut self, figures: &[(f64, f64)]) {
+        let count = figures.len().max(1) as f64;
+        let mean = figures.iter().map(|f| f.0).sum::<f64>() / count;
+        self.slices_swd_ratio = mean;
+        self.slices_swd_ratio_sd =
+            (figures.iter().map(|f| (f.0 - mean).powi(2)).sum::<f64>() / count).sqrt();
+        self.slices_blockiness = figures.iter().map(|f| f.1).sum::<f64>() / count;
+    }
 }
 
 /// Slices per axis whose figures are averaged: at `(2k + 1) n / 16`, k = 0..8.
@@ -66,6 +78,13 @@ impl ImageScorer {
             exemplar.width,
             exemplar.height,
         ))
+    }
+
+    /// The SWD ratio and blockiness of a `w`×`h` image alone: what a mean over several
+    /// images or slices needs, without the energy.
+    pub fn ratios(&self, rgb: &[[u8; 3]], w: u32, h: u32) -> (f64, f64) {
+        let f = self.0.measure(rgb, w, h);
+        (f.swd.ratio, f.blockiness.ratio)
     }
 
     /// Scores a `w`×`h` image: energy (GPU), histogram, the given repetition, SWD and
@@ -132,16 +151,10 @@ pub fn axis_quality(
             .map(|k| {
                 let at = n * (2 * k + 1) / (2 * QUALITY_SLICES);
                 let (rgb, _) = slice(synthesis, colours, axis, at);
-                let f = scorer.0.measure(&rgb, n, n);
-                (f.swd.ratio, f.blockiness.ratio)
+                scorer.ratios(&rgb, n, n)
             })
             .collect();
-        let count = figures.len() as f64;
-        let mean = figures.iter().map(|f| f.0).sum::<f64>() / count;
-        q.slices_swd_ratio = mean;
-        q.slices_swd_ratio_sd =
-            (figures.iter().map(|f| (f.0 - mean).powi(2)).sum::<f64>() / count).sqrt();
-        q.slices_blockiness = figures.iter().map(|f| f.1).sum::<f64>() / count;
+        q.set_means(&figures);
         out.push(q);
     }
     Ok(out.try_into().expect("three axes"))
