@@ -68,6 +68,7 @@ pub const QUALITY_SLICES: u32 = 8;
 
 /// One exemplar's calibrated figures, computed once and applied to every image scored
 /// against it.
+#[derive(Clone)]
 pub struct ImageScorer(ExemplarFigures);
 
 impl ImageScorer {
@@ -122,7 +123,9 @@ impl ImageScorer {
 
 /// One [`ImageScorer`] per role of `exemplars`.
 pub fn role_scorers(exemplars: &SolidExemplars) -> [ImageScorer; 3] {
-    std::array::from_fn(|r| ImageScorer::new(exemplars.role(r)))
+    // One calibration per distinct image: roles that share an image share its scorer.
+    let per_image: Vec<ImageScorer> = exemplars.images.iter().map(ImageScorer::new).collect();
+    std::array::from_fn(|r| per_image[exemplars.role_image[r]].clone())
 }
 
 /// Scores the mid slices of a cube perpendicular to each axis against that axis's exemplar.

@@ -6,8 +6,9 @@
 //! negative diagonal (`ρ < 0`: veins from top left to bottom right, as in granite1 and
 //! marble1) in all three roles asks for three negative families, which no structure gives:
 //! the synthesis then mixes structures that each contradict one family and the slices lose
-//! most of the diagonal (measured: granite1 ρ −0.36, slices −0.09 / −0.12 / −0.01, their axis
-//! share near an isotropic texture's, so the blockiness figure reads 1.6). Mirroring one
+//! most of the diagonal (measured: granite1's 128² fit ρ −0.41, its slices' families −0.10 /
+//! −0.15 / −0.09, their axis share near an isotropic texture's, so the blockiness figure reads
+//! 1.6). Mirroring one
 //! role's image (u → side − 1 − u) flips its sign; the product is then positive and the
 //! preference can be kept on every axis. A mirrored photograph is a photograph of the same
 //! material, so this changes no statistic the slices are scored by except the sign the

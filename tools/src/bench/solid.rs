@@ -235,9 +235,16 @@ fn synth_2d(
     seed: u32,
     samples: usize,
 ) -> anyhow::Result<([AxisQuality; 3], Vec<[u8; 3]>)> {
-    let mut out = Vec::new();
+    let mut out: Vec<AxisQuality> = Vec::new();
     let mut image = Vec::new();
     for (r, scorer) in scorers.iter().enumerate() {
+        // A role whose image an earlier role plays has that role's 2D figures (the same
+        // synthesis, scored against the same exemplar).
+        let image_index = exemplars.role_image[r];
+        if let Some(earlier) = (0..r).find(|&o| exemplars.role_image[o] == image_index) {
+            out.push(out[earlier]);
+            continue;
+        }
         let e = exemplars.role(r);
         let a = analyze(e, &AnalysisParams::default())?;
         let levels = a.levels.len() as u32;
