@@ -438,9 +438,11 @@ fn the_validation_layer_reports_a_provoked_error() {
     let info = vk::BufferCreateInfo::default()
         .size(0)
         .usage(vk::BufferUsageFlags::STORAGE_BUFFER);
-    if let Ok(buffer) = unsafe { gpu.device().create_buffer(&info, None) } {
-        unsafe { gpu.device().destroy_buffer(buffer, None) };
-    }
+    gpu.with_device(|device| {
+        if let Ok(buffer) = unsafe { device.create_buffer(&info, None) } {
+            unsafe { device.destroy_buffer(buffer, None) };
+        }
+    });
     drop(gpu);
     assert!(log.errors() >= 1, "the provoked error was not counted");
     assert!(
@@ -491,5 +493,36 @@ fn the_memory_meter_counts_buffers_live_and_at_their_peak() {
         );
         assert_eq!(gpu.mark_memory(), before);
         assert_eq!(gpu.memory_use().peak, before, "a mark starts a new peak");
+    });
+}
+
+/// A validated device is destroyed only when no other thread is inside a call of a validated
+/// device: the validation layer keeps every device's state in one unlocked process-wide map,
+/// and a device destroyed during another thread's call crashed the render tests once (a
+/// SIGSEGV inside the layer; see `layer_lock` in the core). One thread stays inside a call for
+/// 300 ms while another drops its own device; the drop must end after the call.
+#[test]
+fn a_device_is_destroyed_only_between_other_threads_calls() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::mpsc;
+    let (inside_tx, inside_rx) = mpsc::channel();
+    let call_ended = AtomicBool::new(false);
+    let other = Gpu::new(&GpuOptions::for_tests()).unwrap();
+    std::thread::scope(|s| {
+        s.spawn(|| {
+            with_gpu(|gpu| {
+                gpu.with_device(|_| {
+                    inside_tx.send(()).unwrap();
+                    std::thread::sleep(std::time::Duration::from_millis(300));
+                    call_ended.store(true, Ordering::SeqCst);
+                })
+            })
+        });
+        inside_rx.recv().unwrap();
+        drop(other);
+        assert!(
+            call_ended.load(Ordering::SeqCst),
+            "a validated device was destroyed while another thread was inside a call"
+        );
     });
 }

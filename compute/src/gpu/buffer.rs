@@ -39,6 +39,7 @@ pub(crate) struct BufferMemory {
 
 impl Drop for BufferMemory {
     fn drop(&mut self) {
+        let _layer = self.gpu.layer();
         if let Some(a) = self.allocation.take() {
             self.gpu.meter.sub(a.size());
             let _ = self.gpu.allocator.lock().unwrap().free(a);
@@ -99,6 +100,7 @@ impl<T: Pod> GpuBuffer<T> {
             .size(bytes)
             .usage(usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE);
+        let layer = inner.layer();
         let raw = unsafe { inner.device.create_buffer(&create, None) }
             .vk("vkCreateBuffer", name.clone())?;
         let requirements = unsafe { inner.device.get_buffer_memory_requirements(raw) };
@@ -144,6 +146,7 @@ impl<T: Pod> GpuBuffer<T> {
                 .get_buffer_device_address(&vk::BufferDeviceAddressInfo::default().buffer(raw))
         };
         inner.set_name(raw, &name);
+        drop(layer);
         Ok(GpuBuffer {
             memory: Arc::new(BufferMemory {
                 gpu: inner,
@@ -392,6 +395,7 @@ impl Staging {
         location: MemoryLocation,
     ) -> GpuResult<Self> {
         let inner = gpu.clone();
+        let _layer = inner.layer();
         let create = vk::BufferCreateInfo::default()
             .size(bytes)
             .usage(vk::BufferUsageFlags::TRANSFER_SRC | vk::BufferUsageFlags::TRANSFER_DST);
@@ -448,6 +452,7 @@ impl Staging {
 
 impl Drop for Staging {
     fn drop(&mut self) {
+        let _layer = self.gpu.layer();
         if let Some(a) = self.allocation.take() {
             self.gpu.meter.sub(a.size());
             let _ = self.gpu.allocator.lock().unwrap().free(a);

@@ -56,6 +56,10 @@ impl GpuInner {
     ) -> GpuResult<(R, Vec<f64>)> {
         let inner = self;
         let device = &inner.device;
+        // Held for every call below but not while `record` runs: the recorder's commands hold
+        // it themselves, so a closure that waits on another thread cannot hold it meanwhile.
+        // Declared before the pool guard, so that guard's destruction is held too.
+        let mut layer = inner.layer();
         let pool_info = vk::CommandPoolCreateInfo::default()
             .queue_family_index(inner.queue_family)
             .flags(vk::CommandPoolCreateFlags::TRANSIENT);
@@ -90,7 +94,9 @@ impl GpuInner {
             timestamps: 0,
             used: KeepAlive::default(),
         };
+        drop(layer);
         let result = record(&mut rec);
+        layer = inner.layer();
         guard.queries = rec.queries;
         let value = result?;
         // Make every write visible to the host that reads mapped memory after the wait.
@@ -162,6 +168,9 @@ impl GpuInner {
                 })
                 .collect();
         }
+        drop(rec);
+        drop(guard);
+        drop(layer);
         Ok((value, times))
     }
 }
@@ -213,6 +222,7 @@ impl Recorder<'_> {
     /// A full memory barrier between compute and transfer work (and the reads of indirect
     /// dispatch arguments).
     pub fn barrier(&mut self) {
+        let _layer = self.gpu.layer();
         let stages = vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
         let barrier = vk::MemoryBarrier::default()
             .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
@@ -387,6 +397,7 @@ impl Recorder<'_> {
         }
         self.settle();
         let d = &self.gpu.device;
+        let _layer = self.gpu.layer();
         unsafe {
             d.cmd_bind_pipeline(self.cmd, vk::PipelineBindPoint::COMPUTE, kernel.pipeline);
             if !writes.is_empty() {
@@ -429,6 +440,7 @@ impl Recorder<'_> {
             return;
         }
         self.settle();
+        let _layer = self.gpu.layer();
         unsafe {
             self.gpu
                 .device
@@ -497,6 +509,7 @@ impl Recorder<'_> {
             .src_offset(src_offset)
             .dst_offset(dst_offset)
             .size(bytes)];
+        let _layer = self.gpu.layer();
         unsafe { self.gpu.device.cmd_copy_buffer(self.cmd, src, dst, &region) };
         self.pending_write = true;
     }
@@ -507,6 +520,7 @@ impl Recorder<'_> {
     /// # Errors
     /// More than [`MAX_TIMESTAMPS`] in one submission, or a query-pool creation failure.
     pub fn timestamp(&mut self) -> GpuResult<()> {
+        let _layer = self.gpu.layer();
         if self.queries == vk::QueryPool::null() {
             let info = vk::QueryPoolCreateInfo::default()
                 .query_type(vk::QueryType::TIMESTAMP)

@@ -4,6 +4,7 @@ use super::device_info::DeviceInfo;
 use super::error::{GpuError, GpuResult, VkContext};
 use super::features::{enabled, Feature, REQUIRED_FEATURES};
 use super::kernel::KernelCache;
+use super::layer_lock;
 use super::memory::MemoryMode;
 use super::validation::{messenger_callback, ValidationLog, VALIDATION_LAYER};
 use ash::vk;
@@ -124,6 +125,8 @@ impl Gpu {
                 true
             }
         };
+        // Held until the device exists (see `layer_lock`).
+        let _layer = layer_lock::exclusive(validation);
         let instance = create_instance(&entry, validation)?;
         let validation_log = Arc::new(ValidationLog::default());
         let messenger = if validation {
@@ -269,9 +272,12 @@ impl Gpu {
         WeakGpu(Arc::downgrade(&self.inner))
     }
 
-    /// The raw `ash` device, for the occasional call the core does not wrap.
-    pub fn device(&self) -> &ash::Device {
-        &self.inner.device
+    /// Runs `call` on the raw `ash` device, for the occasional call the core does not wrap.
+    /// The call runs under the validation layer's lock (see `layer_lock`), so a device created
+    /// or destroyed on another thread meanwhile cannot crash it.
+    pub fn with_device<R>(&self, call: impl FnOnce(&ash::Device) -> R) -> R {
+        let _layer = self.inner.layer();
+        call(&self.inner.device)
     }
 }
 
@@ -286,6 +292,11 @@ impl WeakGpu {
 }
 
 impl GpuInner {
+    /// Holds the validation layer's map shared for a call of this device (see `layer_lock`).
+    pub(crate) fn layer(&self) -> layer_lock::SharedHold {
+        layer_lock::shared(self.messenger.is_some())
+    }
+
     /// Gives a Vulkan object a debug name so validation messages say which buffer or kernel.
     pub(crate) fn set_name<H: vk::Handle>(&self, handle: H, name: &str) {
         if let Some(debug) = &self.debug_device {
@@ -293,6 +304,7 @@ impl GpuInner {
                 let info = vk::DebugUtilsObjectNameInfoEXT::default()
                     .object_handle(handle)
                     .object_name(&name);
+                let _layer = self.layer();
                 let _ = unsafe { debug.set_debug_utils_object_name(&info) };
             }
         }
@@ -301,6 +313,7 @@ impl GpuInner {
 
 impl Drop for GpuInner {
     fn drop(&mut self) {
+        let _layer = layer_lock::exclusive(self.messenger.is_some());
         unsafe {
             let _ = self.device.device_wait_idle();
             ManuallyDrop::drop(&mut self.allocator);

@@ -170,6 +170,7 @@ impl Kernel {
             });
         }
         let device = &inner.device;
+        let _layer = inner.layer();
         let module = unsafe {
             device
                 .create_shader_module(&vk::ShaderModuleCreateInfo::default().code(def.spirv), None)
@@ -317,6 +318,7 @@ fn groups_for_blocks(blocks: u64, max_x: u32) -> [u32; 3] {
 
 impl Drop for Kernel {
     fn drop(&mut self) {
+        let _layer = self.gpu.layer();
         unsafe {
             let d = &self.gpu.device;
             d.destroy_pipeline(self.pipeline, None);

@@ -18,6 +18,7 @@ mod error;
 mod features;
 mod keep_alive;
 mod kernel;
+mod layer_lock;
 mod memory;
 mod meter;
 mod push;
