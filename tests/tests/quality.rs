@@ -126,6 +126,31 @@ fn figures_rank_constructed_cases_as_a_person_would() {
     }
 }
 
+/// The SWD's bands say at which scale an image departs from the material: a blur loses the
+/// finest detail, so its finest band is the furthest; the ratio is the bands' mean.
+#[test]
+fn the_bands_place_a_blur_in_the_finest_detail() {
+    for name in [
+        "walnut.pat",
+        "pink_marble.pat",
+        "crinklepaper.pat",
+        "brick.pat",
+    ] {
+        let ex = load(name);
+        let cal = SwdCalibration::new(&ex, SwdParams::default());
+        let report = cal.measure(&blurred(&ex));
+        let bands = report.bands();
+        println!("{name} blur: bands fine → coarse {bands:?}");
+        assert_eq!(report.band_ratios.len(), cal.octaves());
+        let mean = report.band_ratios.iter().sum::<f64>() / report.band_ratios.len() as f64;
+        assert!((mean - report.ratio).abs() < 1e-12, "{report:?}");
+        assert!(
+            bands[1..].iter().all(|&b| b.is_nan() || b < bands[0]),
+            "{name}: a blur must be furthest in the finest band, {bands:?}"
+        );
+    }
+}
+
 #[test]
 fn figures_are_deterministic_and_a_copy_scores_below_the_unit() {
     let ex = load("terra.pat");

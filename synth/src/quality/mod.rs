@@ -30,7 +30,7 @@ pub use blockiness::{axis_share, Blockiness};
 pub use diagonal::{diagonal_correlation, VolumeDiagonal};
 pub use image::LinearImage;
 pub use layout::layout_repetition;
-pub use swd::{PatchSets, SwdCalibration, SwdParams, SwdReport};
+pub use swd::{PatchSets, SwdCalibration, SwdParams, SwdReport, SWD_BANDS};
 
 /// The figures of one image against an exemplar.
 #[derive(Clone, Debug, serde::Serialize)]

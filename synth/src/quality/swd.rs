@@ -26,6 +26,10 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
 
+/// Bands of the default pyramid: the finest detail, the next octave's, and the coarsest
+/// octave itself.
+pub const SWD_BANDS: usize = 3;
+
 /// How patches are taken and compared.
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct SwdParams {
@@ -48,7 +52,7 @@ impl Default for SwdParams {
     fn default() -> SwdParams {
         SwdParams {
             patch: 7,
-            octaves: 3,
+            octaves: SWD_BANDS,
             directions: 128,
             max_patches: 4096,
             min_patches: 64,
@@ -116,6 +120,17 @@ pub struct SwdReport {
     /// Mean over the bands of the band's distance over its calibration unit: 1 is the
     /// exemplar's own variability; NaN when the exemplar is too small for any band.
     pub ratio: f64,
+    /// Each band's distance over its calibration unit, finest first: which scale an excess
+    /// comes from (speckle in the finest band, layout in the coarsest).
+    pub band_ratios: Vec<f64>,
+}
+
+impl SwdReport {
+    /// [`SwdReport::band_ratios`] in the default pyramid's [`SWD_BANDS`] places, NaN for a
+    /// band the calibration left out (too few patches in a small exemplar).
+    pub fn bands(&self) -> [f64; SWD_BANDS] {
+        std::array::from_fn(|b| self.band_ratios.get(b).copied().unwrap_or(f64::NAN))
+    }
 }
 
 /// The exemplar's patch sets and its own variability, against which images are measured.
@@ -200,6 +215,7 @@ impl SwdCalibration {
             },
             mean: mean(&per_octave),
             per_octave,
+            band_ratios: ratios,
         }
     }
 

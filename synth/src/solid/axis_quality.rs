@@ -5,7 +5,7 @@
 use super::roles::SolidExemplars;
 use super::slices::slice;
 use super::volume::SolidSynthesis;
-use crate::quality::{ExemplarFigures, VolumeAnisotropy, VolumeDiagonal};
+use crate::quality::{ExemplarFigures, VolumeAnisotropy, VolumeDiagonal, SWD_BANDS};
 use crate::{
     histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar, SynthResult,
 };
@@ -49,17 +49,34 @@ pub struct AxisQuality {
     pub slices_swd_ratio_sd: f64,
     /// Mean of `blockiness` over those slices.
     pub slices_blockiness: f64,
+    /// Mean over those slices of each SWD band's ratio, finest first (`SwdReport::bands`):
+    /// the finest band is the one- and two-pixel detail the finest level makes, the coarsest
+    /// the layout the coarse levels make.
+    pub slices_swd_bands: [f64; SWD_BANDS],
+}
+
+/// The figures of one slice (or one 2D synthesis) that [`AxisQuality::set_means`] averages.
+#[derive(Clone, Copy, Debug)]
+pub struct SliceRatios {
+    /// SWD ratio, mean over the bands.
+    pub swd: f64,
+    /// Blockiness ratio.
+    pub blockiness: f64,
+    /// SWD ratio per band, finest first.
+    pub bands: [f64; SWD_BANDS],
 }
 
 impl AxisQuality {
-    /// Sets the `slices_*` means from several images' `(SWD ratio, blockiness)`.
-    pub fn set_means(&mut self, figures: &[(f64, f64)]) {
+    /// Sets the `slices_*` means from several images' figures.
+    pub fn set_means(&mut self, figures: &[SliceRatios]) {
         let count = figures.len().max(1) as f64;
-        let mean = figures.iter().map(|f| f.0).sum::<f64>() / count;
+        let mean = figures.iter().map(|f| f.swd).sum::<f64>() / count;
         self.slices_swd_ratio = mean;
         self.slices_swd_ratio_sd =
-            (figures.iter().map(|f| (f.0 - mean).powi(2)).sum::<f64>() / count).sqrt();
-        self.slices_blockiness = figures.iter().map(|f| f.1).sum::<f64>() / count;
+            (figures.iter().map(|f| (f.swd - mean).powi(2)).sum::<f64>() / count).sqrt();
+        self.slices_blockiness = figures.iter().map(|f| f.blockiness).sum::<f64>() / count;
+        self.slices_swd_bands =
+            std::array::from_fn(|b| figures.iter().map(|f| f.bands[b]).sum::<f64>() / count);
     }
 }
 
@@ -81,11 +98,15 @@ impl ImageScorer {
         ))
     }
 
-    /// The SWD ratio and blockiness of a `w`×`h` image alone: what a mean over several
+    /// The SWD ratios and blockiness of a `w`×`h` image alone: what a mean over several
     /// images or slices needs, without the energy.
-    pub fn ratios(&self, rgb: &[[u8; 3]], w: u32, h: u32) -> (f64, f64) {
+    pub fn ratios(&self, rgb: &[[u8; 3]], w: u32, h: u32) -> SliceRatios {
         let f = self.0.measure(rgb, w, h);
-        (f.swd.ratio, f.blockiness.ratio)
+        SliceRatios {
+            swd: f.swd.ratio,
+            blockiness: f.blockiness.ratio,
+            bands: f.swd.bands(),
+        }
     }
 
     /// Scores a `w`×`h` image: energy (GPU), histogram, the given repetition, SWD and
@@ -117,6 +138,7 @@ impl ImageScorer {
             slices_swd_ratio: figures.swd.ratio,
             slices_swd_ratio_sd: 0.0,
             slices_blockiness: figures.blockiness.ratio,
+            slices_swd_bands: figures.swd.bands(),
         })
     }
 }
@@ -150,7 +172,7 @@ pub fn axis_quality(
         // The mid slice alone is one sample; the identity holds for the families.
         q.anisotropy = volume.axes[axis];
         q.diagonal = diagonal.axes[axis];
-        let figures: Vec<(f64, f64)> = (0..QUALITY_SLICES)
+        let figures: Vec<SliceRatios> = (0..QUALITY_SLICES)
             .map(|k| {
                 let at = n * (2 * k + 1) / (2 * QUALITY_SLICES);
                 let (rgb, _) = slice(synthesis, colours, axis, at);

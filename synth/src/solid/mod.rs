@@ -31,7 +31,9 @@ mod strips;
 mod volume;
 
 pub use analysis::{analyze_solid, pack_rgb, unpack_rgb, RoleLevel, SolidAnalysis, SolidLevel};
-pub use axis_quality::{axis_quality, role_scorers, AxisQuality, ImageScorer, QUALITY_SLICES};
+pub use axis_quality::{
+    axis_quality, role_scorers, AxisQuality, ImageScorer, SliceRatios, QUALITY_SLICES,
+};
 pub use balance::{
     balance_usage, DEFAULT_BALANCE, MAX_BALANCE, MAX_PENALTY, PILOT_ORIGIN, PILOT_SEED, PILOT_SIDE,
 };

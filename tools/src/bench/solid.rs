@@ -57,8 +57,8 @@ use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::solid::{
     analyze_solid, axis_quality, candidates_key, oblique, role_scorers, slice, AxisQuality,
-    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, Mirroring, SolidExemplars,
-    SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND,
+    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, Mirroring, SliceRatios,
+    SolidExemplars, SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND,
     DEFAULT_SOLID_PARALLEL_LEVELS, QUALITY_SLICES, ROLE_NAMES,
 };
 use lazysolid_synth::{
@@ -274,14 +274,17 @@ fn synth_2d(
             if first.is_none() {
                 let repetition = period_repetition(&s.window_coords(), n, n, e.width, e.height);
                 let q = scorer.score(energy, e, &rgb, n, n, repetition, samples)?;
-                figures.push((q.swd_ratio, q.blockiness));
+                figures.push(SliceRatios {
+                    swd: q.swd_ratio,
+                    blockiness: q.blockiness,
+                    bands: q.slices_swd_bands,
+                });
                 first = Some(q);
                 if r == 0 {
                     image = rgb;
                 }
             } else {
-                let (swd_ratio, blockiness) = scorer.ratios(&rgb, n, n);
-                figures.push((swd_ratio, blockiness));
+                figures.push(scorer.ratios(&rgb, n, n));
             }
         }
         let mut q = first.expect("at least one seed");
@@ -744,7 +747,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "spread"
     );
     let mut csv = String::from(
-        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,slices_swd_ratio,slices_swd_ratio_sd,slices_blockiness,candidate_share,spread,candidate_spread\n",
+        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,slices_swd_ratio,slices_swd_ratio_sd,slices_blockiness,slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,candidate_share,spread,candidate_spread\n",
     );
     for row in &quality {
         let (share, spread) = row.consistency.map_or((String::new(), String::new()), |c| {
@@ -782,7 +785,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 )
             });
             csv.push_str(&format!(
-                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{:.4},{:.4},{:.4},{:.4},{:.3},{:.3},{:.3},{c}\n",
+                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{:.4},{:.4},{:.4},{:.4},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{c}\n",
                 row.case,
                 row.variant,
                 ["x", "y", "z"][a],
@@ -798,7 +801,10 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q.exemplar_diagonal,
                 q.slices_swd_ratio,
                 q.slices_swd_ratio_sd,
-                q.slices_blockiness
+                q.slices_blockiness,
+                q.slices_swd_bands[0],
+                q.slices_swd_bands[1],
+                q.slices_swd_bands[2]
             ));
         }
     }

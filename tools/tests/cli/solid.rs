@@ -45,6 +45,7 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         "blockiness",
         "period repetition",
         "; over 8 slices SWD ratio ",
+        "; per band fine / mid / coarse ",
         "energy",
         "gradient anisotropy (u - v)/(u + v): exemplars ",
         "every volume has x - y + z = 0",

@@ -81,6 +81,15 @@ fn bench_solid_writes_times_quality_and_figures() {
             .contains(",anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,"),
         "{quality}"
     );
+    let header = quality.lines().next().unwrap();
+    assert!(
+        header.contains(",slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,"),
+        "{header}"
+    );
+    let fields = header.split(',').count();
+    for line in quality.lines() {
+        assert_eq!(line.split(',').count(), fields, "{line}");
+    }
     for name in [
         "granite1-16-slices.png",
         "granite1-16-as-given-slices.png",
