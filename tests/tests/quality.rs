@@ -2,7 +2,9 @@
 //! exemplars: a shifted copy, a blockified copy, a blur and an unrelated material must rank
 //! as a person would rank them.
 
-use lazysolid_synth::quality::{Blockiness, LinearImage, SwdCalibration, SwdParams};
+use lazysolid_synth::quality::{
+    band_contrast, band_deviations, Blockiness, LinearImage, SwdCalibration, SwdParams,
+};
 use lazysolid_synth::Exemplar;
 use lazysolid_tests::asset_exemplar;
 
@@ -147,6 +149,17 @@ fn the_bands_place_a_blur_in_the_finest_detail() {
         assert!(
             bands[1..].iter().all(|&b| b.is_nan() || b < bands[0]),
             "{name}: a blur must be furthest in the finest band, {bands:?}"
+        );
+        // The band contrast gives the direction: the blur is smoother, a shifted copy is the
+        // material's own contrast at every scale.
+        let own = band_deviations(&ex);
+        let blur = band_contrast(&blurred(&ex), &own);
+        let copy = band_contrast(&shifted(&ex, ex.width / 3, ex.height / 3), &own);
+        println!("{name}: band contrast blur {blur:?}, shifted copy {copy:?}");
+        assert!(blur[0] < 0.6, "{name}: blur {blur:?}");
+        assert!(
+            copy.iter().all(|c| (0.9..1.1).contains(c)),
+            "{name}: shifted copy {copy:?}"
         );
     }
 }

@@ -9,6 +9,8 @@
 //!   itself, and large structures count through the coarse octaves.
 //! - [`anisotropy`]: the balance of gradient energy between the image axes, and the identity
 //!   that keeps a volume from giving all three slice families one exemplar's balance.
+//! - [`band_contrast`]: each pyramid band's contrast over the exemplar's, the direction
+//!   (smoother or grainier) that the SWD's per-band ratio does not say.
 //! - [`blockiness`]: the share of oriented gradient energy that lies along the image axes,
 //!   against the exemplar's: axis-aligned blocks raise it, a blur or a shift leave it.
 //! - [`layout`]: the correlation of the image's large structures with themselves one
@@ -18,6 +20,7 @@
 //! See `docs/synthesis.md`, "Quality figures".
 
 pub mod anisotropy;
+pub mod band_contrast;
 pub mod blockiness;
 pub mod diagonal;
 mod gradient_moments;
@@ -26,6 +29,7 @@ pub mod layout;
 pub mod swd;
 
 pub use anisotropy::{anisotropy, reachable_gap, VolumeAnisotropy};
+pub use band_contrast::{band_contrast, band_deviations};
 pub use blockiness::{axis_share, Blockiness};
 pub use diagonal::{diagonal_correlation, VolumeDiagonal};
 pub use image::LinearImage;
@@ -46,6 +50,8 @@ pub struct ImageFigures {
     /// Correlation of the large structures one exemplar period away
     /// ([`layout_repetition`]): 1 for a tiling.
     pub layout: f64,
+    /// Each band's contrast over the exemplar's, finest first ([`band_contrast()`](fn@band_contrast)).
+    pub band_contrast: [f64; SWD_BANDS],
 }
 
 /// An exemplar's calibration for every figure, made once and applied to each image scored
@@ -56,6 +62,7 @@ pub struct ExemplarFigures {
     axis_share: f64,
     anisotropy: f64,
     diagonal: f64,
+    band_deviations: [f64; SWD_BANDS],
     period: [usize; 2],
 }
 
@@ -68,6 +75,7 @@ impl ExemplarFigures {
             axis_share: axis_share(&e),
             anisotropy: anisotropy(&e),
             diagonal: diagonal_correlation(&e),
+            band_deviations: band_deviations(&e),
             period: [width as usize, height as usize],
         }
     }
@@ -96,6 +104,7 @@ impl ExemplarFigures {
             anisotropy: anisotropy(&image),
             diagonal: diagonal_correlation(&image),
             layout: layout_repetition(&image, self.period[0], self.period[1]),
+            band_contrast: band_contrast(&image, &self.band_deviations),
         }
     }
 }

@@ -53,6 +53,10 @@ pub struct AxisQuality {
     /// the finest band is the one- and two-pixel detail the finest level makes, the coarsest
     /// the layout the coarse levels make.
     pub slices_swd_bands: [f64; SWD_BANDS],
+    /// Mean over those slices of each band's contrast over the exemplar's, finest first
+    /// (`quality::band_contrast`): below 1 smoother than the material at that scale, above 1
+    /// grainier; the direction the band's SWD ratio does not give.
+    pub slices_band_contrast: [f64; SWD_BANDS],
 }
 
 /// The figures of one slice (or one 2D synthesis) that [`AxisQuality::set_means`] averages.
@@ -64,6 +68,8 @@ pub struct SliceRatios {
     pub blockiness: f64,
     /// SWD ratio per band, finest first.
     pub bands: [f64; SWD_BANDS],
+    /// Contrast per band over the exemplar's, finest first.
+    pub contrast: [f64; SWD_BANDS],
 }
 
 impl AxisQuality {
@@ -77,6 +83,8 @@ impl AxisQuality {
         self.slices_blockiness = figures.iter().map(|f| f.blockiness).sum::<f64>() / count;
         self.slices_swd_bands =
             std::array::from_fn(|b| figures.iter().map(|f| f.bands[b]).sum::<f64>() / count);
+        self.slices_band_contrast =
+            std::array::from_fn(|b| figures.iter().map(|f| f.contrast[b]).sum::<f64>() / count);
     }
 }
 
@@ -106,6 +114,7 @@ impl ImageScorer {
             swd: f.swd.ratio,
             blockiness: f.blockiness.ratio,
             bands: f.swd.bands(),
+            contrast: f.band_contrast,
         }
     }
 
@@ -139,6 +148,7 @@ impl ImageScorer {
             slices_swd_ratio_sd: 0.0,
             slices_blockiness: figures.blockiness.ratio,
             slices_swd_bands: figures.swd.bands(),
+            slices_band_contrast: figures.band_contrast,
         })
     }
 }

@@ -278,6 +278,7 @@ fn synth_2d(
                     swd: q.swd_ratio,
                     blockiness: q.blockiness,
                     bands: q.slices_swd_bands,
+                    contrast: q.slices_band_contrast,
                 });
                 first = Some(q);
                 if r == 0 {
@@ -747,7 +748,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "spread"
     );
     let mut csv = String::from(
-        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,slices_swd_ratio,slices_swd_ratio_sd,slices_blockiness,slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,candidate_share,spread,candidate_spread\n",
+        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,slices_swd_ratio,slices_swd_ratio_sd,slices_blockiness,slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,slices_band_contrast_fine,slices_band_contrast_mid,slices_band_contrast_coarse,candidate_share,spread,candidate_spread\n",
     );
     for row in &quality {
         let (share, spread) = row.consistency.map_or((String::new(), String::new()), |c| {
@@ -785,7 +786,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 )
             });
             csv.push_str(&format!(
-                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{:.4},{:.4},{:.4},{:.4},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{c}\n",
+                "{},{},{},{:.3},{:.3},{:.3},{:.3},{:.5},{:.4},{:.4},{:.4},{:.4},{:.4},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{c}\n",
                 row.case,
                 row.variant,
                 ["x", "y", "z"][a],
@@ -804,7 +805,10 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q.slices_blockiness,
                 q.slices_swd_bands[0],
                 q.slices_swd_bands[1],
-                q.slices_swd_bands[2]
+                q.slices_swd_bands[2],
+                q.slices_band_contrast[0],
+                q.slices_band_contrast[1],
+                q.slices_band_contrast[2]
             ));
         }
     }

@@ -545,7 +545,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     );
     for (axis, q) in quality.iter().enumerate() {
         println!(
-            "slice perpendicular to {} vs {}: SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}, histogram distance {:.4}, period repetition {:.3}, energy {:.1}; over {} slices SWD ratio {:.2} (sd {:.2}; per band fine / mid / coarse {:.2} / {:.2} / {:.2}), blockiness {:.2}",
+            "slice perpendicular to {} vs {}: SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}, histogram distance {:.4}, period repetition {:.3}, energy {:.1}; over {} slices SWD ratio {:.2} (sd {:.2}; per band fine / mid / coarse {:.2} / {:.2} / {:.2}, band contrast {:.2} / {:.2} / {:.2}), blockiness {:.2}",
             ["x", "y", "z"][axis],
             ROLE_NAMES[axis],
             q.swd,
@@ -560,6 +560,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             q.slices_swd_bands[0],
             q.slices_swd_bands[1],
             q.slices_swd_bands[2],
+            q.slices_band_contrast[0],
+            q.slices_band_contrast[1],
+            q.slices_band_contrast[2],
             q.slices_blockiness,
         );
     }

@@ -46,6 +46,7 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
         "period repetition",
         "; over 8 slices SWD ratio ",
         "; per band fine / mid / coarse ",
+        ", band contrast ",
         "energy",
         "gradient anisotropy (u - v)/(u + v): exemplars ",
         "every volume has x - y + z = 0",

@@ -83,7 +83,7 @@ fn bench_solid_writes_times_quality_and_figures() {
     );
     let header = quality.lines().next().unwrap();
     assert!(
-        header.contains(",slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,"),
+        header.contains(",slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,slices_band_contrast_fine,slices_band_contrast_mid,slices_band_contrast_coarse,"),
         "{header}"
     );
     let fields = header.split(',').count();
