@@ -5,7 +5,7 @@
 use super::roles::SolidExemplars;
 use super::slices::slice;
 use super::volume::SolidSynthesis;
-use crate::quality::{ExemplarFigures, VolumeAnisotropy, VolumeDiagonal, SWD_BANDS};
+use crate::quality::{ExemplarFigures, ImageFigures, VolumeAnisotropy, VolumeDiagonal, SWD_BANDS};
 use crate::{
     histogram_distance, period_repetition, EnergyKernel, EnergyReport, Exemplar, SynthResult,
 };
@@ -72,7 +72,29 @@ pub struct SliceRatios {
     pub contrast: [f64; SWD_BANDS],
 }
 
+impl SliceRatios {
+    fn of(f: &ImageFigures) -> SliceRatios {
+        SliceRatios {
+            swd: f.swd.ratio,
+            blockiness: f.blockiness.ratio,
+            bands: f.swd.bands(),
+            contrast: f.band_contrast,
+        }
+    }
+}
+
 impl AxisQuality {
+    /// The scored image's own [`SliceRatios`], as [`ImageScorer::score`] left them: the
+    /// first of the figures a caller averages with [`AxisQuality::set_means`].
+    pub fn own_ratios(&self) -> SliceRatios {
+        SliceRatios {
+            swd: self.swd_ratio,
+            blockiness: self.blockiness,
+            bands: self.slices_swd_bands,
+            contrast: self.slices_band_contrast,
+        }
+    }
+
     /// Sets the `slices_*` means from several images' figures.
     pub fn set_means(&mut self, figures: &[SliceRatios]) {
         let count = figures.len().max(1) as f64;
@@ -109,13 +131,7 @@ impl ImageScorer {
     /// The SWD ratios and blockiness of a `w`×`h` image alone: what a mean over several
     /// images or slices needs, without the energy.
     pub fn ratios(&self, rgb: &[[u8; 3]], w: u32, h: u32) -> SliceRatios {
-        let f = self.0.measure(rgb, w, h);
-        SliceRatios {
-            swd: f.swd.ratio,
-            blockiness: f.blockiness.ratio,
-            bands: f.swd.bands(),
-            contrast: f.band_contrast,
-        }
+        SliceRatios::of(&self.0.measure(rgb, w, h))
     }
 
     /// Scores a `w`×`h` image: energy (GPU), histogram, the given repetition, SWD and

@@ -57,8 +57,8 @@ use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::solid::{
     analyze_solid, axis_quality, candidates_key, oblique, role_scorers, slice, AxisQuality,
-    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, Mirroring, SliceRatios,
-    SolidExemplars, SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND,
+    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, Mirroring, SolidExemplars,
+    SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND,
     DEFAULT_SOLID_PARALLEL_LEVELS, QUALITY_SLICES, ROLE_NAMES,
 };
 use lazysolid_synth::{
@@ -274,12 +274,7 @@ fn synth_2d(
             if first.is_none() {
                 let repetition = period_repetition(&s.window_coords(), n, n, e.width, e.height);
                 let q = scorer.score(energy, e, &rgb, n, n, repetition, samples)?;
-                figures.push(SliceRatios {
-                    swd: q.swd_ratio,
-                    blockiness: q.blockiness,
-                    bands: q.slices_swd_bands,
-                    contrast: q.slices_band_contrast,
-                });
+                figures.push(q.own_ratios());
                 first = Some(q);
                 if r == 0 {
                     image = rgb;
