@@ -198,15 +198,27 @@ pub fn axis_quality(
         // The mid slice alone is one sample; the identity holds for the families.
         q.anisotropy = volume.axes[axis];
         q.diagonal = diagonal.axes[axis];
-        let figures: Vec<SliceRatios> = (0..QUALITY_SLICES)
-            .map(|k| {
-                let at = n * (2 * k + 1) / (2 * QUALITY_SLICES);
-                let (rgb, _) = slice(synthesis, colours, axis, at);
-                scorer.ratios(&rgb, n, n)
-            })
-            .collect();
-        q.set_means(&figures);
+        q.set_means(&slice_ratios(scorer, synthesis, colours, axis));
         out.push(q);
     }
     Ok(out.try_into().expect("three axes"))
+}
+
+/// The figures of the [`QUALITY_SLICES`] evenly spaced slices perpendicular to `axis` that
+/// [`axis_quality`] averages: a caller that scores several volumes of one exemplar (other
+/// seeds) pools them before [`AxisQuality::set_means`].
+pub fn slice_ratios(
+    scorer: &ImageScorer,
+    synthesis: &SolidSynthesis,
+    colours: &[[u8; 3]],
+    axis: usize,
+) -> Vec<SliceRatios> {
+    let n = synthesis.window.size[0];
+    (0..QUALITY_SLICES)
+        .map(|k| {
+            let at = n * (2 * k + 1) / (2 * QUALITY_SLICES);
+            let (rgb, _) = slice(synthesis, colours, axis, at);
+            scorer.ratios(&rgb, n, n)
+        })
+        .collect()
 }

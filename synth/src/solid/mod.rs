@@ -32,7 +32,7 @@ mod volume;
 
 pub use analysis::{analyze_solid, pack_rgb, unpack_rgb, RoleLevel, SolidAnalysis, SolidLevel};
 pub use axis_quality::{
-    axis_quality, role_scorers, AxisQuality, ImageScorer, SliceRatios, QUALITY_SLICES,
+    axis_quality, role_scorers, slice_ratios, AxisQuality, ImageScorer, SliceRatios, QUALITY_SLICES,
 };
 pub use balance::{
     balance_usage, DEFAULT_BALANCE, MAX_BALANCE, MAX_PENALTY, PILOT_ORIGIN, PILOT_SEED, PILOT_SIDE,

@@ -1,7 +1,7 @@
 //! `lazysolid bench solid`: solid synthesis times, peak memory, the quality table with and without
 //! the ablations, and the figures.
 
-use crate::support::{lazysolid, BenchRun};
+use crate::support::{lazysolid, run, BenchRun};
 
 /// `bench solid` end to end at the smallest size: the candidate row, the synthesis row, the
 /// cold and warm end-to-end rows (each checks what the candidate cache did), the peak memory,
@@ -106,49 +106,105 @@ fn bench_solid_writes_times_quality_and_figures() {
 }
 
 /// `bench solid --no-ablations`: the default synthesis, the colour rules, the extruded
-/// reference and the 2D synthesis are scored; none of the five ablation volumes is made.
+/// reference and the 2D synthesis are scored; none of the five ablation volumes is made. With
+/// `--solid-seeds 2` the `solid` row's eight-slice figures pool a second seed's slices while
+/// its mid-slice figures and the other rows stay the first seed's.
 #[test]
 fn bench_solid_without_ablations_scores_the_default_only() {
-    let out = tempfile::tempdir().unwrap();
-    let bench = BenchRun::new(
-        lazysolid()
-            .args([
-                "bench",
-                "solid",
-                "--quick",
-                "--no-ablations",
-                "--exemplars",
-                "terra",
-            ])
-            .args(["--three", "", "--builders", "host"])
-            .args([
-                "--candidate-sides",
-                "16",
-                "--side",
-                "16",
-                "--voxel-res",
-                "16",
-            ])
-            .args(["--passes", "1", "--energy-samples", "64"])
-            .args(["--runs", "1", "--warmup", "0"]),
-        out.path(),
-        &["own role", "mean colour", "extruded E_z", "2d synth"],
-    );
-    for absent in ["keep current", "crossbar only", "no balance", "no feature"] {
-        assert!(
-            !bench.stdout.contains(absent),
-            "{absent}:\n{}",
-            bench.stdout
+    let run = |seeds: &str| {
+        let out = tempfile::tempdir().unwrap();
+        let bench = BenchRun::new(
+            lazysolid()
+                .args([
+                    "bench",
+                    "solid",
+                    "--quick",
+                    "--no-ablations",
+                    "--exemplars",
+                    "terra",
+                ])
+                .args(["--three", "", "--builders", "host", "--solid-seeds", seeds])
+                .args([
+                    "--candidate-sides",
+                    "16",
+                    "--side",
+                    "16",
+                    "--voxel-res",
+                    "16",
+                ])
+                .args(["--passes", "1", "--energy-samples", "64"])
+                .args(["--runs", "1", "--warmup", "0"]),
+            out.path(),
+            &["own role", "mean colour", "extruded E_z", "2d synth"],
         );
+        let figures = bench
+            .entries
+            .iter()
+            .find(|p| p.is_dir())
+            .expect("a figures folder")
+            .clone();
+        let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
+        let slices = figures.join("terra-16-slices.png").exists();
+        let ablation = figures.join("terra-16-keep-current-slices.png").exists();
+        (bench.stdout, quality, slices, ablation)
+    };
+    let (stdout, quality, slices, ablation) = run("1");
+    for absent in ["keep current", "crossbar only", "no balance", "no feature"] {
+        assert!(!stdout.contains(absent), "{absent}:\n{stdout}");
     }
-    let figures = bench
-        .entries
-        .iter()
-        .find(|p| p.is_dir())
-        .expect("a figures folder");
-    let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
     // Five variants, three axes each, plus the header.
     assert_eq!(quality.lines().count(), 1 + 5 * 3, "{quality}");
-    assert!(figures.join("terra-16-slices.png").exists());
-    assert!(!figures.join("terra-16-keep-current-slices.png").exists());
+    assert!(slices);
+    assert!(!ablation);
+
+    let (_, pooled, _, _) = run("2");
+    let column = |csv: &str, name: &str| -> Vec<(String, String)> {
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let at = header.iter().position(|h| *h == name).unwrap();
+        csv.lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                (f[1].to_string(), f[at].to_string())
+            })
+            .collect()
+    };
+    let solid = |csv: &str, name: &str| -> Vec<String> {
+        column(csv, name)
+            .into_iter()
+            .filter(|(variant, _)| variant == "solid")
+            .map(|(_, v)| v)
+            .collect()
+    };
+    // (At 16² the SWD has too few patches and reads NaN; the blockiness and band contrast
+    // are figures there.)
+    assert_eq!(solid(&quality, "blockiness"), solid(&pooled, "blockiness"));
+    assert_ne!(
+        solid(&quality, "slices_blockiness"),
+        solid(&pooled, "slices_blockiness"),
+        "{pooled}"
+    );
+    assert_ne!(
+        solid(&quality, "slices_band_contrast_fine"),
+        solid(&pooled, "slices_band_contrast_fine"),
+        "{pooled}"
+    );
+    let others = |csv: &str| -> Vec<(String, String)> {
+        column(csv, "slices_blockiness")
+            .into_iter()
+            .filter(|(variant, _)| variant != "solid")
+            .collect()
+    };
+    assert_eq!(others(&quality), others(&pooled));
+}
+
+#[test]
+fn bench_solid_refuses_a_seed_count_out_of_range() {
+    for bad in ["0", "9"] {
+        let (ok, _, err) = run(lazysolid().args(["bench", "solid", "--solid-seeds", bad]));
+        assert!(
+            !ok && err.contains("--solid-seeds") && err.contains("1..=8"),
+            "{err}"
+        );
+    }
 }
