@@ -3,6 +3,24 @@
 
 use crate::support::{lazysolid, run, BenchRun};
 
+/// The smallest case: 16² exemplars, a 16³ cube, one pass, one run.
+const SMALLEST: [&str; 14] = [
+    "--candidate-sides",
+    "16",
+    "--side",
+    "16",
+    "--voxel-res",
+    "16",
+    "--passes",
+    "1",
+    "--energy-samples",
+    "64",
+    "--runs",
+    "1",
+    "--warmup",
+    "0",
+];
+
 /// `bench solid` end to end at the smallest size: the candidate row, the synthesis row, the
 /// cold and warm end-to-end rows (each checks what the candidate cache did), the peak memory,
 /// the quality table with its variants and the figures.
@@ -22,16 +40,7 @@ fn bench_solid_writes_times_quality_and_figures() {
                 "--three",
                 "",
             ])
-            .args([
-                "--candidate-sides",
-                "16",
-                "--side",
-                "16",
-                "--voxel-res",
-                "16",
-            ])
-            .args(["--passes", "1", "--energy-samples", "64"])
-            .args(["--runs", "1", "--warmup", "0"]),
+            .args(SMALLEST),
         out.path(),
         &[
             "granite1 16² candidates",
@@ -124,16 +133,7 @@ fn bench_solid_without_ablations_scores_the_default_only() {
                     "terra",
                 ])
                 .args(["--three", "", "--builders", "host", "--solid-seeds", seeds])
-                .args([
-                    "--candidate-sides",
-                    "16",
-                    "--side",
-                    "16",
-                    "--voxel-res",
-                    "16",
-                ])
-                .args(["--passes", "1", "--energy-samples", "64"])
-                .args(["--runs", "1", "--warmup", "0"]),
+                .args(SMALLEST),
             out.path(),
             &["own role", "mean colour", "extruded E_z", "2d synth"],
         );
