@@ -18,7 +18,7 @@
 //! repetition (`synth::quality`), the SWD ratio and blockiness also averaged over eight slices
 //! per axis (`SWD8`: one slice's ratio moves by up to ±0.3 between slices and seeds; with
 //! `--solid-seeds N` the `solid` row pools the eight slices of N seeds, since one seed still
-//! moves the eight-slice mean by up to 0.26) — and, for
+//! moves the eight-slice mean by up to 0.48) — and, for
 //! the solid variants, how consistent the triples are
 //! (`TripleConsistency`), for
 //! - `solid`: the defaults;
@@ -125,9 +125,9 @@ pub struct SolidArgs {
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
     /// Seeds of the scored solid (seed, seed + 1, …) whose slices the `solid` row's
-    /// eight-slice figures pool (1 to 8): one seed moves a per-axis eight-slice SWD ratio by up
-    /// to 0.26 (docs/solid.md, "The balance's strength per exemplar"), so a verdict within
-    /// that of a limit needs several. The mid-slice figures and the other rows stay the first
+    /// eight-slice figures pool (1 to 8): a change of seed moves a per-axis eight-slice SWD
+    /// ratio by up to 0.48 (docs/solid.md, "Twelve exemplars on three seeds of the solid"), so
+    /// a verdict within that of a limit needs several. The mid-slice figures and the other rows stay the first
     /// seed's.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
     pub solid_seeds: u32,
