@@ -127,8 +127,8 @@ pub struct SolidArgs {
     /// Seeds of the scored solid (seed, seed + 1, …) whose slices the `solid` row's
     /// eight-slice figures pool (1 to 8): a change of seed moves a per-axis eight-slice SWD
     /// ratio by up to 0.48 (docs/solid.md, "Twelve exemplars on three seeds of the solid"), so
-    /// a verdict within that of a limit needs several. The mid-slice figures and the other rows stay the first
-    /// seed's.
+    /// a verdict within that of a limit needs several. The mid-slice figures and the other
+    /// rows stay the first seed's.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
     pub solid_seeds: u32,
     /// Most pixels of each slice the energy evaluates.
@@ -541,12 +541,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     slice_ratios(&scorers[a], &run.synthesis, &run.colours, a)
                 });
                 for k in 1..args.solid_seeds {
-                    bench.status(format!("{case}: scoring seed {}", args.seed + k));
+                    let seed = args.seed.wrapping_add(k);
+                    bench.status(format!("{case}: scoring seed {seed}"));
                     let other = synthesize_cube(
                         &gpu,
                         exemplars.clone(),
                         &CubeRequest {
-                            seed: args.seed.wrapping_add(k),
+                            seed,
                             ..request.clone()
                         },
                         Some(&cache),
