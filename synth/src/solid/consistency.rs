@@ -4,6 +4,7 @@
 //! general does not, and the median rule then shows the disagreement as axis-aligned blocks.
 
 use super::candidates::SolidCandidates;
+use super::closure::advance_closure;
 use super::roles::{SolidExemplars, ROLES};
 use super::volume::SolidSynthesis;
 use crate::coords::unpack;
@@ -31,6 +32,10 @@ pub struct TripleConsistency {
     /// role-r coordinates differ by exactly that one exemplar pixel (coherent copying within
     /// the plane), for comparison with [`TripleConsistency::normal_repeat`].
     pub in_plane_coherence: [f64; 3],
+    /// Per role: the finest level's [`advance_closure`], the share of candidates whose set one
+    /// step on holds a triple continuing a second role by the same step; the in-plane
+    /// coherence above cannot grow far past it without translated triples.
+    pub advance_closure: [f64; 3],
 }
 
 /// The exemplar axes (u, v) of role r's plane as volume axes: role x sees (y, z), role y (x, z),
@@ -140,6 +145,7 @@ pub fn triple_consistency(
         candidate_spread,
         normal_repeat,
         in_plane_coherence,
+        advance_closure: advance_closure(sets, 1, m),
     }
 }
 

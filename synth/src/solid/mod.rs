@@ -11,6 +11,7 @@ mod candidates;
 mod candidates_cache;
 pub(crate) mod candidates_gpu;
 mod candidates_host;
+mod closure;
 mod consistency;
 mod cpu;
 mod defaults;
@@ -48,6 +49,7 @@ pub use candidates_cache::{
 };
 pub use candidates_gpu::GpuCandidates;
 pub use candidates_host::{candidates_host, CandidateBuilder};
+pub use closure::advance_closure;
 pub use consistency::{triple_consistency, triple_spread, TripleConsistency};
 pub use cpu::{
     correct_subpass_3d, correct_voxel, synthesize_solid_cpu, upsample_jitter_3d, upsample_voxel,

@@ -778,7 +778,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "spread"
     );
     let mut csv = String::from(
-        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,slices_swd_ratio,slices_swd_ratio_sd,slices_blockiness,slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,slices_band_contrast_fine,slices_band_contrast_mid,slices_band_contrast_coarse,candidate_share,spread,candidate_spread\n",
+        "case,variant,axis,swd,swd_ratio,blockiness,energy,histogram,repetition,anisotropy,exemplar_anisotropy,diagonal,exemplar_diagonal,slices_swd_ratio,slices_swd_ratio_sd,slices_blockiness,slices_swd_band_fine,slices_swd_band_mid,slices_swd_band_coarse,slices_band_contrast_fine,slices_band_contrast_mid,slices_band_contrast_coarse,candidate_share,spread,candidate_spread,in_plane_coherence,advance_closure\n",
     );
     for row in &quality {
         let (share, spread) = row.consistency.map_or((String::new(), String::new()), |c| {
@@ -809,10 +809,14 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             spread
         );
         for (a, q) in row.axes.iter().enumerate() {
-            let c = row.consistency.map_or(",,".to_string(), |c| {
+            let c = row.consistency.map_or(",,,,".to_string(), |c| {
                 format!(
-                    "{:.4},{:.2},{:.2}",
-                    c.candidate_share, c.spread, c.candidate_spread
+                    "{:.4},{:.2},{:.2},{:.4},{:.4}",
+                    c.candidate_share,
+                    c.spread,
+                    c.candidate_spread,
+                    c.in_plane_coherence[a],
+                    c.advance_closure[a]
                 )
             });
             csv.push_str(&format!(

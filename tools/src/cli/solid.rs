@@ -543,6 +543,12 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         100.0 * run.consistency.in_plane_coherence[1],
         100.0 * run.consistency.in_plane_coherence[2]
     );
+    println!(
+        "candidate sets: a triple continues coherently in two roles one step on (finest level) x / y / z {:.1} / {:.1} / {:.1} %",
+        100.0 * run.consistency.advance_closure[0],
+        100.0 * run.consistency.advance_closure[1],
+        100.0 * run.consistency.advance_closure[2]
+    );
     for (axis, q) in quality.iter().enumerate() {
         println!(
             "slice perpendicular to {} vs {}: SWD {:.2} ({:.2}x the exemplar's own), blockiness {:.2}, histogram distance {:.4}, period repetition {:.3}, energy {:.1}; over {} slices SWD ratio {:.2} (sd {:.2}; per band fine / mid / coarse {:.2} / {:.2} / {:.2}, band contrast {:.2} / {:.2} / {:.2}), blockiness {:.2}",
