@@ -5,12 +5,12 @@
 use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::quality::VolumeDiagonal;
 use lazysolid_synth::solid::{
-    analyze_solid, balance_usage, candidates_cached, candidates_cpu, candidates_host,
-    candidates_key, decode_candidates, encode_candidates, exemplar_diagonal, level_schedules,
-    plan_boxes, synthesize_solid_cpu, triple_consistency, voxel_colour, CandidateParams,
-    GpuCandidates, GpuSolidSynthesizer, Orientation, SolidAnalysis, SolidCandidates,
-    SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND, DEFAULT_BALANCE, LOOP_BUDGET, MAX_CANDIDATES,
-    ROLE_AXES,
+    analyze_solid, balance_finest_levels, balance_usage, candidates_cached, candidates_cpu,
+    candidates_host, candidates_key, decode_candidates, encode_candidates, exemplar_diagonal,
+    level_schedules, plan_boxes, synthesize_solid_cpu, triple_consistency, voxel_colour,
+    CandidateParams, GpuCandidates, GpuSolidSynthesizer, Orientation, SolidAnalysis,
+    SolidCandidates, SolidExemplars, VolumeBox, CANDIDATES_CACHE_KIND, DEFAULT_BALANCE,
+    LOOP_BUDGET, MAX_CANDIDATES, ROLE_AXES,
 };
 use lazysolid_synth::{energy_cpu, pack, unpack, Exemplar, SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, with_gpu};
@@ -421,6 +421,11 @@ fn bad_solid_exemplars_are_rejected_with_the_image_and_limit() {
         ..CandidateParams::default()
     };
     limit(p.check().unwrap_err(), "1..=65");
+    let p = CandidateParams {
+        balance_levels: Some(0),
+        ..CandidateParams::default()
+    };
+    limit(p.check().unwrap_err(), "at least 1");
 }
 
 /// The candidate cache: a miss computes and stores, a hit reads back the same candidates,
@@ -483,6 +488,11 @@ fn candidates_round_trip_through_the_disk_cache() {
         ..params
     };
     assert_ne!(key, candidates_key(exemplars, &weaker));
+    let finest = CandidateParams {
+        balance_levels: Some(1),
+        ..params
+    };
+    assert_ne!(key, candidates_key(exemplars, &finest));
     // So is the feature channel's weight, which changes the appearance space.
     let featureless = exemplars.clone().with_feature_weight(0).unwrap();
     assert_ne!(key, candidates_key(&featureless, &params));
@@ -523,6 +533,32 @@ fn usage_balance_evens_out_what_the_volume_uses() {
     let mut off = plain.clone();
     balance_usage(&analysis, &mut off, 0, &mut |_| {}).unwrap();
     assert!(off.balance.is_empty());
+    // On the finest level only: the coarser levels keep no penalty, the finest gets its own
+    // (measured without the coarser levels' penalties, so not the full run's); every level
+    // is the full run.
+    let levels = analysis.levels.len() as u32;
+    let mut finest_only = plain.clone();
+    balance_finest_levels(
+        &analysis,
+        &mut finest_only,
+        DEFAULT_BALANCE,
+        Some(1),
+        &mut |_| {},
+    )
+    .unwrap();
+    let (coarse, last) = finest_only.balance.split_at(levels as usize - 1);
+    assert!(coarse.iter().flatten().flatten().all(|&p| p == 0));
+    assert!(last[0].iter().all(|role| role.iter().any(|&p| p > 0)));
+    let mut all = plain.clone();
+    balance_finest_levels(
+        &analysis,
+        &mut all,
+        DEFAULT_BALANCE,
+        Some(levels),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert_eq!(all, balanced);
 
     let m = analysis.side;
     let params = default_params(&analysis);

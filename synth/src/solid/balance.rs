@@ -149,6 +149,24 @@ pub fn balance_usage(
     strength: u32,
     on_level: &mut dyn FnMut(u32),
 ) -> SynthResult<()> {
+    balance_finest_levels(analysis, candidates, strength, None, on_level)
+}
+
+/// [`balance_usage`] on the `finest` finest levels only (`None`: every level); the coarser
+/// levels keep no penalty and run no pilot. On slate, a fine grain whose coarser stack levels
+/// hold little structure, the penalties of the coarser levels are what make its slices too
+/// contrasted at 2–4 pixels (`docs/solid.md`, "The balance's levels"); on most exemplars they
+/// are what keeps the structures.
+///
+/// # Errors
+/// As [`balance_usage`].
+pub fn balance_finest_levels(
+    analysis: &SolidAnalysis,
+    candidates: &mut SolidCandidates,
+    strength: u32,
+    finest: Option<u32>,
+    on_level: &mut dyn FnMut(u32),
+) -> SynthResult<()> {
     candidates.balance.clear();
     if strength == 0 {
         return Ok(());
@@ -164,6 +182,10 @@ pub fn balance_usage(
         size: [PILOT_SIDE; 3],
     };
     for l in 0..levels {
+        if finest.is_some_and(|k| l + (k as usize) < levels) {
+            on_level(l as u32);
+            continue;
+        }
         // The pyramid down to level l, which the synthesizer then treats as its finest.
         // Only the levels kept are copied (at 256² a level's candidates are tens of MB).
         let a = SolidAnalysis {

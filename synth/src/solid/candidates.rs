@@ -61,6 +61,9 @@ pub struct CandidateParams {
     ///
     /// [`CandidateBuilder`]: super::CandidateBuilder
     pub balance: u32,
+    /// The finest levels that get the usage balance's penalties (`None`: every level;
+    /// `balance.rs`, [`balance_finest_levels`](super::balance_finest_levels)).
+    pub balance_levels: Option<u32>,
 }
 
 impl Default for CandidateParams {
@@ -70,6 +73,7 @@ impl Default for CandidateParams {
             s: DEFAULT_S,
             coherence: true,
             balance: super::balance::DEFAULT_BALANCE,
+            balance_levels: None,
         }
     }
 }
@@ -92,6 +96,13 @@ impl CandidateParams {
                 name: "s",
                 value: self.s.to_string(),
                 limit: format!("must lie in 1..={MAX_S}"),
+            });
+        }
+        if self.balance_levels == Some(0) {
+            return Err(SynthError::Parameter {
+                name: "balance levels",
+                value: "0".to_string(),
+                limit: "must be at least 1 (--balance 0 turns the balance off)".to_string(),
             });
         }
         if self.balance > super::balance::MAX_BALANCE {

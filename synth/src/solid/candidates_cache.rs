@@ -47,6 +47,7 @@ pub fn candidates_key(exemplars: &SolidExemplars, params: &CandidateParams) -> C
         .u32("s", params.s)
         .bool("coherence", params.coherence)
         .u32("balance", params.balance)
+        .u32("balance levels", params.balance_levels.unwrap_or(u32::MAX))
         .u32("pilot side", super::balance::PILOT_SIDE)
         .u32("pilot seed", super::balance::PILOT_SEED)
         .u32("pilot rule", super::balance::PILOT_RULE)

@@ -305,7 +305,13 @@ impl CandidateBuilder {
             }
             _ => candidates_host(analysis, params, on_level),
         }?;
-        super::balance::balance_usage(analysis, &mut candidates, params.balance, on_level)?;
+        super::balance::balance_finest_levels(
+            analysis,
+            &mut candidates,
+            params.balance,
+            params.balance_levels,
+            on_level,
+        )?;
         Ok(candidates)
     }
 }

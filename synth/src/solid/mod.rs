@@ -36,7 +36,8 @@ pub use axis_quality::{
     axis_quality, role_scorers, slice_ratios, AxisQuality, ImageScorer, SliceRatios, QUALITY_SLICES,
 };
 pub use balance::{
-    balance_usage, DEFAULT_BALANCE, MAX_BALANCE, MAX_PENALTY, PILOT_ORIGIN, PILOT_SEED, PILOT_SIDE,
+    balance_finest_levels, balance_usage, DEFAULT_BALANCE, MAX_BALANCE, MAX_PENALTY, PILOT_ORIGIN,
+    PILOT_SEED, PILOT_SIDE,
 };
 pub use candidates::{
     candidates_cpu, coherence_step_cpu, search_cpu, triples_cpu, unit_step, CandidateParams,

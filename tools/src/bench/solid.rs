@@ -27,6 +27,8 @@
 //!   the median;
 //! - `no balance`: candidates without the usage balance (`balance.rs`; the rule before
 //!   2026-12-03);
+//! - `balance finest`: the usage balance at the finest level only (`--balance-levels 1`),
+//!   which is where slate's slices lose their excess contrast at 2–4 pixels;
 //! - `no feature`: the appearance space of colour alone, without the feature-distance
 //!   channel (`synth/feature.rs`; the rule before 2026-12-03, second session);
 //! - `otsu mask`: the features found by Otsu's split always, as before 2026-12-05 (the rule
@@ -138,8 +140,9 @@ pub struct SolidArgs {
     #[arg(long)]
     pub quick: bool,
     /// Score the default synthesis, the colour rules and the 2D synthesis only, without the
-    /// six ablation syntheses (keep current, crossbar only, no balance, no feature, Otsu's
-    /// mask, the finest level's other correction order): a
+    /// seven ablation syntheses (keep current, crossbar only, no balance, the balance at the
+    /// finest level only, no feature, Otsu's mask, the finest level's other correction
+    /// order): a
     /// table of many exemplars at 128³ in minutes instead of an hour.
     #[arg(long)]
     pub no_ablations: bool,
@@ -644,6 +647,18 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     "no balance",
                     q(&unbalanced.synthesis, &unbalanced.colours)?,
                     Some(unbalanced.consistency),
+                );
+                let finest_balance = ablation(
+                    &CandidateParams {
+                        balance_levels: Some(1),
+                        ..CandidateParams::default()
+                    },
+                    false,
+                )?;
+                push(
+                    "balance finest",
+                    q(&finest_balance.synthesis, &finest_balance.colours)?,
+                    Some(finest_balance.consistency),
                 );
                 let featureless = synthesize_cube(
                     &gpu,

@@ -88,6 +88,12 @@ pub struct SolidArgs {
     /// exemplar's dark spots, outlines and cracks (docs/solid.md)
     #[arg(long, default_value_t = DEFAULT_BALANCE)]
     pub balance: u32,
+    /// Give the usage balance to the N finest pyramid levels only [default: every level]: on
+    /// a fine grain whose coarser levels hold little structure (slate), the coarser levels'
+    /// penalties make the slices too contrasted at 2-4 pixels; on most exemplars they keep
+    /// the structures (docs/solid.md, "The balance's levels")
+    #[arg(long, value_name = "N")]
+    pub balance_levels: Option<u32>,
     /// Most pixels of each slice the neighbourhood energy evaluates.
     #[arg(long, default_value_t = 4096)]
     pub energy_samples: usize,
@@ -398,6 +404,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         s: args.s,
         coherence: true,
         balance: args.balance,
+        balance_levels: args.balance_levels,
     };
     candidate_params.check()?;
     let gpu = global.gpu()?;

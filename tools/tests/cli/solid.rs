@@ -105,7 +105,7 @@ fn solid_names_each_bad_input_and_writes_nothing() {
     std::fs::write(&corrupt, b"not a PNG at all").unwrap();
     let out = dir.path().join("out.nrrd");
     let path = |p: &std::path::Path| p.to_str().unwrap().to_owned();
-    let cases: [(Vec<String>, &[&str]); 15] = [
+    let cases: [(Vec<String>, &[&str]); 16] = [
         (
             vec!["--ey".into(), path(&tiny)],
             &["tiny.png", "8x8", "at least 16"],
@@ -160,6 +160,10 @@ fn solid_names_each_bad_input_and_writes_nothing() {
         (
             vec!["--balance".into(), "65".into()],
             &["`balance`", "0..=64"],
+        ),
+        (
+            vec!["--balance-levels".into(), "0".into()],
+            &["`balance levels`", "at least 1"],
         ),
         (
             vec!["--feature-weight".into(), "401".into()],

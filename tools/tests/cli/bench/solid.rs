@@ -55,6 +55,7 @@ fn bench_solid_writes_times_quality_and_figures() {
             "keep current",
             "crossbar only",
             "no balance",
+            "balance finest",
             "no feature",
             "otsu mask",
             "as given",
@@ -80,8 +81,8 @@ fn bench_solid_writes_times_quality_and_figures() {
         "granite1.pat 100x100 grey → Lanczos3 resample 16x16"
     );
     let quality = std::fs::read_to_string(figures.join("quality.csv")).unwrap();
-    // Twelve variants, three axes each, plus the header.
-    assert_eq!(quality.lines().count(), 1 + 12 * 3, "{quality}");
+    // Thirteen variants, three axes each, plus the header.
+    assert_eq!(quality.lines().count(), 1 + 13 * 3, "{quality}");
     assert!(
         quality
             .lines()
@@ -149,7 +150,13 @@ fn bench_solid_without_ablations_scores_the_default_only() {
         (bench.stdout, quality, slices, ablation)
     };
     let (stdout, quality, slices, ablation) = run("1");
-    for absent in ["keep current", "crossbar only", "no balance", "no feature"] {
+    for absent in [
+        "keep current",
+        "crossbar only",
+        "no balance",
+        "balance finest",
+        "no feature",
+    ] {
         assert!(!stdout.contains(absent), "{absent}:\n{stdout}");
     }
     // Five variants, three axes each, plus the header.
