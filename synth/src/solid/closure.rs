@@ -1,5 +1,5 @@
-//! How often a candidate triple can continue coherently in two roles at once: the bound the
-//! candidate sets put on the slices' in-plane coherence.
+//! How often a candidate triple can continue coherently in two roles at once: what the
+//! candidate sets allow a step that keeps two roles' copies running.
 //!
 //! Two roles `e` and `f` share one world axis `s` (`roles.rs`). One voxel further along `s`, a
 //! triple that continues both roles coherently has `e`'s and `f`'s coordinates each moved by

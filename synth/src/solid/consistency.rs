@@ -33,8 +33,9 @@ pub struct TripleConsistency {
     /// the plane), for comparison with [`TripleConsistency::normal_repeat`].
     pub in_plane_coherence: [f64; 3],
     /// Per role: the finest level's [`advance_closure`], the share of candidates whose set one
-    /// step on holds a triple continuing a second role by the same step; the in-plane
-    /// coherence above cannot grow far past it without translated triples.
+    /// step on holds a triple continuing a second role by the same step: how often a step can
+    /// keep two roles coherent at once, where [`TripleConsistency::in_plane_coherence`] counts
+    /// one role.
     pub advance_closure: [f64; 3],
 }
 
