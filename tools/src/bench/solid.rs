@@ -607,83 +607,19 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 q(&run.synthesis, &mean)?,
                 Some(run.consistency),
             );
-            // The ablations' volumes, drawn beside the default's in the figures.
-            let mut drawn: Vec<(&str, SolidRun)> = Vec::new();
+            // The ablations' volumes; those marked drawn go into the figures beside the
+            // default's, under their variant's name.
+            let mut drawn: Vec<(String, SolidRun)> = Vec::new();
             if !args.no_ablations {
-                let ablation = |candidate_params: &CandidateParams, keep_current: bool| {
+                let ablation = |candidate_params: CandidateParams, keep_current: bool| {
                     let r = CubeRequest {
-                        candidate_params: *candidate_params,
+                        candidate_params,
                         keep_current,
                         ..request.clone()
                     };
                     synthesize_cube(&gpu, exemplars.clone(), &r, Some(&cache))
                 };
-                let keep = ablation(&CandidateParams::default(), true)?;
-                push(
-                    "keep current",
-                    q(&keep.synthesis, &keep.colours)?,
-                    Some(keep.consistency),
-                );
-                let crossbar = ablation(
-                    &CandidateParams {
-                        coherence: false,
-                        ..CandidateParams::default()
-                    },
-                    false,
-                )?;
-                push(
-                    "crossbar only",
-                    q(&crossbar.synthesis, &crossbar.colours)?,
-                    Some(crossbar.consistency),
-                );
-                let unbalanced = ablation(
-                    &CandidateParams {
-                        balance: 0,
-                        ..CandidateParams::default()
-                    },
-                    false,
-                )?;
-                push(
-                    "no balance",
-                    q(&unbalanced.synthesis, &unbalanced.colours)?,
-                    Some(unbalanced.consistency),
-                );
-                let finest_balance = ablation(
-                    &CandidateParams {
-                        balance_levels: Some(1),
-                        ..CandidateParams::default()
-                    },
-                    false,
-                )?;
-                push(
-                    "balance finest",
-                    q(&finest_balance.synthesis, &finest_balance.colours)?,
-                    Some(finest_balance.consistency),
-                );
-                let featureless = synthesize_cube(
-                    &gpu,
-                    exemplars.clone().with_feature_weight(0)?,
-                    &request,
-                    Some(&cache),
-                )?;
-                push(
-                    "no feature",
-                    q(&featureless.synthesis, &featureless.colours)?,
-                    Some(featureless.consistency),
-                );
-                // The mask rule's ablation: Otsu's split always (the minimum-error one is
-                // taken by the rule where Otsu's takes part of the body; synth/feature.rs).
-                let otsu = synthesize_cube(
-                    &gpu,
-                    exemplars.clone().with_feature_mask(FeatureMask::Otsu),
-                    &request,
-                    Some(&cache),
-                )?;
-                push(
-                    "otsu mask",
-                    q(&otsu.synthesis, &otsu.colours)?,
-                    Some(otsu.consistency),
-                );
+                let defaults = CandidateParams::default();
                 // The finest level's other correction order: ordered subpasses when the
                 // default is parallel, and the reverse.
                 let other_order = if DEFAULT_SOLID_PARALLEL_LEVELS > 0 {
@@ -691,24 +627,92 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 } else {
                     1
                 };
-                let reordered = synthesize_cube(
-                    &gpu,
-                    exemplars.clone(),
-                    &CubeRequest {
-                        parallel_levels: Some(other_order),
-                        ..request.clone()
-                    },
-                    Some(&cache),
-                )?;
-                push(
-                    if other_order == 0 {
-                        "ordered finest"
-                    } else {
-                        "parallel finest"
-                    },
-                    q(&reordered.synthesis, &reordered.colours)?,
-                    Some(reordered.consistency),
-                );
+                // (variant, drawn, run), in the rows' order.
+                let runs: Vec<(&str, bool, SolidRun)> = vec![
+                    ("keep current", true, ablation(defaults, true)?),
+                    (
+                        "crossbar only",
+                        false,
+                        ablation(
+                            CandidateParams {
+                                coherence: false,
+                                ..defaults
+                            },
+                            false,
+                        )?,
+                    ),
+                    (
+                        "no balance",
+                        true,
+                        ablation(
+                            CandidateParams {
+                                balance: 0,
+                                ..defaults
+                            },
+                            false,
+                        )?,
+                    ),
+                    (
+                        "balance finest",
+                        false,
+                        ablation(
+                            CandidateParams {
+                                balance_levels: Some(1),
+                                ..defaults
+                            },
+                            false,
+                        )?,
+                    ),
+                    (
+                        "no feature",
+                        true,
+                        synthesize_cube(
+                            &gpu,
+                            exemplars.clone().with_feature_weight(0)?,
+                            &request,
+                            Some(&cache),
+                        )?,
+                    ),
+                    // The mask rule's ablation: Otsu's split always (the minimum-error one is
+                    // taken by the rule where Otsu's takes part of the body; synth/feature.rs).
+                    (
+                        "otsu mask",
+                        false,
+                        synthesize_cube(
+                            &gpu,
+                            exemplars.clone().with_feature_mask(FeatureMask::Otsu),
+                            &request,
+                            Some(&cache),
+                        )?,
+                    ),
+                    (
+                        if other_order == 0 {
+                            "ordered finest"
+                        } else {
+                            "parallel finest"
+                        },
+                        true,
+                        synthesize_cube(
+                            &gpu,
+                            exemplars.clone(),
+                            &CubeRequest {
+                                parallel_levels: Some(other_order),
+                                ..request.clone()
+                            },
+                            Some(&cache),
+                        )?,
+                    ),
+                ];
+                for (variant, draw, ablated) in runs {
+                    push(
+                        variant,
+                        q(&ablated.synthesis, &ablated.colours)?,
+                        Some(ablated.consistency),
+                    );
+                    if draw {
+                        drawn.push((format!("-{}", variant.replace(' ', "-")), ablated));
+                    }
+                }
                 // The orientation rule's ablation, where it mirrored a role: every role as
                 // given (the rule before 2026-12-05, third session).
                 if mirroring.mirrored.is_some() {
@@ -723,19 +727,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                         args.energy_samples,
                     )?;
                     push("as given", axes, Some(as_given.consistency));
-                    drawn.push(("-as-given", as_given));
+                    drawn.push(("-as-given".into(), as_given));
                 }
-                drawn.push(("-keep-current", keep));
-                drawn.push((
-                    if other_order == 0 {
-                        "-ordered-finest"
-                    } else {
-                        "-parallel-finest"
-                    },
-                    reordered,
-                ));
-                drawn.push(("-no-balance", unbalanced));
-                drawn.push(("-no-feature", featureless));
             }
             let (ex, ex_colours) = extruded(&exemplars, n);
             push("extruded E_z", q(&ex, &ex_colours)?, None);
@@ -751,7 +744,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             push("2d synth", two_d, None);
             let name = case.replace('+', "-");
             for (variant, s) in
-                std::iter::once(("", &run)).chain(drawn.iter().map(|(v, r)| (*v, r)))
+                std::iter::once(("", &run)).chain(drawn.iter().map(|(v, r)| (v.as_str(), r)))
             {
                 let (w, h, rgb) = figure(exemplars.role(0), &image, &s.synthesis, &s.colours);
                 write_png(
