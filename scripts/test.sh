@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it: installs what is needed, checks formatting and lints,
-# then runs every test on the default device with the Vulkan validation layer required.
+# builds the API docs with every link resolved, then runs every test on the default device
+# with the Vulkan validation layer required.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -8,6 +9,8 @@ bash scripts/fetch-assets.sh
 export LAZYSOLID_VALIDATION=1
 cargo fmt --all -- --check
 cargo clippy --locked --workspace --all-targets -- -D warnings
+# Every intra-doc link resolves (a renamed or private item breaks it silently otherwise).
+RUSTDOCFLAGS="-D warnings" cargo doc --locked --workspace --no-deps
 cargo test --locked --workspace
 # The paths only a discrete GPU takes, on lavapipe: every upload and readback through a staging
 # buffer (docs/gpu.md). Reuses the binaries built above.

@@ -8,7 +8,7 @@
 //! appearance vectors, k-coherence sets) → per pyramid level upsampling, jitter and correction
 //! of exemplar coordinates, on the GPU ([`GpuSynthesizer`]) or on the CPU reference
 //! ([`synthesize_cpu`]), which agree exactly. Any window of the unbounded output plane can be
-//! synthesized on its own ([`plan_regions`] gives the padding); [`energy`] scores the result.
+//! synthesized on its own ([`plan_regions`] gives the padding); [`EnergyKernel`] (or [`energy_cpu`]) scores the result.
 //! See `docs/synthesis.md`.
 //!
 //! The crate sits between `lazysolid-compute` (the Vulkan core, primitives, hashes and stores it

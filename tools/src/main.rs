@@ -1,5 +1,9 @@
 //! `lazysolid`: the command-line front end of lazysolid.
 
+// clap turns the arguments' doc comments into `--help` text, where `[render]` and
+// `[[exemplar]]` are TOML tables, not links.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod bench;
 mod cli;
 

@@ -94,7 +94,7 @@ impl DeviceInfo {
     /// Checks the device against [`REQUIRED_FEATURES`].
     ///
     /// # Errors
-    /// [`GpuError::MissingFeature`] with the device's name and every missing feature.
+    /// [`GpuError::MissingFeature`](super::GpuError::MissingFeature) with the device's name and every missing feature.
     pub fn check_requirements(&self) -> GpuResult<()> {
         check_features(&self.name, &self.features, REQUIRED_FEATURES)
     }

@@ -37,7 +37,7 @@ pub(crate) fn check_keys(
     Ok(())
 }
 
-/// Plain-Rust twin of [`check_keys`] for CPU references and tests: the first key outside.
+/// Plain-Rust twin of `check_keys` for CPU references and tests: the first key outside.
 pub fn key_outside_grid(keys: &[u64], resolution: u32) -> Option<u64> {
     keys.iter()
         .copied()

@@ -110,12 +110,12 @@ pub fn edge_report(triangles: &[[u32; 3]]) -> EdgeReport {
     report
 }
 
-/// Checks that `mesh` is valid ([`validate`]) and closed and consistently oriented (every edge
+/// Checks that `mesh` is valid (`validate`) and closed and consistently oriented (every edge
 /// used as often in each direction), which is what splitting needs: only then do the cut
 /// segments form closed loops and the two parts bound solids.
 ///
 /// # Errors
-/// The errors of [`validate`], or [`FractureError::NotClosed`] with the counts of boundary and
+/// The errors of `validate`, or [`FractureError::NotClosed`] with the counts of boundary and
 /// non-manifold edges.
 pub fn check_closed(mesh: &Mesh) -> Result<(), FractureError> {
     check_closed_parts(&mesh.positions, &mesh.triangles, &mesh.source)

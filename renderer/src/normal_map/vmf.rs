@@ -123,7 +123,7 @@ pub fn erf(x: f64) -> f64 {
 }
 
 /// [`clamped_cosine_mean`] by quadrature over the lobe (cosine to its axis by
-/// [`integrate_cosine`], azimuth by the midpoint rule).
+/// `integrate_cosine`, azimuth by the midpoint rule).
 pub fn clamped_cosine_mean_exact(t: f64, kappa: f64) -> f64 {
     let lobe = VmfLobe::new(1.0, DVec3::Z, kappa);
     let s = (1.0 - t * t).max(0.0).sqrt();

@@ -7,9 +7,9 @@
 //!   same distance between two disjoint halves of the exemplar (the material's own
 //!   variability): the ratio is 1 for an output as close to the exemplar as the exemplar is to
 //!   itself, and large structures count through the coarse octaves.
-//! - [`anisotropy`]: the balance of gradient energy between the image axes, and the identity
+//! - [`anisotropy`](mod@anisotropy): the balance of gradient energy between the image axes, and the identity
 //!   that keeps a volume from giving all three slice families one exemplar's balance.
-//! - [`band_contrast`]: each pyramid band's contrast over the exemplar's, the direction
+//! - [`band_contrast`](mod@band_contrast): each pyramid band's contrast over the exemplar's, the direction
 //!   (smoother or grainier) that the SWD's per-band ratio does not say.
 //! - [`blockiness`]: the share of oriented gradient energy that lies along the image axes,
 //!   against the exemplar's: axis-aligned blocks raise it, a blur or a shift leave it.

@@ -61,7 +61,7 @@ fn entry_value(sizes: &PerfectSizes, o: [u32; 3]) -> u64 {
     (0..sizes.dimensions as usize).fold(0u64, |v, a| v | (o[a] as u64) << (a as u32 * c))
 }
 
-/// Φ[q] as an offset vector, read from the packed words like the GLSL lookup.
+/// Φ\[q\] as an offset vector, read from the packed words like the GLSL lookup.
 pub fn read_offset(sizes: &PerfectSizes, words: &[u32], q: u32) -> [u32; 3] {
     let bit = q as u64 * sizes.entry_bits() as u64;
     let (w, s) = ((bit / 32) as usize, bit % 32);

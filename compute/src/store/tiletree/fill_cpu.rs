@@ -119,8 +119,7 @@ fn dilate(plan: &Plan, colours: &mut [u32], filled: &[bool], columns: bool) -> V
 }
 
 /// The tile map (row-major RGBA8 words, `map_width × map_height`, 0 outside tiles) that the
-/// GPU fill produces for `plan` and `colours` ([`ColourSource::to_host`]
-/// (crate::store::ColourSource::to_host)). A colour map (a buffer source) colours the texels
+/// GPU fill produces for `plan` and `colours` ([`ColourSource::to_host`](crate::store::ColourSource::to_host)). A colour map (a buffer source) colours the texels
 /// that meet the surface (0 where it lacks the voxel); the others start at 0.
 pub fn fill_cpu(plan: &Plan, colours: &HostColours<'_>) -> Vec<u32> {
     let keyed = matches!(colours, HostColours::Map(_));
