@@ -27,8 +27,8 @@
 use anyhow::ensure;
 use clap::{Parser, ValueEnum};
 use lazysolid_synth::solid::{
-    role_scorers, ImageScorer, Orientation, SliceRatios, SolidExemplars, QUALITY_SLICES, ROLES,
-    ROLE_AXES,
+    colour_slice, role_scorers, ImageScorer, Orientation, SliceRatios, SolidExemplars,
+    QUALITY_SLICES, ROLES, ROLE_AXES,
 };
 use lazysolid_synth::{histogram_distance, load_solid, FitMode};
 use rand::{Rng, SeedableRng};
@@ -546,20 +546,6 @@ fn main() -> anyhow::Result<()> {
     panels(&exemplars, &colours, n, &args.o.with_extension("png"))
 }
 
-/// The slice perpendicular to `axis` at `at`, over the role's image axes (as `solid::slice`).
-fn slice(colours: &[[u8; 3]], n: usize, axis: usize, at: usize) -> Vec<[u8; 3]> {
-    let [a, b] = ROLE_AXES[axis];
-    (0..n * n)
-        .map(|k| {
-            let mut p = [0; 3];
-            p[axis] = at as i32;
-            p[a] = (k % n) as i32;
-            p[b] = (k / n) as i32;
-            colours[voxel(p, n)]
-        })
-        .collect()
-}
-
 fn score(exemplars: &SolidExemplars, colours: &[[u8; 3]], n: usize, roles: &[usize]) -> String {
     let scorers: [ImageScorer; ROLES] = role_scorers(exemplars);
     let q = QUALITY_SLICES as usize;
@@ -567,13 +553,15 @@ fn score(exemplars: &SolidExemplars, colours: &[[u8; 3]], n: usize, roles: &[usi
     for &axis in roles {
         let figures: Vec<SliceRatios> = (0..q)
             .map(|k| {
-                let s = slice(colours, n, axis, n * (2 * k + 1) / (2 * q));
+                let s = colour_slice(colours, n, axis, n * (2 * k + 1) / (2 * q));
                 scorers[axis].ratios(&s, n as u32, n as u32)
             })
             .collect();
         let mean = |f: &dyn Fn(&SliceRatios) -> f64| figures.iter().map(f).sum::<f64>() / q as f64;
-        let histogram =
-            histogram_distance(&slice(colours, n, axis, n / 2), &exemplars.role(axis).rgb);
+        let histogram = histogram_distance(
+            &colour_slice(colours, n, axis, n / 2),
+            &exemplars.role(axis).rgb,
+        );
         out += &format!(
             "axis {}: SWD ratio {:.2}, blockiness {:.2}, histogram {:.3}, band SWD fine/mid/coarse {:.2}/{:.2}/{:.2}, band contrast {:.2}/{:.2}/{:.2}\n",
             ["x", "y", "z"][axis],
@@ -606,7 +594,7 @@ fn panels(
     }
     for axis in 0..ROLES {
         let x0 = m + gap + axis * (n + gap);
-        for (i, c) in slice(colours, n, axis, n / 2).iter().enumerate() {
+        for (i, c) in colour_slice(colours, n, axis, n / 2).iter().enumerate() {
             image.put_pixel((x0 + i % n) as u32, (i / n) as u32, image::Rgb(*c));
         }
     }

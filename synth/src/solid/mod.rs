@@ -75,7 +75,7 @@ pub use roles::{
 };
 pub use schedule::{level_schedules, ordered_schedules, LevelSchedule, ALL_CLASSES};
 pub use slab::candidate_slab;
-pub use slices::{oblique, slice};
+pub use slices::{colour_slice, oblique, slice};
 pub use strips::{strip_distance, DEFAULT_STRIP, MAX_STRIP};
 pub use volume::{
     check_box, voxel_colour, LevelTriples, SolidSynthesis, MAX_VOLUME_ORIGIN, MAX_VOLUME_SIDE,

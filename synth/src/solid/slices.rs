@@ -11,24 +11,30 @@ pub fn slice(
     axis: usize,
     at: u32,
 ) -> (Vec<[u8; 3]>, Vec<u32>) {
-    let w = synthesis.window;
-    let n = w.size[0] as usize;
+    let n = synthesis.window.size[0] as usize;
     let triples = synthesis.window_triples();
+    let coords = slice_indices(n, axis, at as usize)
+        .map(|idx| triples[idx][axis])
+        .collect();
+    (colour_slice(colours, n, axis, at as usize), coords)
+}
+
+/// The colours of the same slice as [`slice()`] of any cube of side `n` stored x fastest, with
+/// or without triples behind it (a colour-state synthesizer's volume, a decoded NRRD).
+pub fn colour_slice(colours: &[[u8; 3]], n: usize, axis: usize, at: usize) -> Vec<[u8; 3]> {
+    slice_indices(n, axis, at).map(|idx| colours[idx]).collect()
+}
+
+/// The voxel indices of the slice, row by row over the role's image axes.
+fn slice_indices(n: usize, axis: usize, at: usize) -> impl Iterator<Item = usize> {
     let [a, b] = super::roles::ROLE_AXES[axis];
-    let mut rgb = Vec::with_capacity(n * n);
-    let mut coords = Vec::with_capacity(n * n);
-    for j in 0..n {
-        for i in 0..n {
-            let mut p = [0usize; 3];
-            p[axis] = at as usize;
-            p[a] = i;
-            p[b] = j;
-            let idx = (p[2] * n + p[1]) * n + p[0];
-            rgb.push(colours[idx]);
-            coords.push(triples[idx][axis]);
-        }
-    }
-    (rgb, coords)
+    (0..n * n).map(move |k| {
+        let mut p = [0usize; 3];
+        p[axis] = at;
+        p[a] = k % n;
+        p[b] = k / n;
+        (p[2] * n + p[1]) * n + p[0]
+    })
 }
 
 /// The diagonal plane `y + z = n − 1` of a cube of side `n` (a 45° cut about x), as an
