@@ -6,7 +6,7 @@
 # docs/gpu.md.
 #
 #   bash scripts/gpu-bench.sh [--quick] [--bin PATH] [--out-dir DIR] [--device NAME|INDEX]
-#                             [--suites LIST] [--skip-tests]
+#                             [--suites LIST] [--skip-tests] [--check-args]
 #
 #   --quick          small sizes, and the CPU driver (lavapipe) when no GPU is present: what
 #                    CI runs to keep this script working (a few minutes on 2 cores)
@@ -17,6 +17,9 @@
 #   --suites LIST    comma-separated steps of: device, tests, prims, hash, psh, textures,
 #                    solid, lazy, cuts, trace, synth, glints, multiscale, normalmaps [all]
 #   --skip-tests     leave out the test subset (CI runs it separately)
+#   --check-args     run nothing: check that every suite's quick and full options parse
+#                    (`lazysolid bench SUITE OPTIONS --help` fails on any that does not), in
+#                    seconds; CI's command-line tests run every suite at small sizes
 #
 # Writes DIR/summary.csv (step, status, seconds, limit, files), DIR/<step>.log and each suite's
 # CSV, JSON and figures in DIR/<suite>/. Exits 1 if any step failed or ran out of time.
@@ -78,6 +81,7 @@ out=""
 device=""
 only=""
 skip_tests=0
+check_args=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
@@ -86,6 +90,7 @@ while [ $# -gt 0 ]; do
     --device) [ $# -ge 2 ] || die "--device needs a name or index"; device="$2"; shift ;;
     --suites) [ $# -ge 2 ] || die "--suites needs a list"; only="$2"; shift ;;
     --skip-tests) skip_tests=1 ;;
+    --check-args) check_args=1 ;;
     -h|--help) usage; exit 0 ;;
     *) usage >&2; die "unknown option $1" ;;
   esac
@@ -116,6 +121,32 @@ if [ -z "$bin" ]; then
 fi
 [ -x "$bin" ] || die "--bin $bin is not an executable"
 bin="$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")"
+
+# Placeholders of the size options, replaced by the files the run writes (see QUICK).
+placeholders() {
+  local sizes="$1" dir="$2"
+  sizes="${sizes//@SMALL_EXEMPLAR@/$dir/terra16.png}"
+  echo "${sizes//@TERRA_LOOP@/$dir/terra_loop.toml}"
+}
+
+if [ "$check_args" = 1 ]; then
+  bad=0
+  for suite in "${SUITES[@]}"; do
+    for mode in quick full; do
+      if [ "$mode" = quick ]; then sizes="${QUICK[$suite]}"; runs="--runs 1 --warmup 0"; else
+        sizes="${FULL[$suite]}"; runs="--runs 3 --warmup 1"; fi
+      sizes="$(placeholders "$sizes" /tmp)"
+      # shellcheck disable=SC2086 # the size options are words on purpose
+      if ! err="$("$bin" bench "$suite" $sizes $runs --help 2>&1 >/dev/null)"; then
+        echo "gpu-bench: the $mode options of $suite do not parse: $sizes" >&2
+        echo "$err" | sed 's/^/  /' >&2
+        bad=1
+      fi
+    done
+  done
+  [ "$bad" = 0 ] && echo "gpu-bench: the quick and full options of ${#SUITES[@]} suites parse"
+  exit "$bad"
+fi
 
 # The device: the one named, else the first usable non-CPU device, else (quick only) the CPU
 # driver. `lazysolid device` prints "device N: NAME" and then "  type  KIND" per device.
@@ -197,13 +228,12 @@ for step in "${steps[@]}"; do
           "$bin" synth terra --res 16x16 --seed 1 -o "$out/terra16.png" >"$out/terra16.log" 2>&1 \
             || die "synthesizing the quick run's 16² exemplar failed; see $out/terra16.log"
         fi
-        sizes="${sizes//@SMALL_EXEMPLAR@/$out/terra16.png}"
       fi
       if [[ "$sizes" == *@TERRA_LOOP@* ]]; then
         printf 'root = "terra"\n\n[[exemplar]]\nname = "terra"\nimage = "terra"\n\n[[edge]]\nsource = "terra"\ndestination = "terra"\nr = 1\n' \
           >"$out/terra_loop.toml"
-        sizes="${sizes//@TERRA_LOOP@/$out/terra_loop.toml}"
       fi
+      sizes="$(placeholders "$sizes" "$out")"
       # shellcheck disable=SC2086 # the size options are words on purpose
       run_step "$step" "$bin" bench "$step" $sizes $(runs_of "$step") --out-dir "$out/$step" ;;
   esac

@@ -173,6 +173,42 @@ fn nearest_power_of_two(s: u32) -> u32 {
     }
 }
 
+/// The automatic rule for a square of side `s` that must become a power of two at most
+/// `max_side`: (the side cut out of the image, the side it is resampled to). Cut the largest
+/// power of two that fits when that loses at most a quarter of the side, else resample the
+/// whole square to the nearest power of two.
+fn auto_square(s: u32, max_side: u32) -> (u32, u32) {
+    let fits = floor_power_of_two(s).min(max_side);
+    if 4 * fits >= 3 * s {
+        (fits, fits)
+    } else {
+        (s, nearest_power_of_two(s).min(max_side))
+    }
+}
+
+/// The plan that turns a `width`×`height` map (a normal or height map, read as a tile) into
+/// the square power-of-two grid from `min_side` to `max_side` texels that its pyramid needs:
+/// the solid rule of [`FitMode::Auto`] (module doc) with those limits, so a map is cut or
+/// resampled as an exemplar is.
+///
+/// # Errors
+/// A side under `min_side`, named with the limit.
+pub fn plan_map(width: u32, height: u32, min_side: u32, max_side: u32) -> Result<FitPlan, String> {
+    let s = width.min(height);
+    if s < min_side {
+        return Err(format!(
+            "it is {width}x{height} texels; a map needs at least {min_side} a side (it is \
+             fitted to a square power-of-two edge from {min_side} to {max_side}, and upsampling \
+             a smaller one invents nothing)"
+        ));
+    }
+    let (cut, to) = auto_square(s, max_side);
+    Ok(FitPlan {
+        crop: centre_square(width, height, cut),
+        resample: (to != cut).then_some([to, to]),
+    })
+}
+
 /// The plan of the solid rule (module doc) for a `width`×`height` image, optionally to
 /// `side`; the error is the limit that refused it.
 ///
@@ -204,8 +240,8 @@ pub fn plan_solid(
     let nearest = nearest_power_of_two(s).min(MAX_SOLID_SIDE);
     // (side cut out of the image, side it is resampled to)
     let (cut, to) = match (mode, side) {
-        (FitMode::Auto, None) if 4 * fits >= 3 * s => (fits, fits),
-        (FitMode::Auto, None) | (FitMode::Resample, None) => (s, nearest),
+        (FitMode::Auto, None) => auto_square(s, MAX_SOLID_SIDE),
+        (FitMode::Resample, None) => (s, nearest),
         (FitMode::Crop, None) => (fits, fits),
         (FitMode::Auto, Some(t)) if s >= t && 4 * t >= 3 * s => (t, t),
         (FitMode::Auto, Some(t)) | (FitMode::Resample, Some(t)) => (s, t),

@@ -71,8 +71,8 @@ pub use energy::{
 pub use error::{SynthError, SynthResult};
 pub use exemplar::{Exemplar, MAX_EXEMPLAR_SIDE, MIN_EXEMPLAR_SIDE};
 pub use fit::{
-    fit_plane, fit_solid, load_plane, load_solid, plan_plane, plan_solid, CropRect, ExemplarFit,
-    FitMode, FitPlan, FittedExemplar,
+    fit_plane, fit_solid, load_plane, load_solid, plan_map, plan_plane, plan_solid, CropRect,
+    ExemplarFit, FitMode, FitPlan, FittedExemplar,
 };
 pub use gpu::{GpuSynthesizer, LevelTimes};
 pub use jitter::{hash4, jitter};
@@ -91,5 +91,5 @@ pub use period::{period_reach, spans_period, PERIOD_TOLERANCE};
 pub use plan::{correction_padding, plan_regions, Region, SUBPASSES};
 pub use push_registry::push_registry;
 pub use repetition::{period_repetition, REPETITION_TOLERANCE};
-pub use resample::{resample_lanczos3, Border};
+pub use resample::{resample_lanczos3, resample_lanczos3_f32, Border};
 pub use synthesis::{check_window, LevelCoords, Synthesis, MAX_WINDOW_ORIGIN, MAX_WINDOW_SIDE};

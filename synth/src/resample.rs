@@ -84,32 +84,71 @@ pub fn resample_lanczos3(
     if (width, height) == (new_width, new_height) {
         return rgb.to_vec();
     }
+    let sums = filter(
+        |i| rgb[i].map(f32::from),
+        [width, height],
+        [new_width, new_height],
+        border,
+    );
+    sums.into_iter()
+        .map(|acc| acc.map(|v| v.round().clamp(0.0, 255.0) as u8))
+        .collect()
+}
+
+/// [`resample_lanczos3`] for samples that are not colours (normals, heights): `C` channels
+/// of `f32` per pixel, filtered alike and returned unrounded and unclamped (Lanczos3 may
+/// overshoot the input's range near an edge).
+pub fn resample_lanczos3_f32<const C: usize>(
+    samples: &[[f32; C]],
+    width: u32,
+    height: u32,
+    new_width: u32,
+    new_height: u32,
+    border: Border,
+) -> Vec<[f32; C]> {
+    debug_assert_eq!(samples.len(), (width * height) as usize);
+    if (width, height) == (new_width, new_height) {
+        return samples.to_vec();
+    }
+    filter(
+        |i| samples[i],
+        [width, height],
+        [new_width, new_height],
+        border,
+    )
+}
+
+/// The separable filter of both resamplers: rows first (`height` rows of the new width), then
+/// columns, each output summing its taps in a fixed order.
+fn filter<const C: usize>(
+    sample: impl Fn(usize) -> [f32; C] + Sync,
+    [width, height]: [u32; 2],
+    [new_width, new_height]: [u32; 2],
+    border: Border,
+) -> Vec<[f32; C]> {
     let across = taps(width, new_width, border);
     let down = taps(height, new_height, border);
     let (w, nw) = (width as usize, new_width as usize);
-    // Rows first: `height` rows of `new_width` samples.
-    let mut rows = vec![[0.0f32; 3]; nw * height as usize];
+    let mut rows = vec![[0.0f32; C]; nw * height as usize];
     rows.par_chunks_mut(nw).enumerate().for_each(|(y, out)| {
-        let row = &rgb[y * w..(y + 1) * w];
         for (o, t) in out.iter_mut().zip(&across) {
             for &(j, wgt) in t {
-                for c in 0..3 {
-                    o[c] += wgt * f32::from(row[j][c]);
+                let s = sample(y * w + j);
+                for c in 0..C {
+                    o[c] += wgt * s[c];
                 }
             }
         }
     });
-    let mut out = vec![[0u8; 3]; nw * new_height as usize];
+    let mut out = vec![[0.0f32; C]; nw * new_height as usize];
     out.par_chunks_mut(nw).zip(&down).for_each(|(line, t)| {
         for (x, o) in line.iter_mut().enumerate() {
-            let mut acc = [0.0f32; 3];
             for &(j, wgt) in t {
                 let s = rows[j * nw + x];
-                for c in 0..3 {
-                    acc[c] += wgt * s[c];
+                for c in 0..C {
+                    o[c] += wgt * s[c];
                 }
             }
-            *o = acc.map(|v| v.round().clamp(0.0, 255.0) as u8);
         }
     });
     out

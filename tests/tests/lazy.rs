@@ -367,10 +367,12 @@ fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() 
             // A budget that holds the three coarsest levels and not the fourth.
             let level_bytes = whole.level_bytes();
             let three = MemoryPolicy::Budget(level_bytes[..3].iter().sum());
+            // Chunks of a third and of half the sphere's 460 voxels: every policy acts between
+            // chunks, and more chunks would only repeat those steps.
             for (policy, chunk) in [
-                (MemoryPolicy::Keep, 64),
-                (MemoryPolicy::Budget(1), 64),
-                (three, 150),
+                (MemoryPolicy::Keep, 160),
+                (MemoryPolicy::Budget(1), 160),
+                (three, 230),
             ] {
                 let what = format!("{policy:?}, chunks of {chunk}");
                 let mut lazy = fresh();

@@ -5,6 +5,10 @@
 
 use super::error::GlintError;
 use glam::{Mat2, Vec2};
+use lazysolid_synth::{
+    plan_map, resample_lanczos3_f32, Border, ChannelLayout, ExemplarFit, MAX_DECODE_SIDE,
+};
+use std::path::Path;
 
 /// Smallest example edge: a quarter of it (the largest target patch) must still be 2 texels.
 pub const MIN_EXAMPLE_EDGE: usize = 8;
@@ -140,40 +144,191 @@ fn check_size(source_name: &str, size: usize, texels: usize) -> Result<(), Glint
     Ok(())
 }
 
-/// Reads a tangent-space normal map (PNG or any format the `image` crate reads, 8 or 16 bits
-/// per channel): n_x = 2 r − 1, n_y = 2 g − 1 (blue is implied by them). The message of an
-/// error names the file and, for a bad texel, its column, row and the limit.
-///
-/// # Errors
-/// An unreadable file, a non-square or non-power-of-two image (edge from
-/// [`MIN_EXAMPLE_EDGE`] to [`MAX_EXAMPLE_EDGE`]), or a texel whose (n_x, n_y) leaves the unit
-/// disc.
-pub fn load_normal_map(file: &std::path::Path) -> Result<NormalExample, String> {
-    let name = file.display().to_string();
-    let image = image::open(file)
-        .map_err(|e| format!("{name}: cannot read the normal map: {e}"))?
-        .to_rgb32f();
-    let (w, h) = image.dimensions();
-    check_size(&name, w as usize, (w as usize) * (h as usize)).map_err(|e| e.to_string())?;
-    let texels = image
-        .pixels()
-        .map(|p| Vec2::new(2.0 * p[0] - 1.0, 2.0 * p[1] - 1.0))
-        .collect();
-    NormalExample::from_normals(&name, w as usize, texels).map_err(|e| e.to_string())
+/// How a map file became its example: the crop and resample of [`ExemplarFit`] (the rule of
+/// exemplars, with the example's limits [`MIN_EXAMPLE_EDGE`] and [`MAX_EXAMPLE_EDGE`]), and
+/// for a height map resampled to another scale, the factor its heights were multiplied by so
+/// that its slopes (heights are in texel units) stay those of the file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapFit {
+    /// The file's size and channels, and the crop and resample applied.
+    pub fit: ExemplarFit,
+    /// The factor on the heights of a resampled height map.
+    pub height_factor: Option<f32>,
 }
 
-/// Reads a height map (its luminance in [0, 1] times `height_scale`, in texel units) and
-/// converts it to normals as [`NormalExample::from_heights`] does.
+impl std::fmt::Display for MapFit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.fit)?;
+        if let Some(k) = self.height_factor {
+            write!(f, ", heights x{k:.4} (slopes kept)")?;
+        }
+        Ok(())
+    }
+}
+
+/// A map file decoded to `C` float channels, cut and resampled by the exemplar rule.
+struct FittedMap<const C: usize> {
+    side: usize,
+    texels: Vec<[f32; C]>,
+    fit: ExemplarFit,
+}
+
+/// Reads `file` as `C` channels (`prepare` turns the decoded image into them, row by row) and
+/// fits it to a square power-of-two edge in [`MIN_EXAMPLE_EDGE`]..=[`MAX_EXAMPLE_EDGE`]: the
+/// centre square of the largest power of two when that loses at most a quarter of the side,
+/// otherwise the square resampled (Lanczos3, wrapping: maps tile) to the nearest power of two.
+/// The size is checked from the header before the pixels are decoded.
+fn read_fitted<const C: usize>(
+    file: &Path,
+    what: &str,
+    prepare: impl FnOnce(&image::DynamicImage) -> Vec<[f32; C]>,
+) -> Result<FittedMap<C>, String> {
+    let name = file.display().to_string();
+    let reader = || {
+        image::ImageReader::open(file)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| format!("{name}: cannot read the {what}: {e}"))
+    };
+    let (w, h) = reader()?
+        .into_dimensions()
+        .map_err(|e| format!("{name}: cannot read the {what}: {e}"))?;
+    if w.max(h) > MAX_DECODE_SIDE {
+        return Err(format!(
+            "{name}: the {what} is {w}x{h} texels; at most {MAX_DECODE_SIDE} a side is read"
+        ));
+    }
+    let plan = plan_map(w, h, MIN_EXAMPLE_EDGE as u32, MAX_EXAMPLE_EDGE as u32)
+        .map_err(|e| format!("{name}: {e}"))?;
+    let image = reader()?
+        .decode()
+        .map_err(|e| format!("{name}: cannot read the {what}: {e}"))?;
+    let channels = u32::from(image.color().channel_count());
+    let layout = ChannelLayout::from_channels(channels)
+        .ok_or_else(|| format!("{name}: the {what} has {channels} channels; 1 to 4 are read"))?;
+    let fit = ExemplarFit {
+        name: file
+            .file_name()
+            .map_or_else(|| name.clone(), |n| n.to_string_lossy().into_owned()),
+        size: [w, h],
+        layout,
+        plan,
+    };
+    let mut texels = prepare(&image);
+    let (mut width, mut height) = (w, h);
+    if let Some(c) = plan.crop {
+        texels = (c.y..c.y + c.height)
+            .flat_map(|y| {
+                let row = (y * width) as usize;
+                texels[row + c.x as usize..row + (c.x + c.width) as usize].to_vec()
+            })
+            .collect();
+        (width, height) = (c.width, c.height);
+    }
+    if let Some([rw, rh]) = plan.resample {
+        texels = resample_lanczos3_f32(&texels, width, height, rw, rh, Border::Wrap);
+        width = rw;
+    }
+    debug_assert_eq!(texels.len(), (width * width) as usize);
+    Ok(FittedMap {
+        side: width as usize,
+        texels,
+        fit,
+    })
+}
+
+/// Reads a tangent-space normal map (PNG or any format the `image` crate reads, 8 or 16 bits
+/// per channel): n_x = 2 r − 1, n_y = 2 g − 1 (blue is implied by them). A map of any size and
+/// aspect is fitted to a square power-of-two edge as an exemplar is ([`MapFit`] says how);
+/// resampling filters the unit normals and normalizes the result. The message of an error
+/// names the file and, for a bad texel, its column, row and the limit.
+///
+/// # Errors
+/// An unreadable file, a side under [`MIN_EXAMPLE_EDGE`] or over
+/// [`MAX_DECODE_SIDE`], or a texel whose (n_x, n_y) leaves the unit disc.
+pub fn load_normal_map(file: &Path) -> Result<(NormalExample, MapFit), String> {
+    let name = file.display().to_string();
+    let mut outside = None;
+    let map = read_fitted(file, "normal map", |image| {
+        let rgb = image.to_rgb32f();
+        let (w, _) = rgb.dimensions();
+        rgb.pixels()
+            .enumerate()
+            .map(|(i, p)| {
+                let (nx, ny) = (2.0 * p[0] - 1.0, 2.0 * p[1] - 1.0);
+                let n = Vec2::new(nx, ny);
+                if (!n.is_finite() || n.length_squared() > 1.0) && outside.is_none() {
+                    outside = Some((i as u32 % w, i as u32 / w, nx, ny));
+                }
+                [nx, ny, (1.0 - n.length_squared()).max(0.0).sqrt()]
+            })
+            .collect()
+    })?;
+    if let Some((x, y, nx, ny)) = outside {
+        return Err(GlintError::Texel {
+            source_name: name,
+            x: x as usize,
+            y: y as usize,
+            nx,
+            ny,
+        }
+        .to_string());
+    }
+    let resampled = map.fit.plan.resample.is_some();
+    let texels = map
+        .texels
+        .iter()
+        .map(|&[x, y, z]| {
+            let n = glam::Vec3::new(x, y, z);
+            let n = if resampled {
+                n.try_normalize().unwrap_or(glam::Vec3::Z)
+            } else {
+                n
+            };
+            Vec2::new(n.x, n.y)
+        })
+        .collect();
+    let example =
+        NormalExample::from_normals(&name, map.side, texels).map_err(|e| e.to_string())?;
+    Ok((
+        example,
+        MapFit {
+            fit: map.fit,
+            height_factor: None,
+        },
+    ))
+}
+
+/// Reads a height map (its luminance in [0, 1] times `height_scale`, in texel units), fits it
+/// as [`load_normal_map`] fits a normal map (the heights of a resampled map are scaled with
+/// its texels, so its slopes are kept), and converts it to normals as
+/// [`NormalExample::from_heights`] does.
 ///
 /// # Errors
 /// As [`load_normal_map`], for an unreadable file or a bad size.
-pub fn load_height_map(file: &std::path::Path, height_scale: f32) -> Result<NormalExample, String> {
+pub fn load_height_map(file: &Path, height_scale: f32) -> Result<(NormalExample, MapFit), String> {
     let name = file.display().to_string();
-    let image = image::open(file)
-        .map_err(|e| format!("{name}: cannot read the height map: {e}"))?
-        .to_luma32f();
-    let (w, h) = image.dimensions();
-    check_size(&name, w as usize, (w as usize) * (h as usize)).map_err(|e| e.to_string())?;
-    let heights: Vec<f32> = image.pixels().map(|p| p[0] * height_scale).collect();
-    NormalExample::from_heights(&name, w as usize, &heights).map_err(|e| e.to_string())
+    let map = read_fitted(file, "height map", |image| {
+        image.to_luma32f().pixels().map(|p| [p[0]]).collect()
+    })?;
+    // Heights are in texel units: a map resampled from `s` to `t` texels a side has slopes
+    // `s / t` times as steep unless its heights grow by `t / s`.
+    let height_factor = map.fit.plan.resample.map(|[t, _]| {
+        let s = map
+            .fit
+            .plan
+            .crop
+            .map_or(map.fit.size[0].min(map.fit.size[1]), |c| c.width);
+        t as f32 / s as f32
+    });
+    let k = height_scale * height_factor.unwrap_or(1.0);
+    let heights: Vec<f32> = map.texels.iter().map(|[h]| h * k).collect();
+    let example =
+        NormalExample::from_heights(&name, map.side, &heights).map_err(|e| e.to_string())?;
+    Ok((
+        example,
+        MapFit {
+            fit: map.fit,
+            height_factor,
+        },
+    ))
 }

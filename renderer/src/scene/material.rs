@@ -249,15 +249,23 @@ pub(super) fn resolve(
     Ok(material)
 }
 
+/// A map file read as an example: what [`map_example`] returns.
+struct LoadedMap {
+    example: crate::glint::NormalExample,
+    source: std::path::PathBuf,
+    fit: crate::glint::example::MapFit,
+    from_heights: bool,
+}
+
 /// A material's example map: `normal_map` (tangent-space PNG) or `height_map` (its grey times
-/// `height_scale`, default 1, in texel units), not both, as [`NormalExample`]s with the file
-/// and whether it came from heights; `None` when neither is given.
+/// `height_scale`, default 1, in texel units), not both, as [`NormalExample`]s with the file,
+/// how it was fitted and whether it came from heights; `None` when neither is given.
 fn map_example(
     doc: &Doc,
     raw: &RawMaterial,
     label: &str,
     base: &Path,
-) -> Result<Option<(crate::glint::NormalExample, std::path::PathBuf, bool)>, SceneError> {
+) -> Result<Option<LoadedMap>, SceneError> {
     use crate::glint::example::{load_height_map, load_normal_map};
     let field = |key: &str| join(label, key);
     match (&raw.normal_map, &raw.height_map) {
@@ -276,9 +284,14 @@ fn map_example(
             doc.reject(&raw.height_scale, label, "height_scale", why)?;
             let file = base.join(n.get_ref());
             must_exist(doc, n.span().start, field("normal_map"), &file)?;
-            let example = load_normal_map(&file)
+            let (example, fit) = load_normal_map(&file)
                 .map_err(|e| doc.invalid(n.span(), field("normal_map"), e))?;
-            Ok(Some((example, file, false)))
+            Ok(Some(LoadedMap {
+                example,
+                source: file,
+                fit,
+                from_heights: false,
+            }))
         }
         (None, Some(h)) => {
             let scale = match &raw.height_scale {
@@ -287,16 +300,21 @@ fn map_example(
             };
             let file = base.join(h.get_ref());
             must_exist(doc, h.span().start, field("height_map"), &file)?;
-            let example = load_height_map(&file, scale)
+            let (example, fit) = load_height_map(&file, scale)
                 .map_err(|e| doc.invalid(h.span(), field("height_map"), e))?;
-            Ok(Some((example, file, true)))
+            Ok(Some(LoadedMap {
+                example,
+                source: file,
+                fit,
+                from_heights: true,
+            }))
         }
     }
 }
 
 /// The optional normal map of a Lambertian, conductor or plastic material: a tangent-space
 /// normal map or a height map (`height_scale` texel units of height per unit of grey), not
-/// both; a square power-of-two image as the vMF pyramid needs.
+/// both; any size, fitted to the square power-of-two grid the vMF pyramid needs.
 fn normal_map(
     doc: &Doc,
     raw: &RawMaterial,
@@ -304,7 +322,13 @@ fn normal_map(
     base: &Path,
 ) -> Result<Option<NormalMap>, SceneError> {
     let field = |key: &str| join(label, key);
-    let Some((example, source, from_heights)) = map_example(doc, raw, label, base)? else {
+    let Some(LoadedMap {
+        example,
+        source,
+        fit,
+        from_heights,
+    }) = map_example(doc, raw, label, base)?
+    else {
         let why = "applies only with a normal_map or height_map";
         doc.reject(&raw.normal_filter, label, "normal_filter", why)?;
         doc.reject(&raw.vmf_lobes, label, "vmf_lobes", why)?;
@@ -350,6 +374,7 @@ fn normal_map(
     let image = ImageTexture::from_normals(&source.display().to_string(), &example);
     Ok(Some(NormalMap {
         source,
+        fit,
         example: Arc::new(example),
         image: Arc::new(image),
         filter,
@@ -464,7 +489,13 @@ fn glint(
 ) -> Result<GlintSpec, SceneError> {
     use crate::glint::{BlendMode, ByExampleMap};
     let field = |key: &str| join(label, key);
-    let Some((example, source, from_heights)) = map_example(doc, raw, label, base)? else {
+    let Some(LoadedMap {
+        example,
+        source,
+        fit,
+        from_heights,
+    }) = map_example(doc, raw, label, base)?
+    else {
         return Err(doc.invalid(
             table.clone(),
             field("normal_map"),
@@ -538,6 +569,7 @@ fn glint(
     Ok(GlintSpec {
         map: Arc::new(map),
         source,
+        fit,
         intrinsic_roughness: sigma_r,
         scale,
         projection: match uv.get_ref() {

@@ -175,6 +175,8 @@ pub struct GlintSpec {
     pub map: std::sync::Arc<crate::glint::ByExampleMap>,
     /// The example's file.
     pub source: std::path::PathBuf,
+    /// How the file became the example (cut or resampled to a power-of-two square).
+    pub fit: crate::glint::example::MapFit,
     /// σ_r of the P-NDF's Gaussian elements (normal units).
     pub intrinsic_roughness: f32,
     /// Width of the example in scene units (world units: the instance scale does not change it).
@@ -191,6 +193,7 @@ impl PartialEq for GlintSpec {
     fn eq(&self, o: &Self) -> bool {
         std::sync::Arc::ptr_eq(&self.map, &o.map)
             && self.source == o.source
+            && self.fit == o.fit
             && self.intrinsic_roughness == o.intrinsic_roughness
             && self.scale == o.scale
             && self.projection == o.projection
@@ -274,6 +277,8 @@ pub enum NormalFilter {
 pub struct NormalMap {
     /// The file.
     pub source: PathBuf,
+    /// How the file became the example (cut or resampled to a power-of-two square).
+    pub fit: crate::glint::example::MapFit,
     /// The level-0 normals (+y towards +v), what the vMF fit starts from.
     pub example: std::sync::Arc<crate::glint::NormalExample>,
     /// Its plain MIP pyramid, as uploaded.
@@ -287,6 +292,7 @@ pub struct NormalMap {
 impl PartialEq for NormalMap {
     fn eq(&self, o: &Self) -> bool {
         self.source == o.source
+            && self.fit == o.fit
             && std::sync::Arc::ptr_eq(&self.example, &o.example)
             && self.filter == o.filter
             && self.lobes == o.lobes

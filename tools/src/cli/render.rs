@@ -209,6 +209,7 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         (stats.blas_time + stats.tlas_time).as_secs_f64() * 1e3
     );
     report_pieces(&scene);
+    report_maps(&scene);
     report_stores(&tracer);
     eprintln!("prepared in {:.2} s", prepare.as_secs_f64());
     let tone_map = ToneMap {
@@ -347,6 +348,18 @@ fn report_pieces(scene: &Scene) {
             "[[instance]] {} ({mesh}): broken into {pieces} closed pieces{resolved}",
             index + 1
         );
+    }
+}
+
+/// How each normal, height or glint map became its example (cut or resampled to a square
+/// power-of-two grid), so a map of any size says what was done to it.
+fn report_maps(scene: &Scene) {
+    for m in &scene.materials {
+        let maps = m.normal_map.as_ref().map(|n| ("normal map", &n.fit));
+        let glint = m.glint.as_ref().map(|g| ("glint example", &g.fit));
+        for (what, fit) in maps.into_iter().chain(glint) {
+            eprintln!("material {:?}: {what} {fit}", m.name);
+        }
     }
 }
 

@@ -7,6 +7,7 @@
 
 mod assets;
 mod bench;
+mod damaged_inputs;
 mod device;
 mod diff;
 mod fracture;

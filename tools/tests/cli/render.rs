@@ -218,3 +218,75 @@ radiance = [0.5, 0.5, 0.5]
         .unwrap_or_else(|| panic!("no count in {line}"));
     assert!(crossings > 0, "{line}");
 }
+
+/// Writes a `width`×`height` grey height map of round bumps to `path`.
+fn bumps(path: &std::path::Path, width: u32, height: u32) {
+    let map = image::GrayImage::from_fn(width, height, |x, y| {
+        let (u, v) = (x as f32 * 0.35, y as f32 * 0.45);
+        image::Luma([(127.5 + 120.0 * (u.sin() * v.cos())) as u8])
+    });
+    map.save(path).unwrap();
+}
+
+#[test]
+fn height_maps_of_any_size_render_under_every_filter_with_their_fit() {
+    let dir = tempfile::tempdir().unwrap();
+    // 100² is resampled to 128² (a crop would lose over a quarter of it), 200×150 is cut to its
+    // centre 128²: the exemplar rule (`synth/src/fit.rs`).
+    let cases = [
+        (
+            "h100.png",
+            100,
+            100,
+            "h100.png 100x100 grey → Lanczos3 resample 128x128, heights x1.2800 (slopes kept)",
+        ),
+        (
+            "h200x150.png",
+            200,
+            150,
+            "h200x150.png 200x150 grey → centre crop 128x128 at (36, 11)",
+        ),
+    ];
+    for (name, width, height, fit) in cases {
+        bumps(&dir.path().join(name), width, height);
+        let mut scene = String::from(
+            "[camera]\nposition = [0.0, 1.4, 1.2]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 60\n\
+             [render]\nwidth = 48\nheight = 32\nspp = 1\nmax_depth = 2\n\
+             [[mesh]]\nname = \"plane\"\nshape = \"quad\"\n\
+             [[light]]\nkind = \"sphere\"\ncenter = [0.0, 2.0, -1.5]\nradius = 0.3\n\
+             radiance = [200.0, 200.0, 200.0]\n",
+        );
+        for (k, filter) in ["none", "mip", "vmf"].iter().enumerate() {
+            scene += &format!(
+                "[[material]]\nname = \"{filter}\"\nkind = \"conductor\"\npreset = \"silver\"\n\
+                 roughness = 0.3\nheight_map = \"{name}\"\nnormal_filter = \"{filter}\"\n\
+                 [[instance]]\nmesh = \"plane\"\nmaterial = \"{filter}\"\nscale = 0.55\n\
+                 translate = [{}, 0.0, -0.3]\n",
+                k as f32 * 0.6 - 1.2
+            );
+        }
+        scene += &format!(
+            "[[material]]\nname = \"glint\"\nkind = \"glint\"\npreset = \"aluminium\"\n\
+             height_map = \"{name}\"\nintrinsic_roughness = 0.02\nscale = 0.55\nuv = \"planar\"\n\
+             [[instance]]\nmesh = \"plane\"\nmaterial = \"glint\"\nscale = 0.55\n\
+             translate = [0.6, 0.0, -0.3]\n"
+        );
+        let scene_file = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&scene_file, scene).unwrap();
+        let output = dir.path().join(format!("{name}.out.png"));
+        let (ok, _, err) = run(lazysolid()
+            .arg("render")
+            .arg(&scene_file)
+            .arg("-o")
+            .arg(&output)
+            .env("LAZYSOLID_VALIDATION", "1"));
+        assert!(ok, "{err}");
+        for material in ["none", "mip", "vmf"] {
+            let line = format!("material {material:?}: normal map {fit}");
+            assert!(err.contains(&line), "missing {line:?} in:\n{err}");
+        }
+        let line = format!("material \"glint\": glint example {fit}");
+        assert!(err.contains(&line), "missing {line:?} in:\n{err}");
+        assert!(output.exists());
+    }
+}

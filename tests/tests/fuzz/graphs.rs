@@ -1,0 +1,97 @@
+//! Exemplar graphs of multiscale synthesis (`ExemplarGraph::load`): the TOML files of
+//! `lazysolid multiscale` and `zoom`, their exemplars named as assets.
+
+use crate::oracle::{self, MIB};
+use crate::{mutate, regressions, repo, write_case, Seed};
+use lazysolid_synth::multiscale::ExemplarGraph;
+use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+/// What a graph may hold beyond its exemplars' pixels.
+const BOUND: usize = 64 * MIB;
+
+/// An `image` value as the command resolves it: an asset name, or a path beside the graph.
+fn resolve(graph: &Path, value: &str) -> Result<PathBuf, String> {
+    if value.contains('/') || value.contains('.') {
+        return Ok(graph.parent().unwrap().join(value));
+    }
+    let asset = repo().join("assets/exemplars").join(format!("{value}.pat"));
+    if asset.exists() {
+        Ok(asset)
+    } else {
+        Err(format!("no exemplar asset named {value}"))
+    }
+}
+
+fn read(path: &Path) -> Result<ExemplarGraph, String> {
+    ExemplarGraph::load(path, &|v| resolve(path, v)).map_err(|e| e.to_string())
+}
+
+/// The graph's keys and tables (`synth/src/multiscale/graph.rs`).
+const KEYS: &[&str] = &[
+    "root",
+    "name",
+    "image",
+    "source",
+    "destination",
+    "r",
+    "finest",
+];
+const TABLES: &[&str] = &["[[exemplar]]", "[[edge]]"];
+
+fn seeds() -> &'static [Seed] {
+    static SEEDS: OnceLock<Vec<Seed>> = OnceLock::new();
+    SEEDS.get_or_init(|| {
+        [
+            "parquet_walnut.toml",
+            "marble_loop.toml",
+            "marble_single.toml",
+        ]
+        .iter()
+        .map(|f| Seed::file(&repo().join("scenes/multiscale").join(f)))
+        .collect()
+    })
+}
+
+#[test]
+fn the_seeds_are_read() {
+    for s in seeds() {
+        let (_dir, path) = write_case(&s.name, &s.bytes);
+        read(&path).unwrap_or_else(|e| panic!("seed {}: {e}", s.name));
+    }
+}
+
+#[test]
+fn regression_cases() {
+    for file in regressions("graphs") {
+        let name = file.file_name().unwrap().to_string_lossy().into_owned();
+        let bytes = std::fs::read(&file).unwrap();
+        let case = oracle::Case {
+            format: "graphs",
+            name: &name,
+            bytes: &bytes,
+        };
+        oracle::check(&case, BOUND, || read(&file)).unwrap();
+    }
+}
+
+proptest! {
+    #![proptest_config(oracle::config_for(seeds().len()))]
+
+    #[test]
+    fn mutated_graphs(
+        seed in 0..seeds().len(),
+        edits in mutate::mutations_with(mutate::toml_dictionary(KEYS, TABLES)),
+    ) {
+        let s = &seeds()[seed];
+        let bytes = mutate::apply(&s.bytes, &edits);
+        let (_dir, path) = write_case(&s.name, &bytes);
+        let case = oracle::Case {
+            format: "graphs",
+            name: &s.name,
+            bytes: &bytes,
+        };
+        oracle::check(&case, BOUND, || read(&path))?;
+    }
+}
