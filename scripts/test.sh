@@ -4,8 +4,6 @@
 # with the Vulkan validation layer required.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# A fresh build gains nothing from incremental compilation and pays for writing its state.
-export CARGO_INCREMENTAL=0
 bash scripts/install-deps.sh
 bash scripts/fetch-assets.sh
 export LAZYSOLID_VALIDATION=1

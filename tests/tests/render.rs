@@ -544,7 +544,11 @@ fn volume_textures_render_through_their_store() {
 
 /// Renders frames of `scene` with one tracer (the stores are baked once, before the first).
 fn render_frames(gpu: &lazysolid_compute::gpu::Gpu, scene: &Scene, frames: &[u32]) -> Vec<Film> {
-    let mut t = PathTracer::new(gpu, scene).unwrap();
+    tracer_frames(&mut PathTracer::new(gpu, scene).unwrap(), scene, frames)
+}
+
+/// [`render_frames`] through a path tracer already built for `scene` (its stores baked once).
+fn tracer_frames(t: &mut PathTracer, scene: &Scene, frames: &[u32]) -> Vec<Film> {
     let before: Vec<(u64, u64)> = t.stores().iter().map(|s| (s.texels, s.bytes)).collect();
     let films = frames
         .iter()
@@ -571,19 +575,15 @@ fn reference_fracture_frames() {
             scene.render.spp *= REFERENCE_SPP_FACTOR;
             scene.render.seed += 1000;
         }
-        {
-            let t = PathTracer::new(gpu, &scene).unwrap();
-            let stores = t.stores();
-            assert_eq!(stores.len(), 1, "the 6 pieces share the bunny's store");
-            let cut = stores[0].cut.expect("the cap faces were inserted");
-            let synthesis = cut.synthesis.expect("their voxels were synthesized");
-            println!("{stores:?}");
-            assert!(
-                cut.cap_triangles > 0 && cut.new_voxels > 0 && cut.texels_added == cut.new_voxels
-            );
-            assert!(synthesis.versions > 0);
-        }
-        let films = render_frames(gpu, &scene, &[1, 3]);
+        let mut t = PathTracer::new(gpu, &scene).unwrap();
+        let stores = t.stores();
+        assert_eq!(stores.len(), 1, "the 6 pieces share the bunny's store");
+        let cut = stores[0].cut.expect("the cap faces were inserted");
+        let synthesis = cut.synthesis.expect("their voxels were synthesized");
+        println!("{stores:?}");
+        assert!(cut.cap_triangles > 0 && cut.new_voxels > 0 && cut.texels_added == cut.new_voxels);
+        assert!(synthesis.versions > 0);
+        let films = tracer_frames(&mut t, &scene, &[1, 3]);
         for (film, f) in films.iter().zip([1, 3]) {
             let name = format!("fracture_f{f}");
             let reference = reference_path(&name);

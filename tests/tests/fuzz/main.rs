@@ -5,7 +5,7 @@
 //! kept as files in `tests/fuzz-regressions/<format>/`.
 //!
 //! CI runs [`oracle::cases`] cases per seed file; `LAZYSOLID_FUZZ_CASES=N` runs more (the long
-//! mode, `docs/fuzzing.md`).
+//! mode, `docs/testing.md`).
 
 mod caches;
 mod graphs;
