@@ -2,7 +2,7 @@
 //! `lazysolid multiscale` and `zoom`, their exemplars named as assets.
 
 use crate::oracle::{self, MIB};
-use crate::{mutate, regressions, repo, write_case, Seed};
+use crate::{mutate, repo, FileFormat, Seed};
 use lazysolid_synth::multiscale::ExemplarGraph;
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
@@ -54,26 +54,21 @@ fn seeds() -> &'static [Seed] {
     })
 }
 
+/// How the tests read this format.
+const FORMAT: FileFormat = FileFormat {
+    name: "graphs",
+    read: |p| read(p).map(|_| ()),
+    bound: |_| BOUND,
+};
+
 #[test]
 fn the_seeds_are_read() {
-    for s in seeds() {
-        let (_dir, path) = write_case(&s.name, &s.bytes);
-        read(&path).unwrap_or_else(|e| panic!("seed {}: {e}", s.name));
-    }
+    FORMAT.seeds_are_read(seeds());
 }
 
 #[test]
 fn regression_cases() {
-    for file in regressions("graphs") {
-        let name = file.file_name().unwrap().to_string_lossy().into_owned();
-        let bytes = std::fs::read(&file).unwrap();
-        let case = oracle::Case {
-            format: "graphs",
-            name: &name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, BOUND, || read(&file)).unwrap();
-    }
+    FORMAT.replay_regressions();
 }
 
 proptest! {
@@ -86,12 +81,6 @@ proptest! {
     ) {
         let s = &seeds()[seed];
         let bytes = mutate::apply(&s.bytes, &edits);
-        let (_dir, path) = write_case(&s.name, &bytes);
-        let case = oracle::Case {
-            format: "graphs",
-            name: &s.name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, BOUND, || read(&path))?;
+        FORMAT.case(&s.name, &bytes)?;
     }
 }

@@ -3,7 +3,7 @@
 //! `solid` and the scenes' synthesized textures read them.
 
 use crate::oracle::{self, MIB};
-use crate::{mutate, regressions, write_case, Seed};
+use crate::{mutate, FileFormat, Seed};
 use image::{DynamicImage, ImageFormat};
 use lazysolid_synth::{fit_plane, fit_solid, Border, DecodedImage, FitMode, MAX_DECODE_SIDE};
 use lazysolid_tests::asset_exemplar;
@@ -66,26 +66,21 @@ fn seeds() -> &'static [Seed] {
     })
 }
 
+/// How the tests read this format.
+const FORMAT: FileFormat = FileFormat {
+    name: "images",
+    read: |p| read(p),
+    bound: |_| BOUND,
+};
+
 #[test]
 fn the_seeds_are_read() {
-    for s in seeds() {
-        let (_dir, path) = write_case(&s.name, &s.bytes);
-        read(&path).unwrap_or_else(|e| panic!("seed {}: {e}", s.name));
-    }
+    FORMAT.seeds_are_read(seeds());
 }
 
 #[test]
 fn regression_cases() {
-    for file in regressions("images") {
-        let name = file.file_name().unwrap().to_string_lossy().into_owned();
-        let bytes = std::fs::read(&file).unwrap();
-        let case = oracle::Case {
-            format: "images",
-            name: &name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, BOUND, || read(&file)).unwrap();
-    }
+    FORMAT.replay_regressions();
 }
 
 proptest! {
@@ -102,12 +97,6 @@ proptest! {
         if checksums && s.name.ends_with(".png") {
             mutate::fix_png_checksums(&mut bytes);
         }
-        let (_dir, path) = write_case(&s.name, &bytes);
-        let case = oracle::Case {
-            format: "images",
-            name: &s.name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, BOUND, || read(&path))?;
+        FORMAT.case(&s.name, &bytes)?;
     }
 }

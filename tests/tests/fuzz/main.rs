@@ -17,6 +17,7 @@ mod nrrd;
 mod oracle;
 mod scenes;
 
+use proptest::test_runner::TestCaseError;
 use std::path::{Path, PathBuf};
 
 /// The repository's root.
@@ -57,5 +58,47 @@ impl Seed {
             name: path.file_name().unwrap().to_string_lossy().into_owned(),
             bytes: std::fs::read(path).unwrap_or_else(|e| panic!("seed {}: {e}", path.display())),
         }
+    }
+}
+
+/// A format whose reader takes a file path: its regression folder, its reader and its memory
+/// bound for an input of a given length. The three tests every such format has go through it.
+struct FileFormat {
+    /// The folder of its regression inputs, and the `format` of its cases.
+    name: &'static str,
+    /// The reader; only its success or its error matters.
+    read: fn(&Path) -> Result<(), String>,
+    /// The most memory the reader may hold for an input of this many bytes.
+    bound: fn(usize) -> usize,
+}
+
+impl FileFormat {
+    /// Every seed is read without error (a mutation engine that starts from broken seeds
+    /// checks little).
+    fn seeds_are_read(&self, seeds: &[Seed]) {
+        for s in seeds {
+            let (_dir, path) = write_case(&s.name, &s.bytes);
+            (self.read)(&path).unwrap_or_else(|e| panic!("seed {}: {e}", s.name));
+        }
+    }
+
+    /// Every regression input of the format passes the oracle.
+    fn replay_regressions(&self) {
+        for file in regressions(self.name) {
+            let name = file.file_name().unwrap().to_string_lossy().into_owned();
+            let bytes = std::fs::read(&file).unwrap();
+            self.case(&name, &bytes).unwrap();
+        }
+    }
+
+    /// Writes `bytes` as a file named `name` and checks the reader on it.
+    fn case(&self, name: &str, bytes: &[u8]) -> Result<(), TestCaseError> {
+        let (_dir, path) = write_case(name, bytes);
+        let case = oracle::Case {
+            format: self.name,
+            name,
+            bytes,
+        };
+        oracle::check(&case, (self.bound)(bytes.len()), || (self.read)(&path))
     }
 }

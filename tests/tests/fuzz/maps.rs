@@ -3,7 +3,7 @@
 //! their pyramids need.
 
 use crate::oracle::{self, MIB};
-use crate::{mutate, regressions, repo, write_case, Seed};
+use crate::{mutate, repo, write_case, FileFormat, Seed};
 use lazysolid_renderer::glint::example::{load_height_map, load_normal_map};
 use lazysolid_synth::MAX_DECODE_SIDE;
 use proptest::prelude::*;
@@ -51,18 +51,16 @@ fn the_seeds_are_read() {
     }
 }
 
+/// How the tests read this format.
+const FORMAT: FileFormat = FileFormat {
+    name: "maps",
+    read,
+    bound: |_| BOUND,
+};
+
 #[test]
 fn regression_cases() {
-    for file in regressions("maps") {
-        let name = file.file_name().unwrap().to_string_lossy().into_owned();
-        let bytes = std::fs::read(&file).unwrap();
-        let case = oracle::Case {
-            format: "maps",
-            name: &name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, BOUND, || read(&file)).unwrap();
-    }
+    FORMAT.replay_regressions();
 }
 
 proptest! {
@@ -79,12 +77,6 @@ proptest! {
         if checksums && s.name.ends_with(".png") {
             mutate::fix_png_checksums(&mut bytes);
         }
-        let (_dir, path) = write_case(&s.name, &bytes);
-        let case = oracle::Case {
-            format: "maps",
-            name: &s.name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, BOUND, || read(&path))?;
+        FORMAT.case(&s.name, &bytes)?;
     }
 }

@@ -2,7 +2,7 @@
 //! finite positions, texture coordinates).
 
 use crate::oracle::{self, MIB};
-use crate::{mutate, regressions, repo, write_case, Seed};
+use crate::{mutate, repo, FileFormat, Seed};
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_tests::asset_mesh;
 use proptest::prelude::*;
@@ -81,26 +81,21 @@ fn seeds() -> &'static [Seed] {
     })
 }
 
+/// How the tests read this format.
+const FORMAT: FileFormat = FileFormat {
+    name: "meshes",
+    read: |p| read(p).map(|_| ()),
+    bound,
+};
+
 #[test]
 fn the_seeds_are_read() {
-    for s in seeds() {
-        let (_dir, path) = write_case(&s.name, &s.bytes);
-        read(&path).unwrap_or_else(|e| panic!("seed {}: {e}", s.name));
-    }
+    FORMAT.seeds_are_read(seeds());
 }
 
 #[test]
 fn regression_cases() {
-    for file in regressions("meshes") {
-        let name = file.file_name().unwrap().to_string_lossy().into_owned();
-        let bytes = std::fs::read(&file).unwrap();
-        let case = oracle::Case {
-            format: "meshes",
-            name: &name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, bound(bytes.len()), || read(&file)).unwrap();
-    }
+    FORMAT.replay_regressions();
 }
 
 proptest! {
@@ -110,12 +105,6 @@ proptest! {
     fn mutated_meshes(seed in 0..seeds().len(), edits in mutate::mutations_with(dictionary())) {
         let s = &seeds()[seed];
         let bytes = mutate::apply(&s.bytes, &edits);
-        let (_dir, path) = write_case(&s.name, &bytes);
-        let case = oracle::Case {
-            format: "meshes",
-            name: &s.name,
-            bytes: &bytes,
-        };
-        oracle::check(&case, bound(bytes.len()), || read(&path))?;
+        FORMAT.case(&s.name, &bytes)?;
     }
 }
