@@ -8,6 +8,7 @@
 pub mod atomic_file;
 pub mod gpu;
 pub mod hash;
+pub mod host_memory;
 pub mod prims;
 mod push_registry;
 pub mod shader_constants;

@@ -9,7 +9,8 @@ mod cli;
 
 /// Counts heap bytes so `bench cuts` can report a cut's host temporary memory as measured.
 #[global_allocator]
-static ALLOCATOR: bench::host_memory::CountingAllocator = bench::host_memory::CountingAllocator;
+static ALLOCATOR: lazysolid_compute::host_memory::CountingAllocator =
+    lazysolid_compute::host_memory::CountingAllocator;
 
 use clap::{Parser, Subcommand};
 use cli::exit_status;

@@ -1,61 +1,18 @@
 //! What every reader must do with any input: return, within a time limit, either a value or
 //! an error whose message names the file, without panicking and without allocating more than
 //! a bound stated per reader. A broken rule fails the case, which proptest then shrinks to
-//! the smallest input that still breaks it; the time limit is proptest's per-case `timeout`, which runs the cases
-//! in a child process so that a hang is caught too.
+//! the smallest input that still breaks it. The time limit is proptest's per-case `timeout`,
+//! which runs the cases in a child process so that a hang is caught too. The memory is
+//! counted by `lazysolid_compute::host_memory`'s allocator, installed below.
 
+use lazysolid_compute::host_memory::{self, CountingAllocator};
 use proptest::test_runner::{Config, RngSeed, TestCaseError};
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::fmt::Display;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// Bytes allocated and not yet freed, and the most there were since the last [`check`] began.
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-/// The system allocator, counting: how a reader's allocation from a size field is measured.
-struct Counting;
-
-// SAFETY: every call is forwarded to `System` unchanged; the counters only observe sizes.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) };
-        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = unsafe { System.realloc(ptr, layout, new_size) };
-        if !p.is_null() {
-            LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-            grew(new_size);
-        }
-        p
-    }
-}
-
-fn grew(bytes: usize) {
-    let live = LIVE.fetch_add(bytes, Ordering::Relaxed) + bytes;
-    PEAK.fetch_max(live, Ordering::Relaxed);
-}
-
+/// Counts every allocation of this test binary: how a reader's allocation from a size field
+/// is measured.
 #[global_allocator]
-static ALLOCATOR: Counting = Counting;
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 /// Milliseconds one case may take (debug build, two loaded cores; a case takes milliseconds).
 pub const CASE_TIMEOUT_MS: u32 = 20_000;
@@ -124,10 +81,9 @@ pub fn check<T, E: Display>(
     max_bytes: usize,
     read: impl FnOnce() -> Result<T, E>,
 ) -> Result<(), TestCaseError> {
-    let before = LIVE.load(Ordering::Relaxed);
-    PEAK.store(before, Ordering::Relaxed);
+    let before = host_memory::mark();
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(read));
-    let peak = PEAK.load(Ordering::Relaxed).saturating_sub(before);
+    let peak = host_memory::peak().saturating_sub(before) as usize;
     let broken = match &result {
         Err(panic) => Some(format!(
             "panicked: {}",

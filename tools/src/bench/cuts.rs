@@ -13,13 +13,14 @@
 //! first dispatch).
 
 use super::harness::{time_cpu, Bench, Throughput};
-use super::{host_memory, CommonArgs};
+use super::CommonArgs;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use glam::{DVec3, Vec3};
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_compute::hash::RobinHoodConfig;
+use lazysolid_compute::host_memory;
 use lazysolid_compute::store::{HashStore, StoreKernels};
 use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};

@@ -5,7 +5,6 @@ mod cuts;
 mod glints;
 pub mod harness;
 mod hash;
-pub mod host_memory;
 mod lazy;
 mod multiscale;
 mod normalmaps;

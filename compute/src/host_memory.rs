@@ -1,6 +1,8 @@
-//! Host memory held by this process's heap allocations, live and at its highest since a mark:
-//! the host half of a request's temporary memory (the dependency walk and the request's key
-//! lists run on the host), measured by the global allocator rather than estimated.
+//! Host memory held by this process's heap allocations, live and at its highest since a mark,
+//! measured by the global allocator rather than estimated. A binary opts in by installing
+//! [`CountingAllocator`] as its `#[global_allocator]`: `lazysolid` does, for the host half of a
+//! lazy request's temporary memory (the dependency walk and the key lists run on the host), and
+//! the fuzz tests do, for the memory a reader allocates from a size field.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
