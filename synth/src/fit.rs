@@ -294,6 +294,17 @@ pub fn plan_plane(width: u32, height: u32) -> Result<FitPlan, String> {
     })
 }
 
+/// The pixels of `rect` in a row-major image `width` pixels wide: the crop of every fit, of
+/// exemplars and of maps alike.
+pub fn crop<T: Clone>(pixels: &[T], width: u32, rect: CropRect) -> Vec<T> {
+    (rect.y..rect.y + rect.height)
+        .flat_map(|y| {
+            let row = (y * width) as usize;
+            pixels[row + rect.x as usize..row + (rect.x + rect.width) as usize].to_vec()
+        })
+        .collect()
+}
+
 /// Applies `plan` to `image`.
 fn apply(image: DecodedImage, plan: FitPlan, border: Border) -> SynthResult<FittedExemplar> {
     let name = image.source.file_name().map_or_else(
@@ -308,12 +319,7 @@ fn apply(image: DecodedImage, plan: FitPlan, border: Border) -> SynthResult<Fitt
     };
     let (mut w, mut h, mut rgb) = (image.width, image.height, image.rgb);
     if let Some(c) = plan.crop {
-        rgb = (c.y..c.y + c.height)
-            .flat_map(|y| {
-                let row = (y * w) as usize;
-                rgb[row + c.x as usize..row + (c.x + c.width) as usize].to_vec()
-            })
-            .collect();
+        rgb = crop(&rgb, w, c);
         (w, h) = (c.width, c.height);
     }
     if let Some([rw, rh]) = plan.resample {

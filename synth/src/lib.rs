@@ -71,7 +71,7 @@ pub use energy::{
 pub use error::{SynthError, SynthResult};
 pub use exemplar::{Exemplar, MAX_EXEMPLAR_SIDE, MIN_EXEMPLAR_SIDE};
 pub use fit::{
-    fit_plane, fit_solid, load_plane, load_solid, plan_map, plan_plane, plan_solid, CropRect,
+    crop, fit_plane, fit_solid, load_plane, load_solid, plan_map, plan_plane, plan_solid, CropRect,
     ExemplarFit, FitMode, FitPlan, FittedExemplar,
 };
 pub use gpu::{GpuSynthesizer, LevelTimes};

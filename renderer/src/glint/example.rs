@@ -6,7 +6,7 @@
 use super::error::GlintError;
 use glam::{Mat2, Vec2};
 use lazysolid_synth::{
-    plan_map, resample_lanczos3_f32, Border, ChannelLayout, ExemplarFit, MAX_DECODE_SIDE,
+    crop, plan_map, resample_lanczos3_f32, Border, ChannelLayout, ExemplarFit, MAX_DECODE_SIDE,
 };
 use std::path::Path;
 
@@ -216,12 +216,7 @@ fn read_fitted<const C: usize>(
     let mut texels = prepare(&image);
     let (mut width, mut height) = (w, h);
     if let Some(c) = plan.crop {
-        texels = (c.y..c.y + c.height)
-            .flat_map(|y| {
-                let row = (y * width) as usize;
-                texels[row + c.x as usize..row + (c.x + c.width) as usize].to_vec()
-            })
-            .collect();
+        texels = crop(&texels, width, c);
         (width, height) = (c.width, c.height);
     }
     if let Some([rw, rh]) = plan.resample {
