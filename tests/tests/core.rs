@@ -337,6 +337,51 @@ fn timestamps_measure_elapsed_work() {
     });
 }
 
+/// Every submission is one host wait, counted; while timing is on, timestamps around each
+/// submission add its device time, and while profiling, timestamps around each dispatch add
+/// its kernel's. A readback of device-local memory is a submission of its own.
+#[test]
+fn submissions_count_their_waits_and_time_their_work() {
+    with_gpu(|gpu| {
+        let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
+        let n = 1 << 18;
+        let src = GpuBuffer::<u32>::zeroed(gpu, "src", n).unwrap();
+        let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", n).unwrap();
+        let before = gpu.submissions();
+        copy_words(gpu, &kernel, &src, &dst, n);
+        let one = gpu.submissions().since(before);
+        assert_eq!((one.waits, one.timed, one.device_ns), (1, 0, 0), "{one:?}");
+
+        gpu.time_submissions(true);
+        gpu.profile_dispatches(true);
+        let before = gpu.submissions();
+        for _ in 0..3 {
+            copy_words(gpu, &kernel, &src, &dst, n);
+        }
+        let three = gpu.submissions().since(before);
+        assert_eq!((three.waits, three.timed), (3, 3), "{three:?}");
+        assert!(three.device_ns > 0, "{three:?}");
+        let profile = gpu.take_dispatch_profile();
+        assert_eq!(profile.len(), 1, "{profile:?}");
+        let copy = &profile[0];
+        assert_eq!(copy.kernel, kernels::prims::COPY_WORDS.name);
+        assert_eq!((copy.dispatches, copy.untimed), (3, 0), "{copy:?}");
+        assert!(
+            copy.device_ns > 0.0 && copy.device_ns <= three.device_ns as f64 + 1e3,
+            "{copy:?} within {three:?}"
+        );
+        assert!(gpu.take_dispatch_profile().is_empty(), "taking clears it");
+
+        gpu.time_submissions(false);
+        gpu.profile_dispatches(false);
+        let before = gpu.submissions();
+        copy_words(gpu, &kernel, &src, &dst, n);
+        let after = gpu.submissions().since(before);
+        assert_eq!((after.waits, after.timed), (1, 0), "{after:?}");
+        assert!(gpu.take_dispatch_profile().is_empty());
+    });
+}
+
 /// Timestamps count only their valid bits and wrap there; a tick is `timestampPeriod` ns.
 #[test]
 fn timestamp_differences_wrap_at_the_valid_bits_and_scale_by_the_period() {

@@ -9,6 +9,7 @@ use super::kernel::{BindingKind, Kernel};
 #[cfg(debug_assertions)]
 use super::push::check_push_block;
 use super::push::{push_bytes, PushBlock};
+use super::submissions::PROFILED_DISPATCHES;
 use ash::vk;
 use bytemuck::Pod;
 
@@ -26,6 +27,8 @@ pub struct Recorder<'g> {
     queries: vk::QueryPool,
     timestamps: u32,
     used: KeepAlive,
+    /// While profiling: the query pool of the dispatches' brackets and each one's kernel.
+    profile: Option<(vk::QueryPool, Vec<&'static str>)>,
 }
 
 impl Gpu {
@@ -70,6 +73,8 @@ impl GpuInner {
             pool,
             fence: vk::Fence::null(),
             queries: vk::QueryPool::null(),
+            bracket: vk::QueryPool::null(),
+            profile: vk::QueryPool::null(),
         };
         let alloc = vk::CommandBufferAllocateInfo::default()
             .command_pool(pool)
@@ -86,6 +91,30 @@ impl GpuInner {
         }
         .vk("vkBeginCommandBuffer", "submission")?;
         let mut guard = guard;
+        if inner.submissions.timing() {
+            let info = vk::QueryPoolCreateInfo::default()
+                .query_type(vk::QueryType::TIMESTAMP)
+                .query_count(2);
+            guard.bracket = unsafe { device.create_query_pool(&info, None) }
+                .vk("vkCreateQueryPool", "submission timing")?;
+            unsafe {
+                device.cmd_reset_query_pool(cmd, guard.bracket, 0, 2);
+                device.cmd_write_timestamp(
+                    cmd,
+                    vk::PipelineStageFlags::TOP_OF_PIPE,
+                    guard.bracket,
+                    0,
+                );
+            }
+        }
+        if inner.submissions.profiling() {
+            let info = vk::QueryPoolCreateInfo::default()
+                .query_type(vk::QueryType::TIMESTAMP)
+                .query_count(2 * PROFILED_DISPATCHES);
+            guard.profile = unsafe { device.create_query_pool(&info, None) }
+                .vk("vkCreateQueryPool", "dispatch profile")?;
+            unsafe { device.cmd_reset_query_pool(cmd, guard.profile, 0, 2 * PROFILED_DISPATCHES) };
+        }
         let mut rec = Recorder {
             gpu: inner,
             cmd,
@@ -93,6 +122,7 @@ impl GpuInner {
             queries: vk::QueryPool::null(),
             timestamps: 0,
             used: KeepAlive::default(),
+            profile: (guard.profile != vk::QueryPool::null()).then(|| (guard.profile, Vec::new())),
         };
         drop(layer);
         let result = record(&mut rec);
@@ -104,6 +134,14 @@ impl GpuInner {
             .src_access_mask(vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE)
             .dst_access_mask(vk::AccessFlags::HOST_READ | vk::AccessFlags::HOST_WRITE);
         unsafe {
+            if guard.bracket != vk::QueryPool::null() {
+                device.cmd_write_timestamp(
+                    cmd,
+                    vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                    guard.bracket,
+                    1,
+                );
+            }
             device.cmd_pipeline_barrier(
                 cmd,
                 vk::PipelineStageFlags::ALL_COMMANDS,
@@ -143,36 +181,59 @@ impl GpuInner {
                 })
             }
         }
-        let mut times = Vec::new();
-        if rec.timestamps > 0 {
-            let mut raw = vec![0u64; rec.timestamps as usize];
-            unsafe {
-                device.get_query_pool_results(
-                    rec.queries,
-                    0,
-                    &mut raw,
-                    vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
-                )
-            }
-            .vk("vkGetQueryPoolResults", "timestamps")?;
-            let info = &inner.info;
-            times = raw
-                .iter()
-                .map(|&t| {
-                    elapsed_ns(
-                        raw[0],
-                        t,
-                        info.timestamp_valid_bits,
-                        info.timestamp_period_ns,
-                    )
-                })
-                .collect();
+        inner.submissions.waited();
+        let info = &inner.info;
+        let ns = |start: u64, end: u64| {
+            elapsed_ns(
+                start,
+                end,
+                info.timestamp_valid_bits,
+                info.timestamp_period_ns,
+            )
+        };
+        if guard.bracket != vk::QueryPool::null() {
+            let raw = query_ticks(device, guard.bracket, 2, "submission timing")?;
+            inner.submissions.add_device_ns(ns(raw[0], raw[1]));
         }
+        if let Some((pool, kernels)) = &rec.profile {
+            let timed = kernels.len().min(PROFILED_DISPATCHES as usize);
+            let raw = query_ticks(device, *pool, 2 * timed, "dispatch profile")?;
+            for (i, kernel) in kernels.iter().enumerate() {
+                let time = (i < timed).then(|| ns(raw[2 * i], raw[2 * i + 1]));
+                inner.submissions.add_dispatch(kernel, time);
+            }
+        }
+        let times = match query_ticks(device, rec.queries, rec.timestamps as usize, "timestamps")? {
+            raw if raw.is_empty() => Vec::new(),
+            raw => raw.iter().map(|&t| ns(raw[0], t)).collect(),
+        };
         drop(rec);
         drop(guard);
         drop(layer);
         Ok((value, times))
     }
+}
+
+/// The first `count` timestamps of `pool`, in ticks, once written (none when `count` is 0).
+fn query_ticks(
+    device: &ash::Device,
+    pool: vk::QueryPool,
+    count: usize,
+    what: &str,
+) -> GpuResult<Vec<u64>> {
+    let mut raw = vec![0u64; count];
+    if count > 0 {
+        unsafe {
+            device.get_query_pool_results(
+                pool,
+                0,
+                &mut raw,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
+        }
+        .vk("vkGetQueryPoolResults", what)?;
+    }
+    Ok(raw)
 }
 
 /// Nanoseconds from tick `start` to tick `end` of a queue whose timestamps have `valid_bits`
@@ -195,6 +256,10 @@ struct PoolGuard<'d> {
     pool: vk::CommandPool,
     fence: vk::Fence,
     queries: vk::QueryPool,
+    /// The two timestamps around the whole submission while timing is on.
+    bracket: vk::QueryPool,
+    /// The timestamps around each dispatch while profiling.
+    profile: vk::QueryPool,
 }
 
 impl Drop for PoolGuard<'_> {
@@ -205,6 +270,11 @@ impl Drop for PoolGuard<'_> {
             }
             if self.queries != vk::QueryPool::null() {
                 self.device.destroy_query_pool(self.queries, None);
+            }
+            for pool in [self.bracket, self.profile] {
+                if pool != vk::QueryPool::null() {
+                    self.device.destroy_query_pool(pool, None);
+                }
             }
             self.device.destroy_command_pool(self.pool, None);
         }
@@ -418,11 +488,30 @@ impl Recorder<'_> {
                     &push_bytes,
                 );
             }
+            let timed = match &mut self.profile {
+                Some((pool, kernels)) => {
+                    let i = kernels.len() as u32;
+                    kernels.push(def.name);
+                    (i < PROFILED_DISPATCHES).then_some((*pool, 2 * i))
+                }
+                None => None,
+            };
+            if let Some((pool, q)) = timed {
+                d.cmd_write_timestamp(self.cmd, vk::PipelineStageFlags::TOP_OF_PIPE, pool, q);
+            }
             match launch {
                 Launch::Direct([x, y, z]) => d.cmd_dispatch(self.cmd, x, y, z),
                 Launch::Indirect(buffer, offset) => {
                     d.cmd_dispatch_indirect(self.cmd, buffer, offset)
                 }
+            }
+            if let Some((pool, q)) = timed {
+                d.cmd_write_timestamp(
+                    self.cmd,
+                    vk::PipelineStageFlags::BOTTOM_OF_PIPE,
+                    pool,
+                    q + 1,
+                );
             }
         }
         self.pending_write = true;

@@ -93,6 +93,7 @@ pub(crate) struct GpuInner {
     pub(crate) staging_copies: AtomicU64,
     /// Bytes of buffer memory allocated, live and peak.
     pub(crate) meter: super::meter::Meter,
+    pub(crate) submissions: super::submissions::SubmissionMeter,
     validation_log: Arc<ValidationLog>,
 }
 
@@ -214,6 +215,7 @@ impl Gpu {
                         memory,
                         staging_copies: AtomicU64::new(0),
                         meter: super::meter::Meter::default(),
+                        submissions: super::submissions::SubmissionMeter::default(),
                         validation_log,
                     }),
                 })

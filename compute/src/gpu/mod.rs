@@ -23,6 +23,7 @@ mod memory;
 mod meter;
 mod push;
 mod records;
+mod submissions;
 mod validation;
 
 pub use address::DeviceAddress;
@@ -41,4 +42,5 @@ pub use push::{
     PushFieldDef, PushRegistration, PushValue,
 };
 pub use records::DeviceRecords;
+pub use submissions::{KernelTime, Submissions};
 pub use validation::{ValidationLog, VALIDATION_LAYER};

@@ -190,8 +190,14 @@ impl RadixSort {
         Ok(())
     }
 
+    /// Invocations of a pass: about 2048 keys each. A GPU gets whole workgroups of them; a CPU
+    /// device runs a partial workgroup rather than give each invocation a few keys, because
+    /// every invocation writes, and the scan reads, all [`RADIX_BUCKETS`] of its counters.
     fn threads_for(&self, n: u32) -> u32 {
         let wg = DEFAULT_WORKGROUP_SIZE;
+        if self.gpu.info().is_cpu() {
+            return n.div_ceil(2048).clamp(1, self.max_threads.max(1));
+        }
         let wanted = n.div_ceil(2048).div_ceil(wg) * wg;
         wanted.clamp(wg, self.max_threads.max(wg))
     }

@@ -2,7 +2,6 @@
 //! `glsl/include/segments.glsl`), grouped into chunks that one descriptor binding can cover.
 
 use crate::gpu::{DeviceInfo, GpuBuffer, GpuResult, Kernel, Recorder};
-use crate::shader_constants::DEFAULT_WORKGROUP_SIZE;
 
 crate::push_block! {
     /// Push block of `reduce_segments.comp`.
@@ -26,6 +25,12 @@ crate::push_block! {
     }
 }
 
+/// Words a CPU device scans or reduces in one invocation rather than splitting them: each
+/// dispatch costs lavapipe about 0.1 ms whatever its size, more than one lane's pass over
+/// this many words, and larger inputs get at most this many segments, so that the segment
+/// totals take one invocation in turn (a scan is 1 or 3 dispatches, not up to 7).
+pub(crate) const CPU_SINGLE_SEGMENT: usize = 4096;
+
 /// The split of `n` words: segment length (a multiple of 4), number of segments and words per
 /// bound chunk (a multiple of the segment length).
 #[derive(Clone, Copy, Debug)]
@@ -38,15 +43,20 @@ pub(crate) struct Split {
 
 impl Split {
     /// On a CPU device, long segments: each invocation streams through memory like a CPU
-    /// thread, with enough workgroups (about 32) to balance the driver's threads. On a GPU,
+    /// thread, at most [`CPU_SINGLE_SEGMENT`] of them (16 workgroups, enough to balance the
+    /// driver's threads), and small inputs in a single segment. On a GPU,
     /// short segments, so neighbouring invocations read neighbouring quads.
     pub fn new(n: usize, device: &DeviceInfo, forced: Option<usize>) -> Split {
         let seg_len = if let Some(len) = forced {
             len.next_multiple_of(4).max(4)
         } else if device.device_type == "cpu" {
-            (n / (DEFAULT_WORKGROUP_SIZE as usize * 32))
-                .next_multiple_of(4)
-                .clamp(16, 1 << 16)
+            if n <= CPU_SINGLE_SEGMENT {
+                n.next_multiple_of(4).max(4)
+            } else {
+                n.div_ceil(CPU_SINGLE_SEGMENT)
+                    .next_multiple_of(4)
+                    .clamp(16, 1 << 16)
+            }
         } else {
             16
         };

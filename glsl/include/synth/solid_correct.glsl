@@ -62,7 +62,32 @@ bool better(uint d, uint rank, uvec3 t, uint bd, uint br, uvec3 bt) {
 // of the gathered candidates unless `keep_current` is set (the rule before 2026-12-03, kept as
 // an ablation): a merely translated triple has a near-zero distance inside its block and would
 // otherwise win although its three exemplar colours disagree.
-uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, uint keep_current) {
+// The parts of the decision a profile runs (`parts` of solid_correct; CorrectParts in
+// synth/src/solid/lazy/gpu.rs): reading the neighbours, then the neighbourhood sums, then each
+// gathered set's own-role distance, then everything. Below SOLID_PARTS_ALL the current triple
+// is returned, kept dependent on what was computed so that the compiler keeps that work.
+const uint SOLID_PARTS_NEIGHBOURS = 1u;
+const uint SOLID_PARTS_SUMS = 2u;
+const uint SOLID_PARTS_OWN = 3u;
+const uint SOLID_PARTS_ALL = 4u;
+
+// t, made to depend on x (never changed by it in practice).
+uvec3 solid_depend(uvec3 t, uint x) {
+    return x == 0x9e3779b9u ? t ^ uvec3(1u) : t;
+}
+
+uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, uint keep_current,
+                    uint parts) {
+    if (parts == SOLID_PARTS_NEIGHBOURS) {
+        uint x = 0u;
+        for (int n = 0; n < 27; n++) {
+            ivec3 d = ivec3(n % 3, (n / 3) % 3, n / 9) - 1;
+            if (d.x == 0 || d.y == 0 || d.z == 0) {
+                x ^= around[n].x ^ around[n].y ^ around[n].z;
+            }
+        }
+        return solid_depend(around[13], x);
+    }
     solid_side = side;
     for (uint r = 0; r < 3; r++) {
         appearance[r] = U64Ptr(table).v[r];
@@ -92,6 +117,16 @@ uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, u
         }
     }
     uvec3 current = around[13];
+    if (parts == SOLID_PARTS_SUMS) {
+        uint x = 0u;
+        for (uint r = 0; r < 3; r++) {
+            for (int j = 0; j < 8; j++) {
+                x ^= uint(sums[r][j].x ^ sums[r][j].y ^ sums[r][j].z ^ sums[r][j].w);
+            }
+        }
+        return solid_depend(current, x);
+    }
+    uint own_sum = 0u;
     // "No best yet": above every distance (at most 3 * 1.9e7), the rank of a non-current
     // triple; the first gathered candidate replaces it (sets are never empty).
     uint best_d = 0xffffffffu;
@@ -128,6 +163,10 @@ uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, u
             // that share of the distance once per set, and the whole set skipped when it
             // alone is above the best (the shares are never negative; as in correct_voxel).
             uint own = role_distance(r, synth_pack(uvec2(base % solid_side, base / solid_side)));
+            if (parts == SOLID_PARTS_OWN) {
+                own_sum += own;
+                continue;
+            }
             if (own > best_d) continue;
             uint cnt = U32Ptr(counts[r]).v[base];
             for (uint c = 0u; c < cnt; c++) {
@@ -144,6 +183,9 @@ uvec3 solid_correct(uvec3 around[27], uint64_t table, uint side, uint spacing, u
                 }
             }
         }
+    }
+    if (parts == SOLID_PARTS_OWN) {
+        return solid_depend(current, own_sum);
     }
     return best_t;
 }

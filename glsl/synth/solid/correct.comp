@@ -54,7 +54,8 @@ void main() {
         around[n] = uvec3(U32Ptr(pc.source).v[vi * 3u], U32Ptr(pc.source).v[vi * 3u + 1u],
                           U32Ptr(pc.source).v[vi * 3u + 2u]);
     }
-    uvec3 best_t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current);
+    uvec3 best_t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current,
+                                 SOLID_PARTS_ALL);
     uint vi = (local.z * pc.size.y + local.y) * pc.size.x + local.x;
     U32Ptr(pc.triples).v[vi * 3u] = best_t.x;
     U32Ptr(pc.triples).v[vi * 3u + 1u] = best_t.y;

@@ -29,6 +29,10 @@ layout(push_constant, scalar) uniform Push {
     uint strength;
 } pc;
 
+// Which parts of the decision run (SOLID_PARTS_*): all of them, except in a profile
+// (`lazysolid bench lazy --profile-correction`), whose versions are then wrong.
+layout(constant_id = 1) const uint PARTS = SOLID_PARTS_ALL;
+
 void main() {
     uint i = uint(global_index());
     if (i >= pc.n) {
@@ -65,7 +69,7 @@ void main() {
             return;
         }
     }
-    uvec3 t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current);
+    uvec3 t = solid_correct(around, pc.table, pc.side, pc.spacing, pc.keep_current, PARTS);
     lazy_store(l, s, pc.version, t);
     U32Ptr(l.counts).v[s] = pc.version + 1u;
 }

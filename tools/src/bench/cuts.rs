@@ -18,7 +18,7 @@ use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
 use glam::{DVec3, Vec3};
-use lazysolid_compute::gpu::Gpu;
+use lazysolid_compute::gpu::{Gpu, Submissions};
 use lazysolid_compute::hash::RobinHoodConfig;
 use lazysolid_compute::host_memory;
 use lazysolid_compute::store::{HashStore, StoreKernels};
@@ -56,6 +56,11 @@ pub struct CutsArgs {
     /// budget a cut recomputes the dropped levels it needs.
     #[arg(long, value_name = "keep|NMB")]
     pub memory: Option<MemoryPolicy>,
+    /// Also time every dispatch of every cut by timestamps of its own and note the device
+    /// time per kernel (the timestamps end each dispatch on its own, so wall and device times
+    /// of a profiled run are a little longer than an unprofiled one's).
+    #[arg(long)]
+    pub profile_dispatches: bool,
 }
 
 /// The measured plane cuts through the centre of the unit cube: normals.
@@ -83,7 +88,11 @@ struct CutCost {
     new_voxels: usize,
     versions: u64,
     wall_ms: f64,
-    device_ms: f64,
+    /// Device time of the synthesis kernels alone (the lazy report's).
+    synthesis_ms: f64,
+    /// What the cut's submissions did: host waits, and device time from timestamps around
+    /// every submission (the walk, sorts, synthesis, colours, inserts, copies).
+    submissions: Submissions,
     state_growth: i64,
     request_bytes: u64,
     store_before: u64,
@@ -174,7 +183,9 @@ impl Holder {
         let state_before = self.matter.state_bytes();
         let device_before = self.gpu.mark_memory();
         let host_before = host_memory::mark();
+        let submissions_before = self.gpu.submissions();
         let (grown, wall_ms) = time_cpu(|| self.matter.grow(voxelizer, &caps.0, &caps.1));
+        let submissions = self.gpu.submissions().since(submissions_before);
         let device = self.gpu.memory_use();
         let (host_live, host_peak) = (host_memory::live(), host_memory::peak());
         let grown = grown?;
@@ -185,7 +196,8 @@ impl Holder {
             new_voxels: grown.new_voxels as usize,
             versions: synthesis.map_or(0, |s| s.versions),
             wall_ms,
-            device_ms: synthesis.map_or(0.0, |s| s.gpu_ms),
+            synthesis_ms: synthesis.map_or(0.0, |s| s.gpu_ms),
+            submissions,
             state_growth: self.matter.state_bytes() as i64 - state_before as i64,
             // The request's own buffers: keys (8 B) and colours (4 B) per new voxel.
             request_bytes: 12 * grown.new_voxels,
@@ -218,6 +230,9 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         );
     }
     let gpu = global.gpu()?;
+    // Device time is the sum over every submission of a cut, bracketed by timestamps.
+    gpu.time_submissions(true);
+    gpu.profile_dispatches(args.profile_dispatches);
     let exemplars = args.exemplar.load()?;
     let mesh_path = assets::mesh("--mesh", &args.mesh)?;
     let mesh = Mesh::load_unit_cube(&mesh_path)
@@ -239,7 +254,8 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         runs: 1,
         out_dir: args.common.out_dir.clone(),
     };
-    let cases = args.voxel_res.len() * (CUTS.len() + args.pieces.len());
+    // Three rows a cut: wall, device and the rest.
+    let cases = 3 * args.voxel_res.len() * (CUTS.len() + args.pieces.len());
     let mut bench = Bench::new("bench-cuts", &gpu, &once, cases as u64)?;
     let policy = args.memory.unwrap_or_default();
     println!("synthesis state memory policy: {policy}");
@@ -324,6 +340,7 @@ impl Measured<'_> {
     ) -> anyhow::Result<()> {
         bench.status(self.case.to_string());
         let mut cost = None;
+        holder.gpu.take_dispatch_profile();
         bench.case(
             self.case,
             self.cap.1.len() as u64,
@@ -337,7 +354,31 @@ impl Measured<'_> {
                 Ok(ms)
             },
         )?;
-        note_cost(notes, self.case, &cost.context("measured")?);
+        let cost = cost.context("measured")?;
+        // The same cut's device time and the rest, as rows beside its wall time.
+        let device_ms = cost.submissions.device_ms();
+        bench.case(
+            self.case,
+            self.cap.1.len() as u64,
+            "device, every submission",
+            Throughput::Elements,
+            None,
+            || Ok(device_ms),
+        )?;
+        bench.case(
+            self.case,
+            self.cap.1.len() as u64,
+            "wall - device",
+            Throughput::Elements,
+            None,
+            || Ok(cost.wall_ms - device_ms),
+        )?;
+        note_cost(notes, self.case, &cost);
+        for k in holder.gpu.take_dispatch_profile() {
+            let what = format!("{}: kernel {}", self.case, k.kernel);
+            notes.push((format!("{what} device ms"), k.device_ns * 1e-6));
+            notes.push((format!("{what} dispatches"), k.dispatches as f64));
+        }
         Ok(())
     }
 }
@@ -348,8 +389,22 @@ fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {
     add("cap surface voxels", c.cap_voxels as f64);
     add("new voxels", c.new_voxels as f64);
     add("voxel versions synthesized", c.versions as f64);
+    add(
+        "voxel versions per new voxel",
+        c.versions as f64 / c.new_voxels.max(1) as f64,
+    );
     add("wall ms", c.wall_ms);
-    add("synthesis device ms", c.device_ms);
+    add("device ms, every submission", c.submissions.device_ms());
+    add(
+        "wall - device ms (host work, allocation, waits)",
+        c.wall_ms - c.submissions.device_ms(),
+    );
+    add(
+        "wall - device % of wall",
+        100.0 * (1.0 - c.submissions.device_ms() / c.wall_ms.max(1e-9)),
+    );
+    add("host waits (submissions)", c.submissions.waits as f64);
+    add("synthesis kernels device ms", c.synthesis_ms);
     // Negative when the memory policy dropped levels the state held before the cut.
     add("kept state growth MB", c.state_growth as f64 / 1e6);
     add(

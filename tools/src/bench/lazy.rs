@@ -12,7 +12,7 @@ use crate::cli::tuning::SolidOrder;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
-use lazysolid_compute::gpu::{Gpu, GpuBuffer};
+use lazysolid_compute::gpu::{Gpu, GpuBuffer, Submissions};
 use lazysolid_compute::hash::morton_decode;
 use lazysolid_compute::hash::perfect::PerfectAccess;
 use lazysolid_compute::hash::RobinHoodConfig;
@@ -72,6 +72,11 @@ pub struct LazyArgs {
     /// surface request, so a large run may want a small one.
     #[arg(long, value_name = "N")]
     pub section_res: Option<u32>,
+    /// Also profile the first mesh's request at the first resolution: once per cumulative part
+    /// of the correction, on a fresh state keeping every version, each dispatch timed on its
+    /// own (`docs/lazy.md`, "Where the device time goes").
+    #[arg(long)]
+    pub profile_correction: bool,
 }
 
 /// The exemplar of the lazy suites (`lazy`, `cuts`): one image playing all three roles.
@@ -127,6 +132,8 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "--section-res {section_res}: must lie in 16..=2048"
     );
     let gpu = global.gpu()?;
+    // Device time is the sum over every submission of a request, bracketed by timestamps.
+    gpu.time_submissions(true);
     let exemplars = args.exemplar.load()?;
     let cache = DiskCache::user().ok();
     let state = |r: u32| {
@@ -165,7 +172,8 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 .iter()
                 .map(|&k| morton_decode(k, 3).map(|v| v as i32))
                 .collect();
-            let last = RefCell::new(None::<(Vec<[u32; 3]>, LazyReport, GpuLazySolid)>);
+            type Last = (Vec<[u32; 3]>, LazyReport, GpuLazySolid, Submissions, f64);
+            let last = RefCell::new(None::<Last>);
             let case = format!("{name} {r}³");
             bench.case(
                 &case,
@@ -175,13 +183,20 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 None,
                 || {
                     let mut lazy = state(r)?;
+                    let before = gpu.submissions();
                     let (result, ms) = time_cpu(|| lazy.request(&requested));
+                    let submissions = gpu.submissions().since(before);
                     let (triples, report) = result?;
-                    *last.borrow_mut() = Some((triples, report, lazy));
+                    *last.borrow_mut() = Some((triples, report, lazy, submissions, ms));
                     Ok(ms)
                 },
             )?;
-            let (triples, report, lazy) = last.into_inner().context("no measured run")?;
+            let (triples, report, lazy, submissions, wall_ms) =
+                last.into_inner().context("no measured run")?;
+            if args.profile_correction && name == &meshes[0] && r == sizes[0] {
+                bench.status(format!("{case}: correction profile"));
+                super::correction_profile::run(&gpu, &|| state(r), &requested, &case, &mut notes)?;
+            }
             let bytes = lazy.bytes();
             drop(lazy);
             bench.status(format!("{name} {r}³: filling the stores"));
@@ -240,6 +255,28 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             for (store, b) in stores {
                 add(&mut notes, &format!("store MB: {store}"), b as f64 / 1e6);
             }
+            // The last run's wall time split by timestamps around every submission.
+            add(&mut notes, "last run wall ms", wall_ms);
+            add(
+                &mut notes,
+                "last run device ms, every submission",
+                submissions.device_ms(),
+            );
+            add(
+                &mut notes,
+                "last run wall - device ms",
+                wall_ms - submissions.device_ms(),
+            );
+            add(
+                &mut notes,
+                "host waits (submissions)",
+                submissions.waits as f64,
+            );
+            add(
+                &mut notes,
+                "voxel versions per new voxel",
+                computed as f64 / report.upsampled.iter().sum::<u64>().max(1) as f64,
+            );
             add(&mut notes, "dependency walk ms", report.deps_ms);
             add(&mut notes, "synthesis device ms", report.gpu_ms);
             add(&mut notes, "kept state MB", bytes as f64 / 1e6);

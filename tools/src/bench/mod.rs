@@ -1,6 +1,7 @@
 //! `lazysolid bench …`: benchmark suites sharing one harness (warm-up, repeated runs, min and
 //! median, ratios against a baseline measured in the same run, table + CSV + JSON).
 
+mod correction_profile;
 mod cuts;
 mod glints;
 pub mod harness;

@@ -16,6 +16,7 @@
 //! or whole levels from the coarsest within a byte budget, applied after each chunk of
 //! [`LAZY_CHUNK_VOXELS`] requested voxels; [`GpuLazySolid::bytes`] reports what is kept.
 
+use super::correct_parts::CorrectParts;
 use super::deps::{Dependencies, LevelDeps};
 use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
 use super::policy::{MemoryPolicy, LAZY_CHUNK_VOXELS};
@@ -41,6 +42,7 @@ use lazysolid_compute::hash::{
     Universe,
 };
 use lazysolid_compute::prims::{RadixSort, Scan, MAX_ELEMENTS};
+use lazysolid_compute::shader_constants::DEFAULT_WORKGROUP_SIZE;
 use lazysolid_compute::voxel::{SortUnique, VoxelKeys};
 use std::sync::Arc;
 
@@ -372,6 +374,9 @@ pub struct GpuLazySolid {
 /// `(state, index of the chunk's first key, the chunk's keys)`.
 type ChunkExtract<'a> = dyn FnMut(&mut GpuLazySolid, usize, &[u64]) -> SynthResult<()> + 'a;
 
+/// The specialization constant of `lazy_correct.comp` that selects its parts (`PARTS`).
+const CORRECT_PARTS_ID: u32 = 1;
+
 /// Initial slots per level.
 const INITIAL_SLOTS: usize = 1024;
 
@@ -477,6 +482,23 @@ impl GpuLazySolid {
     /// The relief the texels carry, if any.
     pub fn relief(&self) -> Option<&SolidRelief> {
         self.relief.as_ref()
+    }
+
+    /// How much of the correction runs from now on: [`CorrectParts::All`] (the default) except
+    /// in a profile of its parts, where the state's later versions are wrong.
+    ///
+    /// # Errors
+    /// Pipeline creation failures.
+    pub fn set_correct_parts(&mut self, parts: CorrectParts) -> SynthResult<()> {
+        self.correct = match parts {
+            CorrectParts::All => self.gpu.kernel(&synth_solid::LAZY_CORRECT)?,
+            part => self.gpu.kernel_with(
+                &synth_solid::LAZY_CORRECT,
+                DEFAULT_WORKGROUP_SIZE,
+                &[(CORRECT_PARTS_ID, part.constant())],
+            )?,
+        };
+        Ok(())
     }
 
     /// What the state keeps between requests from now on (applied after the next chunk).

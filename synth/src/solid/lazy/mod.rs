@@ -2,6 +2,7 @@
 //! level by level, equal bit for bit to the full volume on the requested voxels (Dong et al.
 //! 2008; thesis 003 lines 1083–1096).
 
+mod correct_parts;
 mod deps;
 pub(crate) mod gpu;
 mod keys;
@@ -9,6 +10,7 @@ mod matter;
 mod policy;
 mod state_cpu;
 
+pub use correct_parts::CorrectParts;
 pub use deps::{
     class_index, dependencies_cpu, finest_growth_cpu, Dependencies, LevelDeps, PLANE_NEIGHBOURS,
 };

@@ -4,7 +4,8 @@ use crate::support::{lazysolid, terra_square, BenchRun};
 
 /// `lazysolid bench cuts` times every plane cut and the fracture as one row each, with the
 /// voxels the caps need, the new ones synthesized, the store's growth and the measured
-/// temporary memory on the device and the host.
+/// temporary memory on the device and the host, and its device time, the rest and its host
+/// waits.
 #[test]
 fn bench_cuts_times_every_cut_and_fracture() {
     let out = tempfile::tempdir().unwrap();
@@ -34,11 +35,14 @@ fn bench_cuts_times_every_cut_and_fracture() {
             "32³ fracture 4 pieces: host heap MB at peak above before",
             "32³ fracture 4 pieces: temporary MB, device + host",
             "lazy request + insert (wall)",
+            "device, every submission",
+            "32³ fracture 4 pieces: host waits (submissions)",
+            "32³ fracture 4 pieces: voxel versions per new voxel",
             "thesis (2008 GPU): 8 ms",
         ],
     );
     let json = bench.json();
-    assert!(json["rows"].as_array().is_some_and(|r| r.len() == 5));
+    assert!(json["rows"].as_array().is_some_and(|r| r.len() == 15));
     // The memory figures are measured: a cut that synthesizes allocates device buffers and
     // host lists, and frees its temporaries.
     let note = |k: &str| {
@@ -51,4 +55,13 @@ fn bench_cuts_times_every_cut_and_fracture() {
     assert!(note(&format!("{case}: device MB at peak above before")) > 0.0);
     assert!(note(&format!("{case}: host heap MB at peak above before")) > 0.0);
     assert!(note(&format!("{case}: device temporary MB (peak - kept)")) > 0.0);
+    // Device time comes from timestamps around every submission of the cut: positive, and
+    // within the cut's wall time.
+    let device = note(&format!("{case}: device ms, every submission"));
+    let wall = note(&format!("{case}: wall ms"));
+    assert!(
+        device > 0.0 && device <= wall,
+        "device {device} ms, wall {wall} ms"
+    );
+    assert!(note(&format!("{case}: host waits (submissions)")) >= 1.0);
 }

@@ -5,7 +5,7 @@ use crate::support::{lazysolid, terra_square, BenchRun};
 
 /// `bench lazy` on the bunny at 16³ with a 16² terra crop (its candidates take seconds): the
 /// timed row, the per-level notes, each store's bytes and the cross-section figure at the
-/// resolution `--section-res` asks for.
+/// resolution `--section-res` asks for; and the correction's profile, part by part.
 #[test]
 fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
     let out = tempfile::tempdir().unwrap();
@@ -17,6 +17,7 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
             .arg("--exemplar")
             .arg(&exemplar)
             .args(["--runs", "1", "--warmup", "0", "--section-res", "32"])
+            .arg("--profile-correction")
             .env("LAZYSOLID_CACHE_DIR", dir.path().join("cache")),
         out.path(),
         &[
@@ -27,7 +28,33 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
             "bunny00 16³: store MB: perfect hash (trilinear)",
             "bunny00 16³: level 0 voxels",
             "bunny00 32³ cross-section z = 16: voxel versions computed after the surface",
+            "bunny00 16³: host waits (submissions)",
+            "bunny00 16³: last run device ms, every submission",
+            "bunny00 16³, correction profile (fresh state, keep): neighbourhood sums adds ms",
+            "bunny00 16³, correction profile (fresh state, keep): kernel synth/solid/lazy_correct.comp dispatches",
         ],
+    );
+    // The profile times the correction once per cumulative part: each run computes at least
+    // what the one before it did, and the whole correction is the synthesizer's work.
+    let json = bench.json();
+    let note = |k: &str| {
+        json["derived"][k]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{k}: {}", json["derived"]))
+    };
+    let profile = "bunny00 16³, correction profile (fresh state, keep)";
+    let parts = [
+        "neighbour lookups and reads",
+        "neighbourhood sums",
+        "candidate sets and own-role distances",
+        "candidate distances and choice",
+    ]
+    .map(|p| note(&format!("{profile}: up to {p}: lazy_correct device ms")));
+    assert!(parts.iter().all(|&ms| ms > 0.0), "{parts:?}");
+    assert!(
+        note(&format!("{profile}: voxel versions computed"))
+            == note("bunny00 16³: voxel versions computed"),
+        "the profiled request is the measured one"
     );
     let figures = bench
         .entries
