@@ -61,15 +61,7 @@ const FORMAT: FileFormat = FileFormat {
     bound: |_| BOUND,
 };
 
-#[test]
-fn the_seeds_are_read() {
-    FORMAT.seeds_are_read(seeds());
-}
-
-#[test]
-fn regression_cases() {
-    FORMAT.replay_regressions();
-}
+fixed_tests!(FORMAT, seeds());
 
 proptest! {
     #![proptest_config(oracle::config_for(seeds().len()))]

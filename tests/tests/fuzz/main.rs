@@ -7,6 +7,22 @@
 //! CI runs [`oracle::cases`] cases per seed file; `LAZYSOLID_FUZZ_CASES=N` runs more (the long
 //! mode, `docs/testing.md`).
 
+/// A format's two fixed tests: its seeds are read, and its regression inputs replayed
+/// (`FileFormat::seeds_are_read`, `FileFormat::replay_regressions`).
+macro_rules! fixed_tests {
+    ($format:expr, $seeds:expr) => {
+        #[test]
+        fn the_seeds_are_read() {
+            $format.seeds_are_read($seeds);
+        }
+
+        #[test]
+        fn regression_cases() {
+            $format.replay_regressions();
+        }
+    };
+}
+
 mod caches;
 mod graphs;
 mod images;
