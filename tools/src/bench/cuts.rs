@@ -27,7 +27,8 @@ use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment,
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy, StoredMatter,
+    GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy, SharedLazy,
+    StoredMatter,
 };
 use lazysolid_synth::solid::SolidExemplars;
 use std::sync::{Arc, Mutex};
@@ -78,6 +79,8 @@ const THESIS: &str = "thesis (2008 GPU): 8 ms and 14.4 MB of temporary memory pe
 /// Synthesized matter over the outer surface in a coherent-hash store: what every cut grows.
 struct Holder {
     matter: StoredMatter<HashStore>,
+    /// The matter's lazy state, for its per-level report of each cut.
+    lazy: SharedLazy,
     gpu: Gpu,
 }
 
@@ -90,6 +93,9 @@ struct CutCost {
     wall_ms: f64,
     /// Device time of the synthesis kernels alone (the lazy report's).
     synthesis_ms: f64,
+    /// Per level, coarsest first: versions computed and voxels new to the state (the rest of
+    /// the versions are corrections, and under a budget recomputations of dropped levels).
+    levels: Vec<(u64, u64)>,
     /// What the cut's submissions did: host waits, and device time from timestamps around
     /// every submission (the walk, sorts, synthesis, colours, inserts, copies).
     submissions: Submissions,
@@ -153,11 +159,12 @@ impl Holder {
         )
         .context("the lazy synthesis state")?;
         let mesh = setup.mesh;
+        let lazy: SharedLazy = Arc::new(Mutex::new(lazy));
         let (matter, _) = StoredMatter::build(
             setup.gpu,
             voxelizer,
             MatterSpec {
-                colours: MatterColours::Lazy(Arc::new(Mutex::new(lazy))),
+                colours: MatterColours::Lazy(lazy.clone()),
                 voxels: MatterVoxels::Surface,
                 resolution: r,
             },
@@ -170,6 +177,7 @@ impl Holder {
         )?;
         Ok(Holder {
             matter,
+            lazy,
             gpu: setup.gpu.clone(),
         })
     }
@@ -190,6 +198,19 @@ impl Holder {
         let (host_live, host_peak) = (host_memory::live(), host_memory::peak());
         let grown = grown?;
         let synthesis = grown.synthesis;
+        let levels = match synthesis {
+            Some(_) => {
+                let lazy = self.lazy.lock().unwrap_or_else(|p| p.into_inner());
+                let report = lazy.last_report();
+                report
+                    .computed
+                    .iter()
+                    .zip(&report.upsampled)
+                    .map(|(&c, &u)| (c, u))
+                    .collect()
+            }
+            None => Vec::new(),
+        };
         Ok(CutCost {
             cap_triangles: caps.1.len(),
             cap_voxels: grown.requested_voxels as usize,
@@ -197,6 +218,7 @@ impl Holder {
             versions: synthesis.map_or(0, |s| s.versions),
             wall_ms,
             synthesis_ms: synthesis.map_or(0.0, |s| s.gpu_ms),
+            levels,
             submissions,
             state_growth: self.matter.state_bytes() as i64 - state_before as i64,
             // The request's own buffers: keys (8 B) and colours (4 B) per new voxel.
@@ -405,6 +427,10 @@ fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {
     );
     add("host waits (submissions)", c.submissions.waits as f64);
     add("synthesis kernels device ms", c.synthesis_ms);
+    for (l, &(computed, new)) in c.levels.iter().enumerate() {
+        add(&format!("level {l} versions computed"), computed as f64);
+        add(&format!("level {l} voxels new to the state"), new as f64);
+    }
     // Negative when the memory policy dropped levels the state held before the cut.
     add("kept state growth MB", c.state_growth as f64 / 1e6);
     add(

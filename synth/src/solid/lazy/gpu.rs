@@ -368,6 +368,8 @@ pub struct GpuLazySolid {
     policy: MemoryPolicy,
     /// Requested voxels synthesized together before the policy applies.
     chunk_voxels: usize,
+    /// What the last request did (`GpuLazySolid::last_report`).
+    last: LazyReport,
 }
 
 /// What a chunked request does with each chunk while its final versions are stored:
@@ -458,6 +460,7 @@ impl GpuLazySolid {
             relief: None,
             policy: MemoryPolicy::default(),
             chunk_voxels: LAZY_CHUNK_VOXELS,
+            last: LazyReport::default(),
         };
         Ok(me)
     }
@@ -625,6 +628,13 @@ impl GpuLazySolid {
         Ok(())
     }
 
+    /// What the last [`GpuLazySolid::colours`] request did, per level: for callers that see
+    /// only a summary of it (a store that grows by a cut), such as `bench cuts`' per-level
+    /// notes of what a cut recomputes.
+    pub fn last_report(&self) -> &LazyReport {
+        &self.last
+    }
+
     /// Bytes of the kept state: tables, versions and counts of every level.
     pub fn bytes(&self) -> u64 {
         let record = <LazyLevelRecord<'_> as PushValue>::SIZE as u64;
@@ -730,6 +740,7 @@ impl GpuLazySolid {
         })?;
         check_errors(&errors, "voxels missing or not final")?;
         report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.last = report.clone();
         Ok((colours, report))
     }
 

@@ -4,8 +4,8 @@ use crate::support::{lazysolid, terra_square, BenchRun};
 
 /// `lazysolid bench cuts` times every plane cut and the fracture as one row each, with the
 /// voxels the caps need, the new ones synthesized, the store's growth and the measured
-/// temporary memory on the device and the host, and its device time, the rest and its host
-/// waits.
+/// temporary memory on the device and the host, its device time, the rest and its host
+/// waits, and per level the versions it computed.
 #[test]
 fn bench_cuts_times_every_cut_and_fracture() {
     let out = tempfile::tempdir().unwrap();
@@ -64,4 +64,20 @@ fn bench_cuts_times_every_cut_and_fracture() {
         "device {device} ms, wall {wall} ms"
     );
     assert!(note(&format!("{case}: host waits (submissions)")) >= 1.0);
+    // Per level, the versions the cut computed add up to its total, and the finest level
+    // gained voxels.
+    let per_level: Vec<(f64, f64)> = (0..)
+        .map_while(|l| {
+            let computed =
+                json["derived"][format!("{case}: level {l} versions computed")].as_f64()?;
+            let new = note(&format!("{case}: level {l} voxels new to the state"));
+            Some((computed, new))
+        })
+        .collect();
+    assert!(per_level.len() > 1, "{per_level:?}");
+    assert_eq!(
+        per_level.iter().map(|l| l.0).sum::<f64>(),
+        note(&format!("{case}: voxel versions synthesized"))
+    );
+    assert!(per_level.last().is_some_and(|l| l.1 > 0.0), "{per_level:?}");
 }
