@@ -5,6 +5,7 @@
 use crate::kernels::{synth, synth_solid};
 use crate::multiscale::gpu as multiscale_gpu;
 use crate::solid::lazy::gpu as lazy_gpu;
+use crate::solid::lazy::visit_order as lazy_visit;
 use crate::solid::{candidates_gpu as solid_candidates, gpu as solid_gpu};
 use crate::{energy, gpu as synth_gpu};
 use lazysolid_compute::gpu::{KernelDef, PushBlock, PushRegistration};
@@ -36,6 +37,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<lazy_gpu::AssignPush>(&synth_solid::LAZY_ASSIGN),
         of::<lazy_gpu::LazyUpsamplePush>(&synth_solid::LAZY_UPSAMPLE),
         of::<lazy_gpu::LazyCorrectPush>(&synth_solid::LAZY_CORRECT),
+        of::<lazy_visit::StageRangesPush>(&synth_solid::LAZY_STAGE_RANGES),
         of::<lazy_gpu::GatherPush>(&synth_solid::LAZY_GATHER),
         of::<lazy_gpu::ColoursPush>(&synth_solid::LAZY_COLOURS),
         of::<lazy_gpu::ExpandPush>(&synth_solid::LAZY_DEPS_EXPAND),

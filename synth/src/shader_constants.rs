@@ -40,3 +40,11 @@ pub const SOLID_MAX_CANDIDATES: u32 = 12;
 /// Longest crossbar strip: the crossbar ranking loops over S² pairs of N samples, and llvmpipe
 /// stops an invocation after 65535 loop iterations in all (65² · (11 + 1) ≈ 51 k).
 pub const SOLID_MAX_STRIP: u32 = 11;
+
+/// Bits of the key lazy synthesis sorts a level's voxels on before its correction
+/// (`lazy_order_key` in `synth/lazy.glsl`): a voxel without work, its class, its last stage.
+pub const LAZY_ORDER_BITS: u32 = 10;
+
+/// Words per stage of lazy synthesis's stage ranges (`lazy_stage_ranges.comp`): the indirect
+/// workgroup counts x, y, z of the stage's correction, the stretch's first place and length.
+pub const LAZY_RANGE_WORDS: u32 = 5;

@@ -13,14 +13,14 @@ use lazysolid_compute::store::{
 };
 use lazysolid_compute::voxel::{difference_cpu, union_cpu, Voxelizer};
 use lazysolid_synth::solid::lazy::{
-    dependencies_cpu, lazy_key, GpuLazySolid, LazySolidCpu, MatterColours, MatterError, MatterSpec,
-    MatterVoxels, MemoryPolicy, StoredMatter, MAX_LAZY_COORD,
+    dependencies_cpu, lazy_key, order_key, stage_range, GpuLazySolid, LazySolidCpu, MatterColours,
+    MatterError, MatterSpec, MatterVoxels, MemoryPolicy, StageRanges, StoredMatter, MAX_LAZY_COORD,
 };
 use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
-    level_schedules, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, SolidAnalysis,
-    SolidCandidates, SolidExemplars, SolidRelief, SolidSynthesis, VolumeBox, DEFAULT_BALANCE,
-    DEFAULT_SOLID_PARALLEL_LEVELS,
+    level_schedules, synthesize_solid_cpu, CandidateParams, GpuSolidSynthesizer, LevelSchedule,
+    SolidAnalysis, SolidCandidates, SolidExemplars, SolidRelief, SolidSynthesis, VolumeBox,
+    DEFAULT_BALANCE, DEFAULT_SOLID_PARALLEL_LEVELS,
 };
 use lazysolid_synth::{SynthError, SynthParams};
 use lazysolid_tests::{exemplar_crop, rng, unit_mesh, with_gpu};
@@ -250,6 +250,106 @@ fn dependency_sets_cover_only_what_is_needed() {
             assert!(s.iter().all(|&n| n > 0), "{s:?}");
         }
     }
+}
+
+/// The correction's stage stretches on the device equal their CPU reference, for ordered and
+/// parallel levels, with idle voxels, empty classes, stages past the key's 63 and stretches
+/// past one workgroup count's 65,535; each stretch holds exactly the voxels with work of the
+/// stage's class needed at that stage or later (every stage up to 63).
+#[test]
+fn stage_ranges_equal_the_reference_and_hold_each_stage_voxels() {
+    with_gpu(|gpu| {
+        let ranges = StageRanges::new(gpu).unwrap();
+        let mut r = rng(41);
+        let schedules = [
+            (
+                LevelSchedule {
+                    passes: 2,
+                    parallel: false,
+                },
+                3000,
+                256,
+            ),
+            (
+                LevelSchedule {
+                    passes: 3,
+                    parallel: true,
+                },
+                2000,
+                256,
+            ),
+            (
+                LevelSchedule {
+                    passes: 9,
+                    parallel: false,
+                },
+                500,
+                64,
+            ),
+            (
+                LevelSchedule {
+                    passes: 1,
+                    parallel: false,
+                },
+                40,
+                256,
+            ),
+            // 65,536 + 1 workgroups of one invocation: the counts fold into y.
+            (
+                LevelSchedule {
+                    passes: 1,
+                    parallel: true,
+                },
+                65_537,
+                1,
+            ),
+        ];
+        for (schedule, n, width) in schedules {
+            let stages = schedule.final_stage();
+            // Classes 5 and 6 stay empty on the ordered levels.
+            let voxels: Vec<(bool, u32, u32)> = (0..n)
+                .map(|_| {
+                    let class = if schedule.parallel {
+                        0
+                    } else {
+                        [0, 1, 2, 3, 4, 7][r.random_range(0..6)]
+                    };
+                    (r.random_bool(0.2), class, r.random_range(0..=stages))
+                })
+                .collect();
+            let mut keys: Vec<u32> = voxels
+                .iter()
+                .map(|&(idle, c, s)| order_key(idle, c, s))
+                .collect();
+            keys.sort_unstable();
+            let got = ranges.run(gpu, &keys, schedule, width).unwrap();
+            assert_eq!(got.len() as u32, stages);
+            for (i, g) in got.iter().enumerate() {
+                let stage = i as u32 + 1;
+                let (first, len) = stage_range(&keys, schedule, stage);
+                assert_eq!([g[3], g[4]], [first, len], "{schedule:?} stage {stage}");
+                let blocks = len.div_ceil(width);
+                let x = blocks.min(65_535);
+                let y = if x == 0 { 1 } else { blocks.div_ceil(x) };
+                assert_eq!([g[0], g[1], g[2]], [x, y, 1], "{schedule:?} stage {stage}");
+                assert!(u64::from(x) * u64::from(y) * u64::from(width) >= u64::from(len));
+                let class = if schedule.parallel {
+                    0
+                } else {
+                    (stage - 1) % 8
+                };
+                let expected = voxels
+                    .iter()
+                    .filter(|&&(idle, c, s)| !idle && c == class && s >= stage)
+                    .count();
+                if stage <= 63 {
+                    assert_eq!(len as usize, expected, "{schedule:?} stage {stage}");
+                } else {
+                    assert!(len as usize >= expected, "{schedule:?} stage {stage}");
+                }
+            }
+        }
+    });
 }
 
 #[test]

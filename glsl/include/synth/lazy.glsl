@@ -118,6 +118,13 @@ uint lazy_version_at(LazyLevel l, uint stage, uint c) {
     return l.parallel != 0u ? stage : (stage + 7u - c) >> 3;
 }
 
+// The key lazy_correct.comp's visiting order is sorted on (lazy_prepare.comp, LAZY_ORDER_BITS
+// bits): one for a voxel without work (last), three for its class, six for the stage it is
+// needed at, latest first (stages past 63 share the last place).
+uint lazy_order_key(uint idle, uint cls, uint stage) {
+    return (idle << 9) | (cls << 6) | (63u - min(stage, 63u));
+}
+
 // Whether a stage that corrects class place `cls` (or LAZY_ALL_CLASSES) corrects class `c`.
 bool lazy_corrects(uint cls, uint c) {
     return cls == LAZY_ALL_CLASSES || cls == c;

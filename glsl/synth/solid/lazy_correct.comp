@@ -15,9 +15,10 @@ layout(push_constant, scalar) uniform Push {
     uint64_t levels;
     uint64_t table;    // the level's 15 analysis, candidate and penalty addresses (see correct.comp)
     uint64_t keys;     // stage-tagged: the last stage each voxel is needed at
+    uint64_t order;    // the voxels' visiting order (lazy_prepare.comp)
+    uint64_t ranges;   // the stages' stretches of it (lazy_stage_ranges.comp)
     uint64_t slots;
     uint64_t errors;   // out: counts missing neighbours (must stay 0)
-    uint n;
     uint level;
     uint stage;        // 1-based subpass
     uint cls;          // its class place, or LAZY_ALL_CLASSES
@@ -34,10 +35,13 @@ layout(push_constant, scalar) uniform Push {
 layout(constant_id = 1) const uint PARTS = SOLID_PARTS_ALL;
 
 void main() {
-    uint i = uint(global_index());
-    if (i >= pc.n) {
+    // Dispatched indirectly over the stage's stretch of the visiting order.
+    uint g = uint(global_index());
+    uint w = (pc.stage - 1u) * LAZY_RANGE_WORDS;
+    if (g >= U32Ptr(pc.ranges).v[w + 4u]) {
         return;
     }
+    uint i = U32Ptr(pc.order).v[U32Ptr(pc.ranges).v[w + 3u] + g];
     uint64_t tk = U64Ptr(pc.keys).v[i];
     if (lazy_untag_stage(tk) < pc.stage) {
         return;

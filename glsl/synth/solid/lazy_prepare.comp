@@ -1,7 +1,12 @@
 #version 460
 // Lazy synthesis, before a level: each needed voxel's slot in the level's table, and a flag
 // for the voxels to store that are not stored yet (scanned into their new slots by
-// lazy_assign.comp); a voxel needed only upsampled is not stored (lazy_store_from).
+// lazy_assign.comp); a voxel needed only upsampled is not stored (lazy_store_from). It also
+// writes each voxel's place in the order lazy_correct.comp visits them (sorted on these keys,
+// stably): the voxels with work first, by class on an ordered level, needed at the latest
+// stage first. A stage then runs its voxels side by side in whole SIMD groups, where in key
+// order a group of eight neighbours holds one voxel of each class and runs at an eighth of
+// its width.
 #include "common.glsl"
 #include "synth/lazy.glsl"
 
@@ -11,6 +16,8 @@ layout(push_constant, scalar) uniform Push {
     uint64_t slots;    // out: slot, or HASH_NOT_FOUND
     uint64_t flags;    // out: 1 for a voxel not stored yet
     uint64_t work;     // out: adds the versions this request computes
+    uint64_t order_keys; // out: the voxel's visiting key (LAZY_ORDER_BITS bits)
+    uint64_t order;    // out: the voxel's index, sorted on order_keys afterwards
     uint n;
     uint level;
 } pc;
@@ -34,4 +41,8 @@ void main() {
     if (needed > known) {
         atomicAdd(U32Ptr(pc.work).v[0], needed - known);
     }
+    uint cls = l.parallel != 0u ? 0u : lazy_class(p);
+    uint idle = needed > known ? 0u : 1u;
+    U32Ptr(pc.order_keys).v[i] = lazy_order_key(idle, cls, stage);
+    U32Ptr(pc.order).v[i] = i;
 }

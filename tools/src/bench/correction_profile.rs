@@ -2,10 +2,12 @@
 //! request (the first mesh at the first resolution, a fresh state keeping every version) runs
 //! once per cumulative part of the correction (`CorrectParts`), every dispatch timed by
 //! timestamps of its own; the notes give each part's added correction time and, for the whole
-//! correction, every kernel's device time and dispatches.
+//! correction, every kernel's device time and dispatches. A last run visits the voxels in their
+//! keys' order instead of grouped (`VisitOrder`), the correction before 2026-12-06, for the
+//! ratio of the two measured in one sitting.
 
 use lazysolid_compute::gpu::Gpu;
-use lazysolid_synth::solid::lazy::{CorrectParts, GpuLazySolid, MemoryPolicy};
+use lazysolid_synth::solid::lazy::{CorrectParts, GpuLazySolid, MemoryPolicy, VisitOrder};
 
 /// Profiles the request of `requested` voxels on fresh states from `state`, noting under
 /// `case`.
@@ -17,11 +19,12 @@ pub(super) fn run(
     notes: &mut Vec<(String, f64)>,
 ) -> anyhow::Result<()> {
     let case = format!("{case}, correction profile (fresh state, keep)");
-    let mut previous = 0.0;
-    for part in CorrectParts::PROFILE {
+    // One request on a fresh state: its triples, report, wall ms, submissions and profile.
+    let profiled = |part: CorrectParts, visit: VisitOrder| -> anyhow::Result<_> {
         let mut lazy = state()?;
         lazy.set_policy(MemoryPolicy::Keep);
         lazy.set_correct_parts(part)?;
+        lazy.set_visit_order(visit);
         gpu.take_dispatch_profile();
         gpu.profile_dispatches(true);
         let before = gpu.submissions();
@@ -30,12 +33,19 @@ pub(super) fn run(
         let wall_ms = start.elapsed().as_secs_f64() * 1e3;
         let submissions = gpu.submissions().since(before);
         gpu.profile_dispatches(false);
-        let (_, report) = result?;
+        let (triples, report) = result?;
         let profile = gpu.take_dispatch_profile();
         let correct = profile
             .iter()
             .find(|k| k.kernel.ends_with("lazy_correct.comp"))
             .map_or(0.0, |k| k.device_ns * 1e-6);
+        Ok((triples, report, wall_ms, submissions, profile, correct))
+    };
+    let mut previous = 0.0;
+    let mut grouped = None;
+    for part in CorrectParts::PROFILE {
+        let (triples, report, wall_ms, submissions, profile, correct) =
+            profiled(part, VisitOrder::Grouped)?;
         notes.push((
             format!("{case}: up to {}: lazy_correct device ms", part.name()),
             correct,
@@ -66,7 +76,22 @@ pub(super) fn run(
                 notes.push((format!("{what} device ms"), k.device_ns * 1e-6));
                 notes.push((format!("{what} dispatches"), k.dispatches as f64));
             }
+            grouped = Some((triples, correct));
         }
     }
+    let (grouped_triples, grouped_ms) = grouped.expect("the profile ends with every part");
+    let (triples, .., correct) = profiled(CorrectParts::All, VisitOrder::Keys)?;
+    anyhow::ensure!(
+        triples == grouped_triples,
+        "{case}: the correction in key order gave other triples than grouped"
+    );
+    notes.push((
+        format!("{case}: voxels in key order: lazy_correct device ms"),
+        correct,
+    ));
+    notes.push((
+        format!("{case}: key order / grouped, lazy_correct device time"),
+        correct / grouped_ms.max(f64::MIN_POSITIVE),
+    ));
     Ok(())
 }

@@ -7,7 +7,8 @@
 //! their low bits, see `keys.rs`), stopping at stored versions, then per level:
 //! looks up every needed voxel (`lazy_prepare.comp`), gives the new ones slots and inserts them
 //! (`lazy_assign.comp`, the scan, the table's insert), upsamples the voxels with no version
-//! (`lazy_upsample.comp`), and runs the `8 × passes` subpasses (`lazy_correct.comp`); the
+//! (`lazy_upsample.comp`), and runs the `8 × passes` subpasses (`lazy_correct.comp`, each
+//! over its own stretch of the level's voxels sorted by class, `visit_order.rs`); the
 //! requested voxels' final triples are gathered at the end (`lazy_gather.comp`). The CPU
 //! reference is [`LazySolidCpu`](super::LazySolidCpu); both equal the full volume.
 //!
@@ -20,8 +21,10 @@ use super::correct_parts::CorrectParts;
 use super::deps::{Dependencies, LevelDeps};
 use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
 use super::policy::{MemoryPolicy, LAZY_CHUNK_VOXELS};
+use super::visit_order::{StageRanges, VisitOrder};
 use crate::cache::DiskCache;
 use crate::kernels::synth_solid;
+use crate::shader_constants::{LAZY_ORDER_BITS, LAZY_RANGE_WORDS};
 use crate::solid::analysis::{analyze_solid, SolidAnalysis};
 use crate::solid::candidates::CandidateParams;
 use crate::solid::candidates::SolidCandidates;
@@ -59,6 +62,8 @@ lazysolid_compute::push_block! {
         slots: DeviceAddress<'a>,
         flags: DeviceAddress<'a>,
         work: DeviceAddress<'a>,
+        order_keys: DeviceAddress<'a>,
+        order: DeviceAddress<'a>,
         n: u32,
         level: u32,
     }
@@ -101,9 +106,10 @@ lazysolid_compute::push_block! {
         levels: DeviceAddress<'a>,
         table: DeviceAddress<'a>,
         keys: DeviceAddress<'a>,
+        order: DeviceAddress<'a>,
+        ranges: DeviceAddress<'a>,
         slots: DeviceAddress<'a>,
         errors: DeviceAddress<'a>,
-        n: u32,
         level: u32,
         stage: u32,
         cls: u32,
@@ -347,6 +353,7 @@ pub struct GpuLazySolid {
     assign: Arc<Kernel>,
     upsample: Arc<Kernel>,
     correct: Arc<Kernel>,
+    stage_ranges: StageRanges,
     gather: Arc<Kernel>,
     colour: Arc<Kernel>,
     expand: Arc<Kernel>,
@@ -370,6 +377,8 @@ pub struct GpuLazySolid {
     chunk_voxels: usize,
     /// What the last request did (`GpuLazySolid::last_report`).
     last: LazyReport,
+    /// The order the correction visits a level's voxels in.
+    visit: VisitOrder,
 }
 
 /// What a chunked request does with each chunk while its final versions are stored:
@@ -445,6 +454,7 @@ impl GpuLazySolid {
             assign: gpu.kernel(&synth_solid::LAZY_ASSIGN)?,
             upsample: gpu.kernel(&synth_solid::LAZY_UPSAMPLE)?,
             correct: gpu.kernel(&synth_solid::LAZY_CORRECT)?,
+            stage_ranges: StageRanges::new(gpu)?,
             gather: gpu.kernel(&synth_solid::LAZY_GATHER)?,
             colour: gpu.kernel(&synth_solid::LAZY_COLOURS)?,
             expand: gpu.kernel(&synth_solid::LAZY_DEPS_EXPAND)?,
@@ -461,6 +471,7 @@ impl GpuLazySolid {
             policy: MemoryPolicy::default(),
             chunk_voxels: LAZY_CHUNK_VOXELS,
             last: LazyReport::default(),
+            visit: VisitOrder::default(),
         };
         Ok(me)
     }
@@ -502,6 +513,12 @@ impl GpuLazySolid {
             )?,
         };
         Ok(())
+    }
+
+    /// Sets the order the correction visits a level's voxels in (a profile's comparison;
+    /// the versions are the same).
+    pub fn set_visit_order(&mut self, visit: VisitOrder) {
+        self.visit = visit;
     }
 
     /// What the state keeps between requests from now on (applied after the next chunk).
@@ -985,6 +1002,8 @@ impl GpuLazySolid {
         let flags = GpuBuffer::<u32>::new(&gpu, format!("lazy new flags level {l}"), n)?;
         let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy new count", 1)?;
         let work = GpuBuffer::<u32>::zeroed(&gpu, "lazy work", 1)?;
+        let order_keys = GpuBuffer::<u32>::new(&gpu, format!("lazy order keys level {l}"), n)?;
+        let order = GpuBuffer::<u32>::new(&gpu, format!("lazy order level {l}"), n)?;
         gpu.submit(|rec| {
             let push = PreparePush {
                 levels: self.records.address(),
@@ -992,6 +1011,8 @@ impl GpuLazySolid {
                 slots: slots.address(),
                 flags: flags.address(),
                 work: work.address(),
+                order_keys: order_keys.address(),
+                order: order.address(),
                 n: n as u32,
                 level: l as u32,
             };
@@ -1053,8 +1074,31 @@ impl GpuLazySolid {
         let spacing = self.synth.spacing(l);
         let table = self.synth.level_table(l);
         let schedule = self.levels[l].schedule;
+        let sort = &mut self.sort;
+        let grouped = self.visit == VisitOrder::Grouped;
+        let stages = schedule.final_stage();
+        let ranges = GpuBuffer::<u32>::new(
+            &gpu,
+            format!("lazy stage ranges level {l}"),
+            (stages * LAZY_RANGE_WORDS) as usize,
+        )?;
         let ((), stamps) = gpu.submit_timed(|rec| {
             rec.timestamp()?;
+            // The correction's visiting order (lazy_prepare.comp) and each stage's stretch of
+            // it: a stage visits only the voxels it may correct, side by side in whole SIMD
+            // groups. Unsorted, `order` is the identity and every stretch all of it.
+            if grouped {
+                sort.record_u32_pairs(rec, &order_keys, &order, n, LAZY_ORDER_BITS)?;
+            }
+            self.stage_ranges.record(
+                rec,
+                &order_keys,
+                &ranges,
+                n,
+                schedule,
+                !grouped,
+                self.correct.workgroup_size(),
+            )?;
             let push = LazyUpsamplePush {
                 levels: self.records.address(),
                 keys: keys_buf.address(),
@@ -1073,15 +1117,16 @@ impl GpuLazySolid {
                 &[],
                 &push,
             )?;
-            for stage in 1..=schedule.final_stage() {
+            for stage in 1..=stages {
                 let cls = schedule.stage_class(stage);
                 let push = LazyCorrectPush {
                     levels: self.records.address(),
                     table: table.address(),
                     keys: keys_buf.address(),
+                    order: order.address(),
+                    ranges: ranges.address(),
                     slots: slots.address(),
                     errors: errors.address(),
-                    n: n as u32,
                     level: l as u32,
                     stage,
                     cls,
@@ -1092,7 +1137,13 @@ impl GpuLazySolid {
                     seed: self.params.seed,
                     strength: self.params.jitter[l],
                 };
-                rec.dispatch(&self.correct, self.correct.groups_for(n as u64), &[], &push)?;
+                rec.dispatch_indirect(
+                    &self.correct,
+                    &ranges,
+                    u64::from((stage - 1) * LAZY_RANGE_WORDS),
+                    &[],
+                    &push,
+                )?;
             }
             rec.timestamp()
         })?;

@@ -9,6 +9,7 @@ mod keys;
 mod matter;
 mod policy;
 mod state_cpu;
+pub(crate) mod visit_order;
 
 pub use correct_parts::CorrectParts;
 pub use deps::{
@@ -25,3 +26,4 @@ pub use matter::{
 };
 pub use policy::{MemoryPolicy, DEFAULT_STATE_BUDGET_MB, LAZY_CHUNK_VOXELS};
 pub use state_cpu::LazySolidCpu;
+pub use visit_order::{order_key, stage_range, StageRanges, VisitOrder};

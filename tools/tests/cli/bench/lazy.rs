@@ -51,6 +51,18 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
     ]
     .map(|p| note(&format!("{profile}: up to {p}: lazy_correct device ms")));
     assert!(parts.iter().all(|&ms| ms > 0.0), "{parts:?}");
+    // The same request with the voxels visited in key order: the same triples (checked by
+    // the bench, which fails otherwise), its own device time.
+    assert!(
+        note(&format!(
+            "{profile}: voxels in key order: lazy_correct device ms"
+        )) > 0.0
+    );
+    assert!(
+        note(&format!(
+            "{profile}: key order / grouped, lazy_correct device time"
+        )) > 0.0
+    );
     assert!(
         note(&format!("{profile}: voxel versions computed"))
             == note("bunny00 16³: voxel versions computed"),
