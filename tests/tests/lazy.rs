@@ -464,16 +464,21 @@ fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() 
             whole.set_policy(MemoryPolicy::Keep);
             let (_, once) = whole.request(&sphere).unwrap();
             assert_eq!(once.chunks, 1);
-            // A budget that holds the three coarsest levels and not the fourth.
-            let level_bytes = whole.level_bytes();
+            // The levels' bytes as a budget weighs them (fitted to their voxels), from a
+            // budget that keeps everything.
+            let mut fitted = fresh();
+            fitted.set_policy(MemoryPolicy::Budget(u64::MAX));
+            fitted.request(&sphere).unwrap();
+            assert_eq!(fitted.stored(), whole.stored());
+            let level_bytes = fitted.level_bytes();
+            let finest = level_bytes.len() - 1;
+            // A budget that holds the three coarsest levels and not the fourth, and one that
+            // holds every level but the finest, which a budget weighs last.
             let three = MemoryPolicy::Budget(level_bytes[..3].iter().sum());
+            let but_finest = MemoryPolicy::Budget(level_bytes[..finest].iter().sum());
             // Chunks of a third and of half the sphere's 460 voxels: every policy acts between
             // chunks, and more chunks would only repeat those steps.
-            for (policy, chunk) in [
-                (MemoryPolicy::Keep, 160),
-                (MemoryPolicy::Budget(1), 160),
-                (three, 230),
-            ] {
+            for (policy, chunk) in [(MemoryPolicy::Keep, 160), (but_finest, 160), (three, 230)] {
                 let what = format!("{policy:?}, chunks of {chunk}");
                 let mut lazy = fresh();
                 lazy.set_policy(policy);
@@ -490,15 +495,14 @@ fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() 
                     }
                     MemoryPolicy::Budget(budget) => {
                         assert!(r.dropped_levels > 0, "{what}");
-                        let kept = stored.iter().take_while(|&&n| n > 0).count();
-                        assert!(stored[kept..].iter().all(|&n| n == 0), "{what}: {stored:?}");
+                        let kept = if policy == three { 3 } else { finest };
+                        let held_levels: Vec<bool> = stored.iter().map(|&n| n > 0).collect();
+                        let expected: Vec<bool> = (0..=finest).map(|l| l < kept).collect();
+                        assert_eq!(held_levels, expected, "{what}: {stored:?}");
+                        // The kept levels hold what one request holds, in fitted buffers.
+                        assert_eq!(stored[..kept], whole.stored()[..kept], "{what}");
                         let held: u64 = lazy.level_bytes()[..kept].iter().sum();
                         assert!(held <= budget, "{what}: {held} bytes held");
-                        if budget > 1 {
-                            assert_eq!(kept, 3, "{what}: {stored:?}");
-                        } else {
-                            assert_eq!(kept, 0, "{what}: {stored:?}");
-                        }
                         assert!(r.peak_state_bytes > held, "{what}");
                     }
                 }

@@ -15,7 +15,7 @@
 use super::harness::{time_cpu, Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::{assets, GlobalArgs};
-use anyhow::{ensure, Context};
+use anyhow::{anyhow, ensure, Context};
 use clap::Args;
 use glam::{DVec3, Vec3};
 use lazysolid_compute::gpu::{Gpu, Submissions};
@@ -53,8 +53,9 @@ pub struct CutsArgs {
     #[arg(long, default_value_t = 3)]
     pub seed: u32,
     /// What the synthesis state keeps between requests: "keep" (every version) or a budget
-    /// of whole levels, coarsest first, such as "32MB" [default: the synthesizer's]. Under a
-    /// budget a cut recomputes the dropped levels it needs.
+    /// of whole levels, coarsest to second finest and then the finest, such as "48MB"
+    /// [default: the synthesizer's]. Under a budget a cut recomputes the dropped levels it
+    /// needs.
     #[arg(long, value_name = "keep|NMB")]
     pub memory: Option<MemoryPolicy>,
     /// Also time every dispatch of every cut by timestamps of its own and note the device
@@ -313,6 +314,23 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             format!("{r}³: state MB after the outer surface"),
             holder.matter.state_bytes() as f64 / 1e6,
         ));
+        // Where the kept bytes are: what a budget keeps or drops is decided per level.
+        {
+            let lazy = holder
+                .lazy
+                .lock()
+                .map_err(|_| anyhow!("lazy state poisoned"))?;
+            for (l, (bytes, stored)) in lazy.level_bytes().iter().zip(lazy.stored()).enumerate() {
+                notes.push((
+                    format!("{r}³: level {l} state MB after the outer surface"),
+                    *bytes as f64 / 1e6,
+                ));
+                notes.push((
+                    format!("{r}³: level {l} voxels stored after the outer surface"),
+                    stored as f64,
+                ));
+            }
+        }
         holder.cut(&mut voxelizer, &warm_up)?;
         for (k, n) in CUTS.iter().enumerate() {
             let plane = Plane::through(centre, DVec3::from_array(*n));

@@ -62,7 +62,8 @@ pub struct LazyArgs {
     #[arg(long)]
     pub quick: bool,
     /// What the synthesis state keeps between requests: "keep" (every version) or a budget
-    /// of whole levels, coarsest first, such as "32MB" [default: the synthesizer's].
+    /// of whole levels, coarsest to second finest and then the finest, such as "48MB"
+    /// [default: the synthesizer's].
     #[arg(long, value_name = "keep|NMB")]
     pub memory: Option<MemoryPolicy>,
     #[command(flatten)]

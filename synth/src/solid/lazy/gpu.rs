@@ -537,21 +537,42 @@ impl GpuLazySolid {
         self.chunk_voxels = voxels.max(1);
     }
 
-    /// Empties the levels the policy does not keep; returns how many held voxels.
+    /// Empties the levels the policy does not keep and fits the others' versions to the
+    /// voxels they hold (the policy weighs what is kept, not what a request grew it to);
+    /// returns how many levels that held voxels were emptied.
     fn apply_policy(&mut self) -> SynthResult<u32> {
+        let mut changed = false;
+        if self.policy != MemoryPolicy::Keep {
+            for l in 0..self.levels.len() {
+                changed |= self.fit(l)?;
+            }
+        }
         let bytes: Vec<u64> = self.levels.iter().map(LevelState::bytes).collect();
         let kept = self.policy.levels_kept(&bytes);
         let mut dropped = 0;
-        for l in kept..self.levels.len() {
-            if self.levels[l].len > 0 {
+        for (l, kept) in kept.into_iter().enumerate() {
+            if !kept && self.levels[l].len > 0 {
                 self.levels[l].clear(&self.gpu, l)?;
                 dropped += 1;
             }
         }
-        if dropped > 0 {
+        if dropped > 0 || changed {
             self.write_records()?;
         }
         Ok(dropped)
+    }
+
+    /// Shrinks level `l`'s versions and counts to its voxels (rounded up to
+    /// [`INITIAL_SLOTS`]) when they hold more than an eighth spare; returns whether it did.
+    fn fit(&mut self, l: usize) -> SynthResult<bool> {
+        let state = &self.levels[l];
+        let used = state.len as usize;
+        let fitted = used.div_ceil(INITIAL_SLOTS).max(1) * INITIAL_SLOTS;
+        if state.counts.len() <= fitted + fitted / 8 {
+            return Ok(false);
+        }
+        self.resize(l, fitted)?;
+        Ok(true)
     }
 
     /// Runs lazy `keys` (in the order given) in chunks of [`GpuLazySolid::set_chunk_voxels`]:
@@ -1159,7 +1180,9 @@ impl GpuLazySolid {
             return Ok(());
         }
         let stride = state.stride as usize;
-        let grown = slots.max(have + have / 2).next_power_of_two();
+        // Half as much again, so that a level growing over many chunks copies its versions
+        // a logarithmic number of times.
+        let grown = slots.max(have + have / 2).div_ceil(INITIAL_SLOTS) * INITIAL_SLOTS;
         let words = grown as u64 * 3 * stride as u64;
         if words > u32::MAX as u64 {
             return Err(SynthError::Parameter {
@@ -1171,6 +1194,14 @@ impl GpuLazySolid {
                 ),
             });
         }
+        self.resize(l, grown)
+    }
+
+    /// Moves level `l`'s versions and counts into buffers of `grown` voxels (at least the
+    /// voxels it holds), refusing what the device cannot hold.
+    fn resize(&mut self, l: usize, grown: usize) -> SynthResult<()> {
+        let stride = self.levels[l].stride as usize;
+        let words = grown as u64 * 3 * stride as u64;
         let info = self.gpu.info();
         let kept = self.levels.iter().map(LevelState::bytes).sum::<u64>();
         let old = self.levels[l].versions.bytes() + self.levels[l].counts.bytes();
