@@ -3,18 +3,20 @@
 //! voxels, a planar slab, and a union requested in two batches in either order), and matter in
 //! a store growing by a new surface.
 
-use glam::{Vec3, Vec4};
-use lazysolid_compute::hash::morton_decode;
+use glam::{DVec3, Vec3, Vec4};
 use lazysolid_compute::hash::perfect::PerfectAccess;
+use lazysolid_compute::hash::{morton_decode, morton_encode};
 use lazysolid_compute::store::tiletree;
 use lazysolid_compute::store::{
     unpack_rgba8, ColourSource, Filter, HashStore, OctreeConfig, OctreeStore, PerfectStore,
     SparseStore, StoreKernels, TileTree, TileTreeConfig,
 };
-use lazysolid_compute::voxel::{difference_cpu, union_cpu, Voxelizer};
+use lazysolid_compute::voxel::{difference_cpu, union_cpu, VoxelKeys, Voxelizer};
+use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};
 use lazysolid_synth::solid::lazy::{
-    dependencies_cpu, lazy_key, order_key, stage_range, GpuLazySolid, LazySolidCpu, MatterColours,
-    MatterError, MatterSpec, MatterVoxels, MemoryPolicy, StageRanges, StoredMatter, MAX_LAZY_COORD,
+    dependencies_cpu, lazy_key, lazy_position, order_key, stage_range, GpuLazySolid, LazySolidCpu,
+    MatterColours, MatterError, MatterSpec, MatterVoxels, MemoryPolicy, StageRanges, StoredMatter,
+    LAZY_MARGIN, MAX_LAZY_COORD,
 };
 use lazysolid_synth::solid::{
     analyze_solid, balance_usage, candidates_cpu, default_solid_jitter, default_solid_passes,
@@ -472,13 +474,14 @@ fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() 
             assert_eq!(fitted.stored(), whole.stored());
             let level_bytes = fitted.level_bytes();
             let finest = level_bytes.len() - 1;
-            // A budget that holds the three coarsest levels and not the fourth, and one that
-            // holds every level but the finest, which a budget weighs last.
-            let three = MemoryPolicy::Budget(level_bytes[..3].iter().sum());
+            // A budget that holds every level but the finest, which a budget weighs last, and
+            // one that holds the three coarsest levels and half the fourth's bytes.
             let but_finest = MemoryPolicy::Budget(level_bytes[..finest].iter().sum());
+            let part =
+                MemoryPolicy::Budget(level_bytes[..3].iter().sum::<u64>() + level_bytes[3] / 2);
             // Chunks of a third and of half the sphere's 460 voxels: every policy acts between
             // chunks, and more chunks would only repeat those steps.
-            for (policy, chunk) in [(MemoryPolicy::Keep, 160), (but_finest, 160), (three, 230)] {
+            for (policy, chunk) in [(MemoryPolicy::Keep, 160), (but_finest, 160), (part, 230)] {
                 let what = format!("{policy:?}, chunks of {chunk}");
                 let mut lazy = fresh();
                 lazy.set_policy(policy);
@@ -495,13 +498,42 @@ fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() 
                     }
                     MemoryPolicy::Budget(budget) => {
                         assert!(r.dropped_levels > 0, "{what}");
-                        let kept = if policy == three { 3 } else { finest };
-                        let held_levels: Vec<bool> = stored.iter().map(|&n| n > 0).collect();
-                        let expected: Vec<bool> = (0..=finest).map(|l| l < kept).collect();
-                        assert_eq!(held_levels, expected, "{what}: {stored:?}");
-                        // The kept levels hold what one request holds, in fitted buffers.
+                        let kept = if policy == part { 3 } else { finest };
+                        // The kept levels hold what one request holds, in fitted buffers; the
+                        // level past the budget the first of its voxels in key order (half
+                        // its bytes hold fewer than half its voxels: the table's cells and
+                        // the rounding of its buffers), and the rest nothing.
                         assert_eq!(stored[..kept], whole.stored()[..kept], "{what}");
-                        let held: u64 = lazy.level_bytes()[..kept].iter().sum();
+                        if policy == part {
+                            let all = whole.stored()[3];
+                            assert!(
+                                stored[3] > all / 4 && stored[3] < all / 2,
+                                "{what}: {stored:?}"
+                            );
+                            // The first voxels in the order of the table's keys (Morton
+                            // codes of the position plus the margin).
+                            let table_order = |mut keys: Vec<u64>| {
+                                keys.sort_by_key(|&k| {
+                                    let p = lazy_position(k).map(|c| (c + LAZY_MARGIN) as u32);
+                                    morton_encode(p, 3)
+                                });
+                                keys
+                            };
+                            let kept = table_order(lazy.stored_keys(3).unwrap());
+                            let first = table_order(fitted.stored_keys(3).unwrap());
+                            assert_eq!(kept, first[..kept.len()], "{what}: a region");
+                        }
+                        let emptied = if policy == part { 4 } else { finest };
+                        assert!(
+                            stored[emptied..].iter().all(|&n| n == 0),
+                            "{what}: {stored:?}"
+                        );
+                        // The levels holding voxels, within the budget (an emptied level
+                        // keeps its first small buffers).
+                        let held: u64 = (lazy.level_bytes().iter().zip(&stored))
+                            .filter(|(_, &n)| n > 0)
+                            .map(|(b, _)| b)
+                            .sum();
                         assert!(held <= budget, "{what}: {held} bytes held");
                         assert!(r.peak_state_bytes > held, "{what}");
                     }
@@ -517,6 +549,99 @@ fn every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped() 
                 );
                 let (other, _) = lazy.request(&scattered).unwrap();
                 check(params, &what, &other, &scattered);
+            }
+        }
+    });
+}
+
+/// The voxels of the cap faces of `pieces` at resolution `r` (what a cut or a fracture asks
+/// the matter for), as positions.
+fn cap_voxels(v: &mut Voxelizer, pieces: &[Fragment], r: u32) -> Vec<[i32; 3]> {
+    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    for p in pieces {
+        let base = positions.len() as u32;
+        positions.extend_from_slice(&p.positions);
+        triangles.extend(p.triangles_of(true).map(|t| t.map(|i| i + base)));
+    }
+    voxel_positions(&v.surface(&positions, &triangles, r).unwrap())
+}
+
+fn voxel_positions(keys: &VoxelKeys) -> Vec<[i32; 3]> {
+    let keys = keys.read().unwrap();
+    keys.iter()
+        .map(|&k| morton_decode(k, 3).map(|c| c as i32))
+        .collect()
+}
+
+/// The dependency walk on the device equals the host reference on the requests a scene
+/// makes of a state that already holds a surface: the caps of a plane cut, the caps of a
+/// Voronoi fracture and the surface again, with every level kept and after the budget kept
+/// part of the second finest level and none of the finest.
+#[test]
+fn device_walk_equals_the_reference_for_caps_from_a_held_surface_and_after_eviction() {
+    let (exemplars, analysis, candidates, params) = case();
+    let m = unit_mesh("bunny00.off");
+    let r = RESOLUTION;
+    let schedules = level_schedules(params);
+    with_gpu(|gpu| {
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let surface = voxel_positions(&v.surface(&m.positions, &m.triangles, r).unwrap());
+        let b = m.bounds();
+        let centre = ((b.min + b.max) * 0.5).as_dvec3();
+        let plane = Plane::through(centre, DVec3::new(1.0, 1.0, 0.4));
+        let (halves, _) = cut_pieces(vec![Fragment::whole(&m)], plane, &m.source).unwrap();
+        let cut = cap_voxels(&mut v, &halves[..1], r);
+        let broken = fracture(&m, &random_sites(&m, 4, 3).unwrap()).unwrap();
+        let pieces = cap_voxels(&mut v, &broken, r);
+        assert!(!cut.is_empty() && pieces.len() > cut.len());
+        let mut cpu = LazySolidCpu::new();
+        cpu.request(analysis, candidates, params, &surface).unwrap();
+        let mut lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
+        lazy.set_policy(MemoryPolicy::Budget(u64::MAX));
+        lazy.request(&surface).unwrap();
+        let fitted = lazy.level_bytes();
+        let n = fitted.len();
+        let all = lazy.stored();
+        for evicted in [false, true] {
+            if evicted {
+                // Half the second finest level's bytes: it keeps part of its voxels and the
+                // finest none. The budget applies after the next chunk, an empty request's.
+                let budget = fitted[..n - 2].iter().sum::<u64>() + fitted[n - 2] / 2;
+                lazy.set_policy(MemoryPolicy::Budget(budget));
+                lazy.request(&[]).unwrap();
+            }
+            let held = lazy.stored();
+            assert_eq!(held[..n - 2], all[..n - 2]);
+            if evicted {
+                assert!(held[n - 2] > 0 && held[n - 2] < all[n - 2] && held[n - 1] == 0);
+            } else {
+                assert_eq!(held, all);
+            }
+            let part: BTreeSet<u64> = lazy.stored_keys(n - 2).unwrap().into_iter().collect();
+            let known = |l: usize, k: u64| {
+                let kept = !evicted || l < n - 2 || (l == n - 2 && part.contains(&k));
+                if kept {
+                    cpu.versions(l, k)
+                } else {
+                    0
+                }
+            };
+            for (name, set) in [
+                ("the plane cut's cap", &cut),
+                ("the fracture's caps", &pieces),
+                ("the surface again", &surface),
+            ] {
+                let keys: Vec<u64> = set.iter().map(|&p| lazy_key(p)).collect();
+                let want = dependencies_cpu(&keys, &schedules, &known);
+                assert_eq!(
+                    lazy.dependencies(set).unwrap(),
+                    want,
+                    "{name}, levels emptied: {evicted}"
+                );
+                // The walk stops at what is held: the surface again asks for no new version
+                // while its levels are kept, and the caps do.
+                let work = want.new_versions(&schedules, &known);
+                assert_eq!(work == 0, !evicted && set == &surface, "{name}: {work}");
             }
         }
     });

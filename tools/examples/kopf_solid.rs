@@ -1,6 +1,6 @@
 //! The colour-state baseline of solid synthesis, after Kopf et al. 2007 ("Solid texture
 //! synthesis from 2D exemplars"), scored by the same figures as `lazysolid solid`: what the
-//! thesis' triples are measured against (docs/solid.md, "A colour optimizer measured").
+//! thesis' triples are measured against (docs/log/solid.md, "A colour optimizer measured").
 //!
 //! The volume holds colours. Each level alternates a search, which finds for every sparse
 //! neighbourhood centre (every `spacing`-th pixel of every slice, in each of the three slice

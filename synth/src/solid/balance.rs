@@ -50,7 +50,7 @@ pub const PILOT_ORIGIN: [i32; 3] = [1 << 12, 2 << 12, 3 << 12];
 /// Default strength of the balance: a pixel used twice its share pays `8 · ln 2 / 3 ≈ 1.8`
 /// times the pilot's mean distance in its role.
 /// Measured on walnut 128² → 128³, SWD ratios x/y/z: 0 → 2.36/2.91/2.96, 4 → 1.52/1.48/1.55,
-/// 8 → 1.20/1.15/1.30; docs/solid.md has the table on seven exemplars.
+/// 8 → 1.20/1.15/1.30; docs/log/solid.md has the table on seven exemplars.
 pub const DEFAULT_BALANCE: u32 = 8;
 
 /// Fewest voxels an even use of a cell counts in the pilot: below that, chance decides

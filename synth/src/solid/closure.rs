@@ -6,7 +6,7 @@
 //! one exemplar step along their image of `s`. The correction only places candidate triples,
 //! so such a continuation exists only where the set of `e`'s next pixel holds a triple with
 //! `f`'s coordinate moved by that step. Where it does not, a coherent run in `e`'s plane ends
-//! or turns incoherent in `f`'s. Measured in `docs/solid.md` ("What caps the slices'
+//! or turns incoherent in `f`'s. Measured in `docs/log/solid.md` ("What caps the slices'
 //! coherence").
 
 use super::candidates::CandidateSets;

@@ -17,7 +17,7 @@
 //! Mirroring has a cost too: the mirrored role's strips along its u axis run backwards against
 //! the role that shares that axis, and where the exemplar's profiles are not symmetric (relief
 //! lit from one side, wood grain) fewer triples agree along it. Measured at 128³ over three
-//! seeds (`docs/solid.md`, "Diagonal orientation"), the mean SWD ratio and blockiness of the
+//! seeds (`docs/log/solid.md`, "Diagonal orientation"), the mean SWD ratio and blockiness of the
 //! nine axis-seeds, as given → mirrored: granite1 (ρ −0.41) 1.20 → 1.23 and 1.55 → 1.35;
 //! marble1 (−0.25) 1.61 → 1.41 and 1.43 → 1.35; walnut (−0.12) 1.21 → 1.18 and 1.07 → 1.03,
 //! although walnut's z axis lost in every seed (1.04–1.37 → 1.44–1.48) while x and y gained.

@@ -44,8 +44,9 @@ pub struct CutsArgs {
     /// Equivalent resolutions R.
     #[arg(long, value_name = "N", value_delimiter = ',', default_value = "256")]
     pub voxel_res: Vec<u32>,
-    /// Voronoi fractures to time, by piece count.
-    #[arg(long, value_delimiter = ',', default_value = "8,32")]
+    /// Voronoi fractures to time, by piece count; `--pieces` with no count times the plane
+    /// cuts only (each fracture starts from a fresh state holding the outer surface again).
+    #[arg(long, value_delimiter = ',', num_args = 0.., default_value = "8,32")]
     pub pieces: Vec<usize>,
     #[command(flatten)]
     pub exemplar: super::lazy::SolidExemplarArg,

@@ -1,7 +1,7 @@
-//! Flags that were renamed when every subcommand got one word per thing (README, "One word
-//! per thing"): the parser refuses the old spelling, and this table names the new one, so a
-//! script written for an older build gets told what to write instead of only "unexpected
-//! argument".
+//! Flags that were renamed when every subcommand got one word per thing (`docs/usage.md`,
+//! "One word per thing"): the parser refuses the old spelling, and this table names the new
+//! one, so a script written for an older build gets told what to write instead of only
+//! "unexpected argument".
 
 /// `(subcommand, old, new)`; `*` for a rename that holds wherever the old flag was accepted.
 const RENAMED: [(&str, &str, &str); 18] = [

@@ -14,13 +14,14 @@
 //!
 //! A voxel costs the table's cell, `12 · (passes + 1)` bytes of versions and 4 bytes of count.
 //! What stays between requests is the state's [`MemoryPolicy`] (`policy.rs`): every version,
-//! or whole levels from the coarsest within a byte budget, applied after each chunk of
+//! or levels within a byte budget (the finest last, the level past the budget in part),
+//! applied after each chunk of
 //! [`LAZY_CHUNK_VOXELS`] requested voxels; [`GpuLazySolid::bytes`] reports what is kept.
 
 use super::correct_parts::CorrectParts;
 use super::deps::{Dependencies, LevelDeps};
 use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
-use super::policy::{MemoryPolicy, LAZY_CHUNK_VOXELS};
+use super::policy::{LevelKeep, MemoryPolicy, LAZY_CHUNK_VOXELS};
 use super::visit_order::{StageRanges, VisitOrder};
 use crate::cache::DiskCache;
 use crate::kernels::synth_solid;
@@ -319,7 +320,7 @@ pub struct LazyReport {
     pub chunks: u32,
     /// The largest state alive during the request, before the policy applied (bytes).
     pub peak_state_bytes: u64,
-    /// Levels the policy emptied after the request's last chunk.
+    /// Levels the policy emptied or cut back after the request's last chunk.
     pub dropped_levels: u32,
 }
 
@@ -537,9 +538,10 @@ impl GpuLazySolid {
         self.chunk_voxels = voxels.max(1);
     }
 
-    /// Empties the levels the policy does not keep and fits the others' versions to the
-    /// voxels they hold (the policy weighs what is kept, not what a request grew it to);
-    /// returns how many levels that held voxels were emptied.
+    /// Empties the levels the policy does not keep, cuts back the one it keeps in part, and
+    /// fits the others' versions to the voxels they hold (the policy weighs what is kept,
+    /// not what a request grew it to); returns how many levels that held voxels were emptied
+    /// or cut back.
     fn apply_policy(&mut self) -> SynthResult<u32> {
         let mut changed = false;
         if self.policy != MemoryPolicy::Keep {
@@ -548,18 +550,112 @@ impl GpuLazySolid {
             }
         }
         let bytes: Vec<u64> = self.levels.iter().map(LevelState::bytes).collect();
-        let kept = self.policy.levels_kept(&bytes);
         let mut dropped = 0;
-        for (l, kept) in kept.into_iter().enumerate() {
-            if !kept && self.levels[l].len > 0 {
-                self.levels[l].clear(&self.gpu, l)?;
-                dropped += 1;
+        for (l, keep) in self.policy.plan(&bytes).into_iter().enumerate() {
+            if self.levels[l].len == 0 {
+                continue;
+            }
+            match keep {
+                LevelKeep::All => {}
+                LevelKeep::Part(bytes) => {
+                    self.keep_part(l, bytes)?;
+                    dropped += 1;
+                }
+                LevelKeep::Nothing => {
+                    self.levels[l].clear(&self.gpu, l)?;
+                    dropped += 1;
+                }
             }
         }
         if dropped > 0 || changed {
             self.write_records()?;
         }
         Ok(dropped)
+    }
+
+    /// Keeps of level `l` the voxels that fit in `bytes` (table, versions and counts), the
+    /// first ones in Morton order, a region of the level; the rest are recomputed where a
+    /// later request needs them.
+    fn keep_part(&mut self, l: usize, bytes: u64) -> SynthResult<()> {
+        let state = &self.levels[l];
+        let Some(table) = &state.table else {
+            return Ok(());
+        };
+        let words = 3 * state.stride as usize;
+        // A kept voxel's bytes: its versions and count, and its share of the table's cells at
+        // the load factor a table is built at; the fitted buffers round up to INITIAL_SLOTS.
+        let cell = table.bytes() as f64 / f64::from(table.table_size().max(1));
+        let per_voxel = (4 * words + 4) as f64 + cell / table.config().load_factor;
+        let estimate = ((bytes as f64 - 2.0 * cell) / per_voxel).max(0.0) as usize;
+        let mut keep = estimate
+            .saturating_sub(INITIAL_SLOTS)
+            .min(state.len as usize);
+        let (keys, slots) = table.entries().map_err(|e| hash_error(l, e))?;
+        // The table's keys are Morton codes (`lazy_table_key`): the first ones are a region.
+        let mut pairs: Vec<(u64, u32)> = keys.into_iter().zip(slots).collect();
+        pairs.sort_unstable();
+        let (versions, counts) = (state.versions.read()?, state.counts.read()?);
+        let universe = state.universe;
+        let config = RobinHoodConfig {
+            validate: true,
+            ..RobinHoodConfig::default()
+        };
+        // The estimate is checked against the bytes built; past them, fewer voxels.
+        while keep > 0 {
+            let slots = keep.div_ceil(INITIAL_SLOTS) * INITIAL_SLOTS;
+            let mut kept_versions = vec![0u32; slots * words];
+            let mut kept_counts = vec![0u32; slots];
+            for (i, &(_, s)) in pairs[..keep].iter().enumerate() {
+                let s = s as usize;
+                kept_versions[i * words..(i + 1) * words]
+                    .copy_from_slice(&versions[s * words..(s + 1) * words]);
+                kept_counts[i] = counts[s];
+            }
+            let keys: Vec<u64> = pairs[..keep].iter().map(|p| p.0).collect();
+            let payloads: Vec<u32> = (0..keep as u32).collect();
+            let table =
+                RobinHoodTable::build_from_slices(&self.hash, universe, &keys, &payloads, config)
+                    .map_err(|e| hash_error(l, e))?;
+            let built = table.bytes() + 4 * (kept_versions.len() + kept_counts.len()) as u64;
+            if built > bytes {
+                keep = (keep as f64 * bytes as f64 / built as f64 * 0.98) as usize;
+                continue;
+            }
+            let gpu = &self.gpu;
+            let state = &mut self.levels[l];
+            state.versions =
+                GpuBuffer::from_slice(gpu, format!("lazy versions level {l}"), &kept_versions)?;
+            state.counts =
+                GpuBuffer::from_slice(gpu, format!("lazy counts level {l}"), &kept_counts)?;
+            state.table = Some(table);
+            state.len = keep as u32;
+            return Ok(());
+        }
+        self.levels[l].clear(&self.gpu, l)
+    }
+
+    /// The keys ([`lazy_key`]) of the voxels level `l` holds, in increasing order: what a
+    /// policy kept, for tests and reports.
+    ///
+    /// # Errors
+    /// A level past the finest, or a failed read.
+    pub fn stored_keys(&self, l: usize) -> SynthResult<Vec<u64>> {
+        let state = self.levels.get(l).ok_or_else(|| SynthError::Parameter {
+            name: "lazy level",
+            value: l.to_string(),
+            limit: format!("below {}", self.levels.len()),
+        })?;
+        // The table's keys are Morton codes of the position plus the margin
+        // (`lazy_table_key` in `lazy.glsl`).
+        let mut keys: Vec<u64> = match &state.table {
+            Some(t) => t.entries().map_err(|e| hash_error(l, e))?.0,
+            None => Vec::new(),
+        }
+        .into_iter()
+        .map(|k| lazy_key(morton_decode(k, 3).map(|c| c as i32 - LAZY_MARGIN)))
+        .collect();
+        keys.sort_unstable();
+        Ok(keys)
     }
 
     /// Shrinks level `l`'s versions and counts to its voxels (rounded up to

@@ -24,6 +24,6 @@ pub use matter::{
     CutInfo, MatterColours, MatterError, MatterSpec, MatterStore, MatterVoxels, SharedLazy,
     StoredMatter, SynthesisInfo,
 };
-pub use policy::{MemoryPolicy, DEFAULT_STATE_BUDGET_MB, LAZY_CHUNK_VOXELS};
+pub use policy::{LevelKeep, MemoryPolicy, DEFAULT_STATE_BUDGET_MB, LAZY_CHUNK_VOXELS};
 pub use state_cpu::LazySolidCpu;
 pub use visit_order::{order_key, stage_range, StageRanges, VisitOrder};

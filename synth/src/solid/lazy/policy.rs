@@ -7,14 +7,17 @@
 //! - **keep**: every version of every voxel stays; nothing is ever computed twice.
 //! - **budget** (`N MB`): after each chunk of a request, levels are kept in the order a later
 //!   request reads them while their bytes together stay within `N` MB: from the coarsest down
-//!   to the second finest, then the finest; the first level past the budget and every level
-//!   after it in that order are emptied. The coarse levels, small and shared by every later
-//!   cut, stay first. The finest level comes last because no later request of new voxels reads
-//!   it in bulk: a new voxel's finest versions are corrected from its own neighbours, which are
-//!   new too except along the rim where a cap meets what was requested before, while the
-//!   second finest level's versions are the parents of every new finest voxel and most of a
-//!   cut's second-finest neighbourhood was computed by the surface before it (`docs/lazy.md`,
-//!   "Which level a cut recomputes"). Requests run in Morton-ordered chunks of at most
+//!   to the second finest, then the finest. The first level past the budget keeps the part of
+//!   its voxels that the rest of the budget holds, a region (the first voxels in Morton order),
+//!   and every level after it in that order is emptied. The coarse levels, small and shared by
+//!   every later cut, stay first. The finest level comes last because no later request of new
+//!   voxels reads it in bulk: a new voxel's finest versions are corrected from its own
+//!   neighbours, which are new too except along the rim where a cap meets what was requested
+//!   before, while the second finest level's versions are the parents of every new finest
+//!   voxel and most of a cut's second-finest neighbourhood was computed by the surface before
+//!   it (`docs/lazy.md`, "Which level a cut recomputes"). Keeping part of a level rather than
+//!   none of it makes the recomputation grow with what the budget lacks instead of jumping
+//!   when a level no longer fits. Requests run in Morton-ordered chunks of at most
 //!   [`LAZY_CHUNK_VOXELS`] voxels, so the state alive during a request is the kept levels plus
 //!   one chunk's other levels instead of the whole surface's.
 
@@ -36,7 +39,7 @@ pub const DEFAULT_STATE_BUDGET_MB: u64 = 48;
 pub enum MemoryPolicy {
     /// Every version of every voxel.
     Keep,
-    /// Whole levels, in the order the module docs give, within this many bytes.
+    /// Levels, in the order the module docs give, within this many bytes.
     Budget(u64),
 }
 
@@ -47,28 +50,42 @@ impl Default for MemoryPolicy {
 }
 
 impl MemoryPolicy {
-    /// Which levels to keep, given each level's bytes (coarsest first): `true` for a kept
-    /// level. The budget fills in the order the module docs give, coarsest to second finest,
-    /// then the finest, and stops at the first level past it.
-    pub fn levels_kept(&self, level_bytes: &[u64]) -> Vec<bool> {
+    /// What to keep of each level, given each level's bytes (coarsest first). The budget
+    /// fills in the order the module docs give, coarsest to second finest, then the finest;
+    /// the first level past it keeps what the rest of the budget holds.
+    pub fn plan(&self, level_bytes: &[u64]) -> Vec<LevelKeep> {
         let n = level_bytes.len();
-        let mut kept = vec![false; n];
+        let mut plan = vec![LevelKeep::Nothing; n];
         match *self {
-            MemoryPolicy::Keep => kept.fill(true),
+            MemoryPolicy::Keep => plan.fill(LevelKeep::All),
             MemoryPolicy::Budget(budget) => {
                 let order = (0..n.saturating_sub(1)).chain(n.checked_sub(1));
                 let mut sum = 0u64;
                 for l in order {
-                    sum += level_bytes[l];
-                    if sum > budget {
+                    if sum + level_bytes[l] > budget {
+                        if sum < budget {
+                            plan[l] = LevelKeep::Part(budget - sum);
+                        }
                         break;
                     }
-                    kept[l] = true;
+                    sum += level_bytes[l];
+                    plan[l] = LevelKeep::All;
                 }
             }
         }
-        kept
+        plan
     }
+}
+
+/// What a memory policy keeps of one level of the state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LevelKeep {
+    /// Every voxel.
+    All,
+    /// The voxels that fit in this many bytes, tables and versions together.
+    Part(u64),
+    /// No voxel.
+    Nothing,
 }
 
 impl fmt::Display for MemoryPolicy {
@@ -129,28 +146,34 @@ mod tests {
                 "{bad}: {e}"
             );
         }
+        use LevelKeep::{All, Nothing, Part};
         let bytes = [1_000_000, 3_000_000, 20_000_000, 90_000_000];
-        let kept = |p: MemoryPolicy| p.levels_kept(&bytes);
-        assert_eq!(kept(MemoryPolicy::Keep), [true; 4]);
+        let plan = |p: MemoryPolicy| p.plan(&bytes);
+        assert_eq!(plan(MemoryPolicy::Keep), [All; 4]);
         let budget = MemoryPolicy::Budget;
-        assert_eq!(kept(budget(114_000_000)), [true; 4]);
-        assert_eq!(kept(budget(113_999_999)), [true, true, true, false]);
-        assert_eq!(kept(budget(24_000_000)), [true, true, true, false]);
-        assert_eq!(kept(budget(23_999_999)), [true, true, false, false]);
-        assert_eq!(kept(budget(100)), [false; 4]);
-        // The finest level goes last: a small finest level is still dropped when the second
-        // finest does not fit, and kept after it when it does.
+        assert_eq!(plan(budget(114_000_000)), [All; 4]);
+        assert_eq!(plan(budget(113_999_999)), [All, All, All, Part(89_999_999)]);
+        assert_eq!(plan(budget(24_000_000)), [All, All, All, Nothing]);
+        assert_eq!(
+            plan(budget(23_999_999)),
+            [All, All, Part(19_999_999), Nothing]
+        );
+        assert_eq!(plan(budget(100)), [Part(100), Nothing, Nothing, Nothing]);
+        // The finest level goes last: while the second finest does not fit whole, the finest
+        // is emptied however small it is; it is kept, whole or in part, after the others.
         let fine = [1_000_000, 3_000_000, 20_000_000, 2_000_000];
         assert_eq!(
-            budget(10_000_000).levels_kept(&fine),
-            [true, true, false, false]
+            budget(10_000_000).plan(&fine),
+            [All, All, Part(6_000_000), Nothing]
         );
-        assert_eq!(budget(26_000_000).levels_kept(&fine), [true; 4]);
+        assert_eq!(budget(26_000_000).plan(&fine), [All; 4]);
         assert_eq!(
-            budget(25_000_000).levels_kept(&fine),
-            [true, true, true, false]
+            budget(25_000_000).plan(&fine),
+            [All, All, All, Part(1_000_000)]
         );
-        assert_eq!(budget(1).levels_kept(&[]), Vec::<bool>::new());
-        assert_eq!(budget(5).levels_kept(&[4]), [true]);
+        assert_eq!(budget(24_000_000).plan(&fine), [All, All, All, Nothing]);
+        assert_eq!(budget(1).plan(&[]), Vec::<LevelKeep>::new());
+        assert_eq!(budget(5).plan(&[4]), [All]);
+        assert_eq!(budget(5).plan(&[0, 9]), [All, Part(5)]);
     }
 }

@@ -50,6 +50,19 @@ fn bench_cuts_times_every_cut_and_fracture() {
             .as_f64()
             .unwrap_or_else(|| panic!("{k}: {}", json["derived"]))
     };
+    // Per level, the kept state after the outer surface: its levels add up to the state's
+    // bytes, less the per-level records the kernels read.
+    let levels: Vec<f64> = (0..)
+        .map_while(|l| {
+            json["derived"][format!("32³: level {l} state MB after the outer surface")].as_f64()
+        })
+        .collect();
+    let state = note("32³: state MB after the outer surface");
+    let sum: f64 = levels.iter().sum();
+    assert!(
+        levels.len() > 1 && sum > 0.0 && sum <= state && state - sum < 0.01,
+        "{levels:?} against {state} MB"
+    );
     let case = "32³ fracture 4 pieces";
     assert!(note(&format!("{case}: voxel versions synthesized")) > 0.0);
     assert!(note(&format!("{case}: device MB at peak above before")) > 0.0);
