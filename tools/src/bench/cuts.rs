@@ -44,10 +44,13 @@ pub struct CutsArgs {
     /// Equivalent resolutions R.
     #[arg(long, value_name = "N", value_delimiter = ',', default_value = "256")]
     pub voxel_res: Vec<u32>,
-    /// Voronoi fractures to time, by piece count; `--pieces` with no count times the plane
-    /// cuts only (each fracture starts from a fresh state holding the outer surface again).
-    #[arg(long, value_delimiter = ',', num_args = 0.., default_value = "8,32")]
+    /// Voronoi fractures to time, by piece count.
+    #[arg(long, value_delimiter = ',', default_value = "8,32")]
     pub pieces: Vec<usize>,
+    /// Times the plane cuts only, no fracture: each fracture starts from a fresh state that
+    /// synthesizes the outer surface again, which at 1024³ takes minutes on lavapipe.
+    #[arg(long)]
+    pub no_fractures: bool,
     #[command(flatten)]
     pub exemplar: super::lazy::SolidExemplarArg,
     /// Seed of the jitter and of the fracture sites.
@@ -279,7 +282,8 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         out_dir: args.common.out_dir.clone(),
     };
     // Three rows a cut: wall, device and the rest.
-    let cases = 3 * args.voxel_res.len() * (CUTS.len() + args.pieces.len());
+    let fractures: &[usize] = if args.no_fractures { &[] } else { &args.pieces };
+    let cases = 3 * args.voxel_res.len() * (CUTS.len() + fractures.len());
     let mut bench = Bench::new("bench-cuts", &gpu, &once, cases as u64)?;
     let policy = args.memory.unwrap_or_default();
     println!("synthesis state memory policy: {policy}");
@@ -343,7 +347,7 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             };
             cut.run(&mut bench, &mut holder, &mut voxelizer, &mut notes)?;
         }
-        for &n in &args.pieces {
+        for &n in fractures {
             let case = format!("{r}³ fracture {n} pieces");
             bench.status(format!("{case}: the outer surface"));
             let mut holder = Holder::new(&setup, &mut voxelizer, r)?;
