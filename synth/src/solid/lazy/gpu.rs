@@ -272,6 +272,24 @@ impl LevelState {
     fn bytes(&self) -> u64 {
         self.table.as_ref().map_or(0, |t| t.bytes()) + self.versions.bytes() + self.counts.bytes()
     }
+
+    /// Slots the versions and counts would be fitted to (the voxels held, rounded up to
+    /// [`INITIAL_SLOTS`]), when they hold more than an eighth spare.
+    fn fitted_slots(&self) -> Option<usize> {
+        let fitted = (self.len as usize).div_ceil(INITIAL_SLOTS).max(1) * INITIAL_SLOTS;
+        (self.counts.len() > fitted + fitted / 8).then_some(fitted)
+    }
+
+    /// [`LevelState::bytes`] once fitted ([`LevelState::fitted_slots`]).
+    fn fitted_bytes(&self) -> u64 {
+        match self.fitted_slots() {
+            Some(slots) => {
+                let per_slot = self.versions.bytes() / self.counts.len() as u64 + 4;
+                self.table.as_ref().map_or(0, |t| t.bytes()) + per_slot * slots as u64
+            }
+            None => self.bytes(),
+        }
+    }
 }
 
 /// What a lazy state is made with besides its exemplars and resolution: the seed, and
@@ -543,20 +561,26 @@ impl GpuLazySolid {
     /// not what a request grew it to); returns how many levels that held voxels were emptied
     /// or cut back.
     fn apply_policy(&mut self) -> SynthResult<u32> {
+        // The budget weighs each level as fitted; only the levels it keeps whole are fitted
+        // (one kept in part is rebuilt, one emptied freed).
+        let fits = self.policy != MemoryPolicy::Keep;
+        let bytes: Vec<u64> = if fits {
+            self.levels.iter().map(LevelState::fitted_bytes).collect()
+        } else {
+            self.levels.iter().map(LevelState::bytes).collect()
+        };
         let mut changed = false;
-        if self.policy != MemoryPolicy::Keep {
-            for l in 0..self.levels.len() {
-                changed |= self.fit(l)?;
-            }
-        }
-        let bytes: Vec<u64> = self.levels.iter().map(LevelState::bytes).collect();
         let mut dropped = 0;
         for (l, keep) in self.policy.plan(&bytes).into_iter().enumerate() {
             if self.levels[l].len == 0 {
                 continue;
             }
             match keep {
-                LevelKeep::All => {}
+                LevelKeep::All => {
+                    if fits {
+                        changed |= self.fit(l)?;
+                    }
+                }
                 LevelKeep::Part(bytes) => {
                     self.keep_part(l, bytes)?;
                     dropped += 1;
@@ -661,12 +685,9 @@ impl GpuLazySolid {
     /// Shrinks level `l`'s versions and counts to its voxels (rounded up to
     /// [`INITIAL_SLOTS`]) when they hold more than an eighth spare; returns whether it did.
     fn fit(&mut self, l: usize) -> SynthResult<bool> {
-        let state = &self.levels[l];
-        let used = state.len as usize;
-        let fitted = used.div_ceil(INITIAL_SLOTS).max(1) * INITIAL_SLOTS;
-        if state.counts.len() <= fitted + fitted / 8 {
+        let Some(fitted) = self.levels[l].fitted_slots() else {
             return Ok(false);
-        }
+        };
         self.resize(l, fitted)?;
         Ok(true)
     }
