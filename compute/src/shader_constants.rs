@@ -20,6 +20,10 @@ pub const RADIX_BITS: u32 = 8;
 /// Buckets of one radix-sort pass: `1 << RADIX_BITS`.
 pub const RADIX_BUCKETS: u32 = 256;
 
+/// Keys each radix-sort invocation counts and scatters, about: fewer make the digit-major
+/// histogram (every invocation's [`RADIX_BUCKETS`] counters, scanned each pass) dominate.
+pub const RADIX_KEYS_PER_INVOCATION: u32 = 2048;
+
 /// Reduce operator ids (a specialization constant of the reduce kernels).
 pub const REDUCE_OP_SUM: u32 = 0;
 /// See [`REDUCE_OP_SUM`].

@@ -21,4 +21,14 @@ uvec4 load_quad(uint q, uint n, uint fill) {
     return v;
 }
 
+// Words of the chunk to stream: `n`, or when `n_at` is not 0, as many as the word at n_at
+// says past the chunk's first word `first` (at most n): a length the device wrote.
+uint segments_n(uint64_t n_at, uint n, uint first) {
+    if (n_at == 0ul) {
+        return n;
+    }
+    uint total = U32Ptr(n_at).v[0];
+    return total <= first ? 0u : min(total - first, n);
+}
+
 #endif

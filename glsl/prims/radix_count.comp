@@ -1,6 +1,7 @@
 #version 460
 // Radix sort, step 1 of a pass: invocation t owns the contiguous segment
-// [t * seg_len, (t + 1) * seg_len) of the keys and counts its digits into its own column of the
+// [t * seg_len, (t + 1) * seg_len) of the keys (n keys, or as many as word n_at holds when
+// the count is known only on the device) and counts its digits into its own column of the
 // digit-major histogram hist[digit * threads + t]. No atomics: every counter has one writer.
 // The counting itself happens in a private array (cheaper than buffer memory on lavapipe).
 // u32 keys are read four at a time (seg_len is a multiple of 4): on lavapipe every per-lane
@@ -10,6 +11,8 @@
 layout(push_constant, scalar) uniform Push {
     uint64_t keys;
     uint64_t hist;
+    uint64_t n_at;     // not 0: the key count is this word (at most n), read on the device
+    uint64_t hist_n;   // with n_at: out, the histogram's length for its scan
     uint n;
     uint seg_len;
     uint threads;
@@ -20,7 +23,18 @@ layout(push_constant, scalar) uniform Push {
 
 void main() {
     uint t = uint(global_index());
-    if (t >= pc.threads) {
+    uint n = pc.n;
+    uint seg_len = pc.seg_len;
+    uint threads = pc.threads;
+    if (pc.n_at != 0ul) {
+        // A count known on the device: as many invocations as it needs, at most `threads`,
+        // each with a segment of the same length (radix_sort.rs, record_u64_counted).
+        n = min(U32Ptr(pc.n_at).v[0], pc.n);
+        threads = clamp((n + RADIX_KEYS_PER_INVOCATION - 1u) / RADIX_KEYS_PER_INVOCATION, 1u,
+                        pc.threads);
+        seg_len = ((n + threads - 1u) / threads + 3u) & ~3u;
+    }
+    if (t >= threads) {
         return;
     }
     U32Ptr hist = U32Ptr(pc.hist);
@@ -29,8 +43,11 @@ void main() {
     for (uint d = 0; d < RADIX_BUCKETS; ++d) {
         c[d] = 0u;
     }
-    uint begin = min(t * pc.seg_len, pc.n);
-    uint end = min(begin + pc.seg_len, pc.n);
+    if (pc.n_at != 0ul && t == 0u) {
+        U32Ptr(pc.hist_n).v[0] = RADIX_BUCKETS * threads;
+    }
+    uint begin = min(t * seg_len, n);
+    uint end = min(begin + seg_len, n);
     if (pc.key64 != 0) {
         U64Ptr keys = U64Ptr(pc.keys);
         for (uint i = begin; i < end; ++i) {
@@ -54,6 +71,6 @@ void main() {
         }
     }
     for (uint d = 0; d < buckets; ++d) {
-        hist.v[d * pc.threads + t] = c[d];
+        hist.v[d * threads + t] = c[d];
     }
 }

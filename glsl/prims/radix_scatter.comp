@@ -17,6 +17,7 @@ layout(push_constant, scalar) uniform Push {
     uint64_t vals_in;
     uint64_t vals_out;
     uint64_t hist;
+    uint64_t n_at;     // not 0: the key count is this word (at most n), read on the device
     uint n;
     uint seg_len;
     uint threads;
@@ -35,15 +36,26 @@ uint claim(uint digit) {
 
 void main() {
     uint t = uint(global_index());
-    if (t >= pc.threads) {
+    uint n = pc.n;
+    uint seg_len = pc.seg_len;
+    uint threads = pc.threads;
+    if (pc.n_at != 0ul) {
+        // A count known on the device: as many invocations as it needs, at most `threads`,
+        // each with a segment of the same length (radix_sort.rs, record_u64_counted).
+        n = min(U32Ptr(pc.n_at).v[0], pc.n);
+        threads = clamp((n + RADIX_KEYS_PER_INVOCATION - 1u) / RADIX_KEYS_PER_INVOCATION, 1u,
+                        pc.threads);
+        seg_len = ((n + threads - 1u) / threads + 3u) & ~3u;
+    }
+    if (t >= threads) {
         return;
     }
     U32Ptr hist = U32Ptr(pc.hist);
     for (uint d = 0; d <= pc.digit_mask; ++d) {
-        g_next[d] = hist.v[d * pc.threads + t];
+        g_next[d] = hist.v[d * threads + t];
     }
-    uint begin = min(t * pc.seg_len, pc.n);
-    uint end = min(begin + pc.seg_len, pc.n);
+    uint begin = min(t * seg_len, n);
+    uint end = min(begin + seg_len, n);
     bool with_values = pc.vals_in != 0;
     U32Ptr vals_in = U32Ptr(pc.vals_in);
     U32Ptr vals_out = U32Ptr(pc.vals_out);

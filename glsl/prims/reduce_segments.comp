@@ -10,6 +10,7 @@ layout(constant_id = 1) const uint OP = REDUCE_OP_SUM;
 
 layout(binding = 1, scalar) writeonly buffer Dst { uint dst[]; };
 layout(push_constant, scalar) uniform Push {
+    uint64_t n_at;     // not 0: the words to reduce are as many as this word says (at most n)
     uint n;
     uint seg_len;
     uint first_segment;
@@ -33,14 +34,15 @@ uint combine1(uint a, uint b) {
 
 void main() {
     uint t = uint(global_index());
+    uint n = segments_n(pc.n_at, pc.n, pc.first_segment * pc.seg_len);
     uint begin = t * pc.seg_len;
-    if (begin >= pc.n) {
+    if (begin >= n) {
         return;
     }
-    uint end = min(begin + pc.seg_len, pc.n);
+    uint end = min(begin + pc.seg_len, n);
     uvec4 acc = uvec4(identity());
     for (uint q = begin / 4u; 4u * q < end; ++q) {
-        acc = combine(acc, load_quad(q, pc.n, identity()));
+        acc = combine(acc, load_quad(q, n, identity()));
     }
     dst[pc.first_segment + t] = combine1(combine1(acc.x, acc.y), combine1(acc.z, acc.w));
 }

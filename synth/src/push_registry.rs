@@ -6,6 +6,7 @@ use crate::kernels::{synth, synth_solid};
 use crate::multiscale::gpu as multiscale_gpu;
 use crate::solid::lazy::gpu as lazy_gpu;
 use crate::solid::lazy::visit_order as lazy_visit;
+use crate::solid::lazy::walk as lazy_walk;
 use crate::solid::{candidates_gpu as solid_candidates, gpu as solid_gpu};
 use crate::{energy, gpu as synth_gpu};
 use lazysolid_compute::gpu::{KernelDef, PushBlock, PushRegistration};
@@ -40,8 +41,9 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<lazy_visit::StageRangesPush>(&synth_solid::LAZY_STAGE_RANGES),
         of::<lazy_gpu::GatherPush>(&synth_solid::LAZY_GATHER),
         of::<lazy_gpu::ColoursPush>(&synth_solid::LAZY_COLOURS),
-        of::<lazy_gpu::ExpandPush>(&synth_solid::LAZY_DEPS_EXPAND),
-        of::<lazy_gpu::TaggedUniquePush>(&synth_solid::LAZY_DEPS_UNIQUE),
-        of::<lazy_gpu::ParentsPush>(&synth_solid::LAZY_DEPS_PARENTS),
+        of::<lazy_walk::ExpandPush>(&synth_solid::LAZY_DEPS_EXPAND),
+        of::<lazy_walk::TaggedUniquePush>(&synth_solid::LAZY_DEPS_UNIQUE),
+        of::<lazy_walk::ParentsPush>(&synth_solid::LAZY_DEPS_PARENTS),
+        of::<lazy_walk::WalkStepPush>(&synth_solid::LAZY_WALK_STEP),
     ]
 }

@@ -41,6 +41,26 @@ pub const SOLID_MAX_CANDIDATES: u32 = 12;
 /// stops an invocation after 65535 loop iterations in all (65² · (11 + 1) ≈ 51 k).
 pub const SOLID_MAX_STRIP: u32 = 11;
 
+/// Bits per axis of a lazy key's position (`solid/lazy/keys.rs`); the stage tag takes the
+/// remaining `64 − 3 · 19` low bits of a tagged key.
+pub const LAZY_AXIS_BITS: u32 = 19;
+
+/// Words of the dependency walk's device counters (`solid/lazy/walk.rs`): the last scan's
+/// total, which the scan writes to word 0.
+pub const LAZY_WALK_TOTAL: u32 = 0;
+/// Walk counter: 1 when a set outgrew its buffer (the walk runs again with larger ones).
+pub const LAZY_WALK_OVERFLOW: u32 = 1;
+/// Walk counter: the expanded set's length (kept and new entries) of the current stage.
+pub const LAZY_WALK_EXPANDED: u32 = 2;
+/// Walk counter: how many entries the current stage's sort orders (0 when nothing expanded:
+/// the kept entries are sorted already).
+pub const LAZY_WALK_SORTED: u32 = 3;
+/// Walk counter: the entries of the current stage that expanded (`lazy_deps_expand.comp`
+/// counts them atomically, `lazy_walk_step.comp` reads and resets it).
+pub const LAZY_WALK_GROWN: u32 = 4;
+/// The first walk counter the kernels do not name (the rest are laid out by `walk.rs`).
+pub const LAZY_WALK_FIRST_FREE: u32 = 5;
+
 /// Bits of the key lazy synthesis sorts a level's voxels on before its correction
 /// (`lazy_order_key` in `synth/lazy.glsl`): a voxel without work, its class, its last stage.
 pub const LAZY_ORDER_BITS: u32 = 10;

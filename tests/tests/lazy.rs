@@ -576,7 +576,8 @@ fn voxel_positions(keys: &VoxelKeys) -> Vec<[i32; 3]> {
 /// The dependency walk on the device equals the host reference on the requests a scene
 /// makes of a state that already holds a surface: the caps of a plane cut, the caps of a
 /// Voronoi fracture and the surface again, with every level kept and after the budget kept
-/// part of the second finest level and none of the finest.
+/// part of the second finest level and none of the finest. The walk runs in one submission
+/// once its buffers are large enough, and again, equal, when a set outgrows them.
 #[test]
 fn device_walk_equals_the_reference_for_caps_from_a_held_surface_and_after_eviction() {
     let (exemplars, analysis, candidates, params) = case();
@@ -638,12 +639,74 @@ fn device_walk_equals_the_reference_for_caps_from_a_held_surface_and_after_evict
                     want,
                     "{name}, levels emptied: {evicted}"
                 );
+                // Taught by the first walk, the second runs in one submission, waited for
+                // once, whatever the number of levels and stages (lavapipe's memory is mapped:
+                // no staging copy adds a wait).
+                let before = gpu.submissions();
+                assert_eq!(lazy.dependencies(set).unwrap(), want, "{name}, again");
+                assert_eq!(gpu.submissions().since(before).waits, 1, "{name}");
+                // From buffers of one entry, the walk overflows, runs again with what the
+                // counters demanded, and still equals the reference.
+                lazy.start_walk_small();
+                let before = gpu.submissions();
+                assert_eq!(lazy.dependencies(set).unwrap(), want, "{name}, retried");
+                let waits = gpu.submissions().since(before).waits;
                 // The walk stops at what is held: the surface again asks for no new version
-                // while its levels are kept, and the caps do.
+                // while its levels are kept (its sets are the request), and the caps do.
                 let work = want.new_versions(&schedules, &known);
                 assert_eq!(work == 0, !evicted && set == &surface, "{name}: {work}");
+                assert!(
+                    work == 0 || waits > 1,
+                    "{name}: the small buffers overflowed no set"
+                );
             }
         }
+    });
+}
+
+/// A chunk of a request waits on the host a fixed four times (the dependency walk, the
+/// lookups and inserts of every level, the synthesis of every level, the colours), whatever
+/// the number of levels and stages; the hash tables made or grown, and the walks run again
+/// because a set outgrew its buffers, add to it, and the report counts both. The requested
+/// keys of `colours` stay on the device (they are never read back: a read would not wait on
+/// lavapipe, whose memory is mapped, so the count of waits cannot see it, but `colours` holds
+/// no host copy to convert).
+#[test]
+fn a_request_waits_on_the_host_a_fixed_few_times_per_chunk() {
+    let (exemplars, analysis, candidates, params) = case();
+    let m = unit_mesh("bunny00.off");
+    let r = RESOLUTION;
+    let stages: u32 = level_schedules(params)
+        .iter()
+        .map(LevelSchedule::final_stage)
+        .sum();
+    with_gpu(|gpu| {
+        let mut v = Voxelizer::new(gpu).unwrap();
+        let keys = v.surface(&m.positions, &m.triangles, r).unwrap();
+        let mut lazy = GpuLazySolid::new(gpu, exemplars, analysis, candidates, params, r).unwrap();
+        lazy.set_chunk_voxels(keys.len().div_ceil(4));
+        let before = gpu.submissions();
+        let (_, report) = lazy.colours(&keys).unwrap();
+        let waits = gpu.submissions().since(before).waits;
+        assert_eq!(report.chunks, 4);
+        assert_eq!(report.waits, waits);
+        let retries = u64::from(report.walks - report.chunks);
+        // A table made or grown waits once (made) or a few times (rebuilt from its entries).
+        let growth = 4 * u64::from(report.table_growths);
+        assert!(
+            waits <= 4 * u64::from(report.chunks) + retries + growth,
+            "{waits} waits in {} chunks, {retries} walks again, {} tables made or grown",
+            report.chunks,
+            report.table_growths
+        );
+        // The same voxels again need nothing new: four waits a chunk, far fewer than the
+        // levels' {stages} stages.
+        let before = gpu.submissions();
+        let (_, again) = lazy.colours(&keys).unwrap();
+        let waits = gpu.submissions().since(before).waits;
+        assert_eq!((again.walks, again.table_growths), (4, 0));
+        assert_eq!(waits, 4 * 4);
+        assert!(waits / 4 < u64::from(stages));
     });
 }
 

@@ -1,6 +1,7 @@
 //! Every GPU primitive against its CPU reference: edge sizes, and inputs larger than one
 //! 128 MiB storage-buffer binding.
 
+use lazysolid_compute::gpu::GpuBuffer;
 use lazysolid_compute::prims::{
     compact_cpu, exclusive_scan_cpu, reduce_cpu, sort_pairs_cpu, CompactOutput, Compactor, KeepCpu,
     RadixSort, Reduce, ReduceOp, Scan,
@@ -273,5 +274,49 @@ fn compaction_of_flags_alone_gives_indices() {
             })
             .unwrap_err();
         assert!(err.to_string().contains("needs Keep::Flags"), "{err}");
+    });
+}
+
+/// The counted forms, whose length is a word on the device (how the lazy dependency walk keeps
+/// its lengths off the host), equal the references on the first `count` elements of a larger
+/// buffer, for counts from none to all, with short (GPU) and long (CPU) scan segments; the
+/// counted scan writes its total even for none, and the sort leaves the elements past the
+/// count alone.
+#[test]
+fn counted_scan_and_sort_follow_a_length_on_the_device() {
+    with_gpu(|gpu| {
+        let cap = 70_001;
+        let values: Vec<u32> = random_u32(cap, 23).iter().map(|v| v % 7).collect();
+        let keys: Vec<u64> = random_u32(cap, 29)
+            .iter()
+            .zip(random_u32(cap, 31))
+            .map(|(&a, b)| (a as u64) << 32 | b as u64)
+            .collect();
+        for segment_length in [None, Some(16)] {
+            let mut scan = Scan::new(gpu).unwrap();
+            scan.segment_length = segment_length;
+            let mut sort = RadixSort::new(gpu).unwrap();
+            for count in [0, 1, 5, 4_096, 4_097, 33_333, cap] {
+                let word = GpuBuffer::from_slice(gpu, "count", &[count as u32]).unwrap();
+                let src = GpuBuffer::from_slice(gpu, "values", &values).unwrap();
+                let dst = GpuBuffer::<u32>::zeroed(gpu, "sums", cap).unwrap();
+                let total = GpuBuffer::from_slice(gpu, "total", &[u32::MAX]).unwrap();
+                let k = GpuBuffer::from_slice(gpu, "keys", &keys).unwrap();
+                gpu.submit(|rec| {
+                    scan.record_counted(rec, &src, &dst, cap, word.address(), Some(&total))?;
+                    sort.record_u64_counted(rec, &k, cap, word.address(), 64)
+                })
+                .unwrap();
+                let (sums, sum) = exclusive_scan_cpu(&values[..count]);
+                let what = format!("count {count}, segments {segment_length:?}");
+                assert_eq!(dst.read_range(0, count).unwrap(), sums, "{what}");
+                assert_eq!(total.read().unwrap()[0], sum, "{what}");
+                let mut sorted = keys[..count].to_vec();
+                sorted.sort_unstable();
+                let got = k.read().unwrap();
+                assert_eq!(got[..count], sorted[..], "{what}");
+                assert_eq!(got[count..], keys[count..], "{what}");
+            }
+        }
     });
 }

@@ -35,7 +35,7 @@ pub use kernels::HashKernels;
 pub use keys::{morton_decode, morton_encode, KeyLayout, Universe};
 pub use open_addressing::plain_open_addressing_ages;
 pub use probe::{fastmod_multiplier, probe_slot, table_mod, Probe};
-pub use robin_hood::{BuildReport, RobinHoodConfig, RobinHoodTable};
+pub use robin_hood::{AppendScratch, BuildReport, RobinHoodConfig, RobinHoodTable};
 pub use robin_hood_cpu::{plain_open_addressing_ages_cpu, RobinHoodCpu};
 pub(crate) use validate::CheckCounters;
 pub use validate::{validate_keys_cpu, KeyCheck};

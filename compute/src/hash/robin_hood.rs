@@ -7,7 +7,7 @@ use super::kernels::HashKernels;
 use super::keys::Universe;
 use super::probe::{fastmod_multiplier, Probe};
 use super::validate::{validate_entries, validate_keys_gpu};
-use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult, Recorder};
 use crate::prims::ReduceOp;
 use crate::shader_constants::HASH_MAX_AGE;
 use std::sync::Arc;
@@ -61,6 +61,14 @@ pub struct BuildReport {
     pub age_histogram: Option<Vec<u64>>,
     /// Every rebuild at a larger size, with its reason.
     pub rebuilds: Vec<String>,
+}
+
+/// Scratch of one recorded insert ([`RobinHoodTable::record_append`]).
+pub struct AppendScratch {
+    backup: CellBuffer,
+    counters: GpuBuffer<u32>,
+    mat: GpuBuffer<u32>,
+    ages: GpuBuffer<u32>,
 }
 
 pub(crate) enum CellBuffer {
@@ -447,6 +455,178 @@ impl RobinHoodTable {
         }
         self.len = n as u64;
         Ok((t[1] - t[0]) * 1e-6)
+    }
+
+    /// Makes room for `total` keys without passing `max_load_factor`: a table that would pass
+    /// it is rebuilt at `load_factor` for `total` keys now (said in the report), so that a
+    /// recorded insert ([`RobinHoodTable::record_append`]) of the difference meets no load
+    /// limit.
+    ///
+    /// Returns whether it rebuilt.
+    ///
+    /// # Errors
+    /// A size past the device's limits, or a GPU failure.
+    pub fn reserve(&mut self, total: u64) -> Result<bool, HashError> {
+        if total as f64 <= self.config.max_load_factor * self.table_size as f64 {
+            return Ok(false);
+        }
+        let size = table_size_for(total, self.config.load_factor)?;
+        let (keys, payloads) = self.entries()?;
+        let gpu = self.kernels.gpu.clone();
+        let mut grown = RobinHoodTable {
+            kernels: self.kernels.clone(),
+            universe: self.universe,
+            format: self.format,
+            config: self.config,
+            cells: CellBuffer::new(&gpu, self.config.width, size)?,
+            table_size: size,
+            len: 0,
+            report: BuildReport::default(),
+        };
+        let (k, p) = self.kernels.upload_pairs(&keys, &payloads)?;
+        grown.fill_checked(&k, &p, keys.len())?;
+        grown.report.rebuilds = vec![format!(
+            "room for {total} keys in {} cells (load factor {} at most)",
+            size, self.config.max_load_factor
+        )];
+        *self = grown;
+        Ok(true)
+    }
+
+    /// An empty table with room for `room` keys at `config.load_factor`: cleared cells, no
+    /// rebuild (one submission).
+    ///
+    /// # Errors
+    /// Bad load factors, a universe too large for the cell width, a size past the device's
+    /// limits, or a GPU failure.
+    pub fn with_room(
+        kernels: &Arc<HashKernels>,
+        universe: Universe,
+        room: u64,
+        config: RobinHoodConfig,
+    ) -> Result<RobinHoodTable, HashError> {
+        check_config(&config)?;
+        let format = CellFormat::new(config.width, &universe)?;
+        let table_size = table_size_for(room, config.load_factor)?;
+        let gpu = kernels.gpu.clone();
+        let table = RobinHoodTable {
+            kernels: kernels.clone(),
+            universe,
+            format,
+            config,
+            cells: CellBuffer::new(&gpu, config.width, table_size)?,
+            table_size,
+            len: 0,
+            report: BuildReport {
+                table_size,
+                ..BuildReport::default()
+            },
+        };
+        gpu.submit(|rec| {
+            table.cells.clear(rec);
+            Ok(())
+        })?;
+        Ok(table)
+    }
+
+    /// Clears the cells and inserts `keys[..n]` (unique, inside the universe), growing the
+    /// table while an age overflows.
+    fn fill_checked(
+        &mut self,
+        keys: &GpuBuffer<u64>,
+        payloads: &GpuBuffer<u32>,
+        n: usize,
+    ) -> Result<(), HashError> {
+        let gpu = self.kernels.gpu.clone();
+        for _ in 0..8 {
+            let counters = GpuBuffer::<u32>::zeroed(&gpu, "robin hood counters", 4)?;
+            gpu.submit(|rec| {
+                self.cells.clear(rec);
+                self.record_insert(rec, keys, payloads, n, &counters)
+            })?;
+            let c = counters.read()?;
+            if c[0] == 0 && c[1] == 0 {
+                self.len = n as u64;
+                return self.finish();
+            }
+            let lf = n as f64 / self.table_size as f64;
+            self.table_size = table_size_for(n as u64, lf / 1.05)?.max(self.table_size + 2);
+            self.cells = CellBuffer::new(&gpu, self.config.width, self.table_size)?;
+        }
+        Err(HashError::AgeOverflow {
+            failed: n as u32,
+            max_age: HASH_MAX_AGE,
+            load_factor: n as f64 / self.table_size as f64,
+            table_size: self.table_size,
+        })
+    }
+
+    /// Scratch of a recorded insert of up to `n` keys: the table's backup, the counters and
+    /// the max-age table.
+    ///
+    /// # Errors
+    /// An allocation failure.
+    pub fn append_scratch(&self) -> GpuResult<AppendScratch> {
+        let gpu = &self.kernels.gpu;
+        Ok(AppendScratch {
+            backup: CellBuffer::new(gpu, self.config.width, self.table_size)?,
+            counters: GpuBuffer::new(gpu, "robin hood append counters", 4)?,
+            mat: GpuBuffer::new(gpu, "robin hood max-age table", self.table_size as usize)?,
+            ages: GpuBuffer::new(gpu, "unused", 1)?,
+        })
+    }
+
+    /// Records the insert of `keys[..n]` → `payloads[..n]` into a submission the caller makes
+    /// with other work, for callers that keep their counts on the device: the keys must be new
+    /// and unique (not checked), and [`RobinHoodTable::reserve`] must have made room for them.
+    /// The table is backed up first; [`RobinHoodTable::finish_append`] after the submission
+    /// says whether every key found a cell, and restores the backup when one did not.
+    ///
+    /// # Errors
+    /// Scratch of another size than this table's, or a recording failure.
+    pub fn record_append(
+        &self,
+        rec: &mut Recorder<'_>,
+        scratch: &AppendScratch,
+        keys: &GpuBuffer<u64>,
+        payloads: &GpuBuffer<u32>,
+        n: usize,
+    ) -> GpuResult<()> {
+        crate::prims::check_len("hash keys", n, keys.len().min(payloads.len()))?;
+        if scratch.mat.len() != self.table_size as usize {
+            return Err(GpuError::InvalidArgument(format!(
+                "append scratch for {} cells, table of {}",
+                scratch.mat.len(),
+                self.table_size
+            )));
+        }
+        rec.fill(&scratch.counters, 0);
+        self.cells.copy_to(rec, &scratch.backup)?;
+        self.record_set_ages(rec, &scratch.ages, 1)?;
+        self.record_insert(rec, keys, payloads, n, &scratch.counters)?;
+        self.record_max_age(rec, &scratch.mat, None)?;
+        self.record_set_ages(rec, &scratch.mat, 0)
+    }
+
+    /// After the submission of [`RobinHoodTable::record_append`] of `n` keys: `true` when every
+    /// key was inserted, `false` when an age overflowed or a key was present, in which case the
+    /// table is as it was before (from the backup) and the caller inserts again with
+    /// [`RobinHoodTable::insert`], which grows the table.
+    ///
+    /// # Errors
+    /// A GPU failure.
+    pub fn finish_append(&mut self, scratch: AppendScratch, n: usize) -> Result<bool, HashError> {
+        let c = scratch.counters.read()?;
+        if c[0] > 0 || c[1] > 0 {
+            self.cells = scratch.backup;
+            return Ok(false);
+        }
+        self.len += n as u64;
+        self.report.keys = self.len;
+        self.report.table_size = self.table_size;
+        self.report.load_factor = self.len as f64 / self.table_size as f64;
+        self.report.rebuilds.clear();
+        Ok(true)
     }
 
     /// Inserts a further batch `keys[..n]` → `payloads[..n]` (lazy synthesis adds texels as cuts

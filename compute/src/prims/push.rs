@@ -34,6 +34,8 @@ crate::push_block! {
     pub(crate) struct RadixCountPush<'a> {
         pub keys: DeviceAddress<'a>,
         pub hist: DeviceAddress<'a>,
+        pub n_at: DeviceAddress<'a>,
+        pub hist_n: DeviceAddress<'a>,
         pub n: u32,
         pub seg_len: u32,
         pub threads: u32,
@@ -51,6 +53,7 @@ crate::push_block! {
         pub vals_in: DeviceAddress<'a>,
         pub vals_out: DeviceAddress<'a>,
         pub hist: DeviceAddress<'a>,
+        pub n_at: DeviceAddress<'a>,
         pub n: u32,
         pub seg_len: u32,
         pub threads: u32,

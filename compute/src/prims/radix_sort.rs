@@ -12,7 +12,9 @@ use super::scratch::grown;
 use super::{check_aligned, check_len};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult, Kernel, Recorder};
 use crate::kernels::prims;
-use crate::shader_constants::{DEFAULT_WORKGROUP_SIZE, RADIX_BITS, RADIX_BUCKETS};
+use crate::shader_constants::{
+    DEFAULT_WORKGROUP_SIZE, RADIX_BITS, RADIX_BUCKETS, RADIX_KEYS_PER_INVOCATION,
+};
 use bytemuck::Pod;
 
 /// Plain-Rust reference: a stable sort of `(key, value)` pairs by the low `key_bits` bits of the
@@ -44,6 +46,8 @@ pub struct RadixSort {
     keys32: Option<GpuBuffer<u32>>,
     keys64: Option<GpuBuffer<u64>>,
     values: Option<GpuBuffer<u32>>,
+    /// The histogram's length of a counted sort, written by its count kernel for its scan.
+    hist_n: GpuBuffer<u32>,
     /// Most invocations a pass uses; each owns a segment of `n / threads` keys.
     pub max_threads: u32,
 }
@@ -52,6 +56,8 @@ struct Job<'a> {
     keys: (DeviceAddress<'a>, DeviceAddress<'a>),
     values: Option<(DeviceAddress<'a>, DeviceAddress<'a>)>,
     n: u32,
+    /// Not null: the key count, at most `n`, read on the device.
+    n_at: DeviceAddress<'a>,
     key64: bool,
     key_bits: u32,
     threads: u32,
@@ -67,6 +73,7 @@ impl RadixSort {
             keys32: None,
             keys64: None,
             values: None,
+            hist_n: GpuBuffer::zeroed(gpu, "radix sort histogram length", 1)?,
             max_threads: 2048,
         })
     }
@@ -79,7 +86,7 @@ impl RadixSort {
         n: usize,
         key_bits: u32,
     ) -> GpuResult<()> {
-        self.record_any(rec, keys, None, n, key_bits, 32)
+        self.record_any(rec, keys, None, (n, None), key_bits, 32)
     }
 
     /// Records an in-place sort of `keys[..n]` by their low `key_bits` bits (1..=32), moving
@@ -92,7 +99,7 @@ impl RadixSort {
         n: usize,
         key_bits: u32,
     ) -> GpuResult<()> {
-        self.record_any(rec, keys, Some(values), n, key_bits, 32)
+        self.record_any(rec, keys, Some(values), (n, None), key_bits, 32)
     }
 
     /// Records an in-place sort of `u64` `keys[..n]` by their low `key_bits` bits (1..=64),
@@ -105,7 +112,26 @@ impl RadixSort {
         n: usize,
         key_bits: u32,
     ) -> GpuResult<()> {
-        self.record_any(rec, keys, values, n, key_bits, 64)
+        self.record_any(rec, keys, values, (n, None), key_bits, 64)
+    }
+
+    /// Records an in-place sort of the first `count` `u64` keys of `keys[..cap]` by their low
+    /// `key_bits` bits, where `count` is the word at `count_at`, written on the device by
+    /// earlier work of the same submission (at most `cap`; the host never reads it). For
+    /// pipelines that keep their lengths on the device: the passes are sized for `cap`, each
+    /// invocation's segment for the count.
+    ///
+    /// # Errors
+    /// As [`RadixSort::record_u64`].
+    pub fn record_u64_counted(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        keys: &GpuBuffer<u64>,
+        cap: usize,
+        count_at: DeviceAddress<'_>,
+        key_bits: u32,
+    ) -> GpuResult<()> {
+        self.record_any(rec, keys, None, (cap, Some(count_at)), key_bits, 64)
     }
 
     fn record_any<K: Pod>(
@@ -113,7 +139,7 @@ impl RadixSort {
         rec: &mut Recorder<'_>,
         keys: &GpuBuffer<K>,
         values: Option<&GpuBuffer<u32>>,
-        n: usize,
+        (n, n_at): (usize, Option<DeviceAddress<'_>>),
         key_bits: u32,
         width: u32,
     ) -> GpuResult<()> {
@@ -166,6 +192,7 @@ impl RadixSort {
                 .zip(scratch_values)
                 .map(|(v, s)| (v.address(), s.address())),
             n: n as u32,
+            n_at: n_at.unwrap_or(DeviceAddress::NULL),
             key64,
             key_bits,
             threads,
@@ -174,7 +201,13 @@ impl RadixSort {
         let hist = self.hist.as_ref().expect("grown above");
         let count = self.gpu.kernel(&prims::RADIX_COUNT)?;
         let scatter = self.gpu.kernel(&prims::RADIX_SCATTER)?;
-        record_passes(rec, [&count, &scatter], &mut self.scan, hist, &job)?;
+        record_passes(
+            rec,
+            [&count, &scatter],
+            &mut self.scan,
+            (hist, &self.hist_n),
+            &job,
+        )?;
         if passes % 2 == 1 {
             // The result sits in the scratch buffers: copy it home.
             let bytes = keys.bytes().min((n * size_of::<K>()) as u64);
@@ -190,15 +223,17 @@ impl RadixSort {
         Ok(())
     }
 
-    /// Invocations of a pass: about 2048 keys each. A GPU gets whole workgroups of them; a CPU
+    /// Invocations of a pass: about [`RADIX_KEYS_PER_INVOCATION`] keys each. A GPU gets whole workgroups of them; a CPU
     /// device runs a partial workgroup rather than give each invocation a few keys, because
     /// every invocation writes, and the scan reads, all [`RADIX_BUCKETS`] of its counters.
     fn threads_for(&self, n: u32) -> u32 {
         let wg = DEFAULT_WORKGROUP_SIZE;
         if self.gpu.info().is_cpu() {
-            return n.div_ceil(2048).clamp(1, self.max_threads.max(1));
+            return n
+                .div_ceil(RADIX_KEYS_PER_INVOCATION)
+                .clamp(1, self.max_threads.max(1));
         }
-        let wanted = n.div_ceil(2048).div_ceil(wg) * wg;
+        let wanted = n.div_ceil(RADIX_KEYS_PER_INVOCATION).div_ceil(wg) * wg;
         wanted.clamp(wg, self.max_threads.max(wg))
     }
 
@@ -230,9 +265,10 @@ fn record_passes(
     rec: &mut Recorder<'_>,
     [count, scatter]: [&Kernel; 2],
     scan: &mut Scan,
-    hist: &GpuBuffer<u32>,
+    (hist, hist_n): (&GpuBuffer<u32>, &GpuBuffer<u32>),
     job: &Job<'_>,
 ) -> GpuResult<()> {
+    let counted = job.n_at != DeviceAddress::NULL;
     let threads = job.threads;
     let seg_len = job.n.div_ceil(threads).next_multiple_of(4);
     let bits = RADIX_BITS;
@@ -260,6 +296,12 @@ fn record_passes(
             &RadixCountPush {
                 keys: src,
                 hist: hist.address(),
+                n_at: job.n_at,
+                hist_n: if counted {
+                    hist_n.address()
+                } else {
+                    DeviceAddress::NULL
+                },
                 n: job.n,
                 seg_len,
                 threads,
@@ -268,13 +310,18 @@ fn record_passes(
                 key64,
             },
         )?;
-        scan.record(rec, hist, hist, hist_len, None)?;
+        if counted {
+            scan.record_counted(rec, hist, hist, hist_len, hist_n.address(), None)?;
+        } else {
+            scan.record(rec, hist, hist, hist_len, None)?;
+        }
         let push = RadixScatterPush {
             keys_in: src,
             keys_out: dst,
             vals_in,
             vals_out,
             hist: hist.address(),
+            n_at: job.n_at,
             n: job.n,
             seg_len,
             threads,

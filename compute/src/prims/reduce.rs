@@ -116,7 +116,7 @@ impl Reduce {
             } else {
                 &self.levels[i]
             };
-            reduce_segments(rec, &kernel, from, split, to)?;
+            reduce_segments(rec, &kernel, from, split, to, 0)?;
         }
         Ok(())
     }

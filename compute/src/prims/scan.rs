@@ -4,7 +4,7 @@
 use super::check_len;
 use super::scratch::grown_level;
 use super::segments::{reduce_segments, ScanPush, Split};
-use crate::gpu::{Gpu, GpuBuffer, GpuResult, Recorder};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuError, GpuResult, Recorder};
 use crate::kernels::prims;
 use crate::shader_constants::{DEFAULT_WORKGROUP_SIZE, REDUCE_OP_SUM};
 
@@ -66,7 +66,38 @@ impl Scan {
             return Ok(());
         }
         self.reserve(n)?;
-        self.record_level(rec, 0, src, dst, n, total)
+        self.record_level(rec, 0, (src, dst), (n, 0), total)
+    }
+
+    /// Records the exclusive scan of the first `count` words of `src[..cap]` into `dst`, where
+    /// `count` is the word at `count_at`, written on the device by earlier work of the same
+    /// submission (at most `cap`; the host never reads it); `total`, when given, receives their
+    /// sum (0 for none). The work follows the count, not `cap`: for pipelines that keep their
+    /// lengths on the device.
+    ///
+    /// # Errors
+    /// As [`Scan::record`], and a `cap` past one binding's range.
+    pub fn record_counted(
+        &mut self,
+        rec: &mut Recorder<'_>,
+        src: &GpuBuffer<u32>,
+        dst: &GpuBuffer<u32>,
+        cap: usize,
+        count_at: DeviceAddress<'_>,
+        total: Option<&GpuBuffer<u32>>,
+    ) -> GpuResult<()> {
+        check_len(&format!("scan of {:?}", src.name()), cap, src.len())?;
+        check_len(&format!("scan into {:?}", dst.name()), cap, dst.len())?;
+        let split = Split::new(cap.max(1), self.gpu.info(), self.segment_length);
+        if split.chunks().count() > 1 {
+            return Err(GpuError::InvalidArgument(format!(
+                "counted scan of {:?}: {cap} words pass one binding ({} words)",
+                src.name(),
+                split.chunk
+            )));
+        }
+        self.reserve(cap.max(1))?;
+        self.record_level(rec, 0, (src, dst), (cap.max(1), count_at.raw()), total)
     }
 
     /// Allocates the per-level segment totals that a scan of `n` words needs.
@@ -91,9 +122,8 @@ impl Scan {
         &self,
         rec: &mut Recorder<'_>,
         level: usize,
-        src: &GpuBuffer<u32>,
-        dst: &GpuBuffer<u32>,
-        n: usize,
+        (src, dst): (&GpuBuffer<u32>, &GpuBuffer<u32>),
+        (n, n_at): (usize, u64),
         total: Option<&GpuBuffer<u32>>,
     ) -> GpuResult<()> {
         let split = Split::new(n, self.gpu.info(), self.segment_length);
@@ -105,8 +135,10 @@ impl Scan {
                 DEFAULT_WORKGROUP_SIZE,
                 &[(1, REDUCE_OP_SUM)],
             )?;
-            reduce_segments(rec, &reduce, src, &split, totals)?;
-            self.record_level(rec, level + 1, totals, totals, split.segments, None)?;
+            reduce_segments(rec, &reduce, src, &split, totals, n_at)?;
+            // Past a device count, segment totals are stale; only the carries of the segments
+            // below it are used, and they sum the totals before them.
+            self.record_level(rec, level + 1, (totals, totals), (split.segments, 0), None)?;
             Some(totals)
         } else {
             None
@@ -114,6 +146,7 @@ impl Scan {
         let total_buffer = total.unwrap_or(&self.unused_total);
         for (first, words) in split.chunks() {
             let push = ScanPush {
+                n_at,
                 n: words as u32,
                 seg_len: split.seg_len as u32,
                 first_segment: (first / split.seg_len) as u32,

@@ -7,6 +7,7 @@ crate::push_block! {
     /// Push block of `reduce_segments.comp`.
     #[derive(Clone, Copy)]
     pub(crate) struct ReducePush {
+        pub n_at: u64,
         pub n: u32,
         pub seg_len: u32,
         pub first_segment: u32,
@@ -17,6 +18,7 @@ crate::push_block! {
     /// Push block of `scan_segments.comp`.
     #[derive(Clone, Copy)]
     pub(crate) struct ScanPush {
+        pub n_at: u64,
         pub n: u32,
         pub seg_len: u32,
         pub first_segment: u32,
@@ -83,16 +85,19 @@ impl Split {
     }
 }
 
-/// Records the reduction of every segment of `src[..split.n]` into `dst[segment]`.
+/// Records the reduction of every segment of `src[..split.n]` into `dst[segment]` (of the
+/// segments below the length at device address `n_at` when it is not 0).
 pub(crate) fn reduce_segments(
     rec: &mut Recorder<'_>,
     kernel: &Kernel,
     src: &GpuBuffer<u32>,
     split: &Split,
     dst: &GpuBuffer<u32>,
+    n_at: u64,
 ) -> GpuResult<()> {
     for (first, words) in split.chunks() {
         let push = ReducePush {
+            n_at,
             n: words as u32,
             seg_len: split.seg_len as u32,
             first_segment: (first / split.seg_len) as u32,

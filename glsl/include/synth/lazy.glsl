@@ -27,13 +27,17 @@ struct LazyLevel {
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) buffer LazyLevels { LazyLevel v[]; };
 
-// Bits per axis of a lazy key (synth/src/solid/lazy/keys.rs) and its bias.
-const uint LAZY_AXIS_BITS_GLSL = 19u;
-const int LAZY_BIAS_GLSL = 1 << 18;
+// The bias of a lazy key (synth/src/solid/lazy/keys.rs; LAZY_AXIS_BITS from
+// synth/src/shader_constants.rs).
+const int LAZY_BIAS_GLSL = 1 << (LAZY_AXIS_BITS - 1u);
 
 // Low bits of a stage-tagged key: tagged = key << LAZY_STAGE_BITS | (LAZY_STAGE_MAX - stage).
-const uint LAZY_STAGE_BITS = 7u;
-const uint LAZY_STAGE_MAX = 127u;
+const uint LAZY_STAGE_BITS = 64u - 3u * LAZY_AXIS_BITS;
+const uint LAZY_STAGE_MAX = (1u << LAZY_STAGE_BITS) - 1u;
+
+// The key of no voxel: a voxel with nothing to request above it has it as its parent. It sorts
+// after every real key, and the walk's unique pass drops it.
+const uint64_t LAZY_NO_KEY = (1ul << (3u * LAZY_AXIS_BITS)) - 1ul;
 
 uint64_t lazy_untag_key(uint64_t t) {
     return t >> LAZY_STAGE_BITS;

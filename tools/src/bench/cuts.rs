@@ -101,6 +101,8 @@ struct CutCost {
     /// Per level, coarsest first: versions computed and voxels new to the state (the rest of
     /// the versions are corrections, and under a budget recomputations of dropped levels).
     levels: Vec<(u64, u64)>,
+    /// The synthesis request's chunks, dependency walks and host waits (of the cut's).
+    request: (u32, u32, u64),
     /// What the cut's submissions did: host waits, and device time from timestamps around
     /// every submission (the walk, sorts, synthesis, colours, inserts, copies).
     submissions: Submissions,
@@ -203,18 +205,19 @@ impl Holder {
         let (host_live, host_peak) = (host_memory::live(), host_memory::peak());
         let grown = grown?;
         let synthesis = grown.synthesis;
-        let levels = match synthesis {
+        let (levels, request) = match synthesis {
             Some(_) => {
                 let lazy = self.lazy.lock().unwrap_or_else(|p| p.into_inner());
                 let report = lazy.last_report();
-                report
+                let levels = report
                     .computed
                     .iter()
                     .zip(&report.upsampled)
                     .map(|(&c, &u)| (c, u))
-                    .collect()
+                    .collect();
+                (levels, (report.chunks, report.walks, report.waits))
             }
-            None => Vec::new(),
+            None => (Vec::new(), (0, 0, 0)),
         };
         Ok(CutCost {
             cap_triangles: caps.1.len(),
@@ -224,6 +227,7 @@ impl Holder {
             wall_ms,
             synthesis_ms: synthesis.map_or(0.0, |s| s.gpu_ms),
             levels,
+            request,
             submissions,
             state_growth: self.matter.state_bytes() as i64 - state_before as i64,
             // The request's own buffers: keys (8 B) and colours (4 B) per new voxel.
@@ -449,6 +453,15 @@ fn note_cost(notes: &mut Vec<(String, f64)>, case: &str, c: &CutCost) {
         100.0 * (1.0 - c.submissions.device_ms() / c.wall_ms.max(1e-9)),
     );
     add("host waits (submissions)", c.submissions.waits as f64);
+    let (chunks, walks, waits) = c.request;
+    add("synthesis request chunks", chunks as f64);
+    // One per chunk, more when a set outgrew the walk's buffers.
+    add("synthesis request dependency walks", walks as f64);
+    add("synthesis request host waits", waits as f64);
+    add(
+        "synthesis request host waits per chunk",
+        waits as f64 / chunks.max(1) as f64,
+    );
     add("synthesis kernels device ms", c.synthesis_ms);
     for (l, &(computed, new)) in c.levels.iter().enumerate() {
         add(&format!("level {l} versions computed"), computed as f64);

@@ -287,6 +287,13 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 report.peak_state_bytes as f64 / 1e6,
             );
             add(&mut notes, "chunks", report.chunks as f64);
+            // One per chunk, more when a set outgrew the walk's buffers.
+            add(&mut notes, "dependency walks", report.walks as f64);
+            add(
+                &mut notes,
+                "host waits per chunk",
+                report.waits as f64 / report.chunks.max(1) as f64,
+            );
             add(
                 &mut notes,
                 "device µs per voxel version",

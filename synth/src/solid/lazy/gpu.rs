@@ -1,16 +1,21 @@
 //! Lazy synthesis on the GPU. The state of every level lives in the project's coherent hash
 //! (a Robin Hood table with the coherent probe sequence, Morton keys of the voxel positions
 //! plus [`LAZY_MARGIN`]) whose payload is a slot, and per slot the versions computed so far
-//! (`passes + 1` triples) and their count. A request walks the dependency sets on the GPU
-//! (`lazy_deps_expand.comp` per stage, the radix sort, `lazy_deps_unique.comp` keeping each
-//! voxel's last stage, `lazy_deps_parents.comp` between levels; the keys carry their stage in
-//! their low bits, see `keys.rs`), stopping at stored versions, then per level:
-//! looks up every needed voxel (`lazy_prepare.comp`), gives the new ones slots and inserts them
-//! (`lazy_assign.comp`, the scan, the table's insert), upsamples the voxels with no version
-//! (`lazy_upsample.comp`), and runs the `8 × passes` subpasses (`lazy_correct.comp`, each
-//! over its own stretch of the level's voxels sorted by class, `visit_order.rs`); the
-//! requested voxels' final triples are gathered at the end (`lazy_gather.comp`). The CPU
-//! reference is [`LazySolidCpu`](super::LazySolidCpu); both equal the full volume.
+//! (`passes + 1` triples) and their count. A chunk of a request runs in three submissions,
+//! whatever the number of levels and stages, and the host reads only a few counters between
+//! them; the requested keys of [`GpuLazySolid::colours`] never leave the device:
+//!
+//! 1. the dependency walk (`walk.rs`): per level, finest first, the stage-tagged keys of every
+//!    voxel needed, stopping at stored versions, and how many of them are new to the state;
+//! 2. every level's lookups (`lazy_prepare.comp`), new slots (`lazy_assign.comp`) and the
+//!    inserts of its new voxels into its table, with room made beforehand from the walk's
+//!    counts;
+//! 3. every level's upsampling of the voxels with no version (`lazy_upsample.comp`) and its
+//!    `8 × passes` subpasses (`lazy_correct.comp`, each over its own stretch of the level's
+//!    voxels sorted by class, `visit_order.rs`), coarsest first;
+//!
+//! then the chunk's colours or final triples (`lazy_colours.comp`, `lazy_gather.comp`). The
+//! CPU reference is [`LazySolidCpu`](super::LazySolidCpu); both equal the full volume.
 //!
 //! A voxel costs the table's cell, `12 · (passes + 1)` bytes of versions and 4 bytes of count.
 //! What stays between requests is the state's [`MemoryPolicy`] (`policy.rs`): every version,
@@ -20,9 +25,10 @@
 
 use super::correct_parts::CorrectParts;
 use super::deps::{Dependencies, LevelDeps};
-use super::keys::{check_within, lazy_key, untag, LAZY_AXIS_BITS};
+use super::keys::{check_within, lazy_key, untag};
 use super::policy::{LevelKeep, MemoryPolicy, LAZY_CHUNK_VOXELS};
 use super::visit_order::{StageRanges, VisitOrder};
+use super::walk::{texture_key_bits, DeviceWalk, LevelSet, WalkRequest, WalkSets};
 use crate::cache::DiskCache;
 use crate::kernels::synth_solid;
 use crate::shader_constants::{LAZY_ORDER_BITS, LAZY_RANGE_WORDS};
@@ -42,12 +48,12 @@ use crate::solid::schedule::{level_schedules, LevelSchedule};
 use crate::{SynthError, SynthParams, SynthResult};
 use lazysolid_compute::gpu::{DeviceAddress, DeviceRecords, Gpu, GpuBuffer, Kernel, PushValue};
 use lazysolid_compute::hash::{
-    fastmod_multiplier, morton_decode, HashKernels, KeyLayout, RobinHoodConfig, RobinHoodTable,
-    Universe,
+    fastmod_multiplier, morton_decode, AppendScratch, HashKernels, KeyLayout, RobinHoodConfig,
+    RobinHoodTable, Universe,
 };
 use lazysolid_compute::prims::{RadixSort, Scan, MAX_ELEMENTS};
 use lazysolid_compute::shader_constants::DEFAULT_WORKGROUP_SIZE;
-use lazysolid_compute::voxel::{SortUnique, VoxelKeys};
+use lazysolid_compute::voxel::VoxelKeys;
 use std::sync::Arc;
 
 /// Voxels of room around the requested `[0, R)³` at every level: the dependencies reach at
@@ -147,57 +153,6 @@ lazysolid_compute::push_block! {
         level: u32,
         side: u32,
     }
-}
-
-lazysolid_compute::push_block! {
-    #[derive(Clone, Copy)]
-    pub(crate) struct ExpandPush<'a> {
-        levels: DeviceAddress<'a>,
-        tagged: DeviceAddress<'a>,
-        flags: DeviceAddress<'a>,
-        out_keys: DeviceAddress<'a>,
-        errors: DeviceAddress<'a>,
-        n: u32,
-        level: u32,
-        stage: u32,
-        cls: u32,
-        version: u32,
-        write: u32,
-    }
-}
-
-lazysolid_compute::push_block! {
-    #[derive(Clone, Copy)]
-    pub(crate) struct TaggedUniquePush<'a> {
-        tagged: DeviceAddress<'a>,
-        flags: DeviceAddress<'a>,
-        out_keys: DeviceAddress<'a>,
-        n: u32,
-        write: u32,
-    }
-}
-
-lazysolid_compute::push_block! {
-    #[derive(Clone, Copy)]
-    pub(crate) struct ParentsPush<'a> {
-        levels: DeviceAddress<'a>,
-        src: DeviceAddress<'a>,
-        dst: DeviceAddress<'a>,
-        n: u32,
-        level: u32,
-        stage: u32,
-        mode: u32,
-    }
-}
-
-/// The key `lazy_deps_parents.comp` writes for a voxel with no parent to request; it sorts
-/// after every real key.
-const NO_KEY: u64 = (1 << (3 * LAZY_AXIS_BITS)) - 1;
-
-/// One level's dependency set on the GPU: sorted stage-tagged keys.
-struct LevelSet {
-    tagged: GpuBuffer<u64>,
-    len: usize,
 }
 
 lazysolid_compute::push_block! {
@@ -340,6 +295,14 @@ pub struct LazyReport {
     pub peak_state_bytes: u64,
     /// Levels the policy emptied or cut back after the request's last chunk.
     pub dropped_levels: u32,
+    /// Dependency walks run: one per chunk, and one more for each walk whose sets outgrew
+    /// the walk's buffers (`walk.rs`).
+    pub walks: u32,
+    /// Submissions the host waited for during the request (the policy's included).
+    pub waits: u64,
+    /// Level hash tables made, rebuilt larger or refilled after an age overflowed: the
+    /// waits a request adds to its fixed few per chunk, besides retried walks.
+    pub table_growths: u32,
 }
 
 impl LazyReport {
@@ -357,6 +320,9 @@ impl LazyReport {
         self.gpu_ms += chunk.gpu_ms;
         self.deps_ms += chunk.deps_ms;
         self.chunks += 1;
+        self.walks += chunk.walks;
+        self.waits += chunk.waits;
+        self.table_growths += chunk.table_growths;
         self.peak_state_bytes = self.peak_state_bytes.max(chunk.peak_state_bytes);
     }
 }
@@ -375,10 +341,7 @@ pub struct GpuLazySolid {
     stage_ranges: StageRanges,
     gather: Arc<Kernel>,
     colour: Arc<Kernel>,
-    expand: Arc<Kernel>,
-    unique: Arc<Kernel>,
-    parents: Arc<Kernel>,
-    sort_unique: SortUnique,
+    walk: DeviceWalk,
     sort: RadixSort,
     params: SynthParams,
     resolution: u32,
@@ -401,8 +364,57 @@ pub struct GpuLazySolid {
 }
 
 /// What a chunked request does with each chunk while its final versions are stored:
-/// `(state, index of the chunk's first key, the chunk's keys)`.
-type ChunkExtract<'a> = dyn FnMut(&mut GpuLazySolid, usize, &[u64]) -> SynthResult<()> + 'a;
+/// `(state, index of the chunk's first key, the chunk's length)`.
+type ChunkExtract<'a> = dyn FnMut(&mut GpuLazySolid, usize, usize) -> SynthResult<()> + 'a;
+
+/// A level's versions and counts before they moved into larger buffers, and how many voxels
+/// they hold: what the move copies.
+struct MovedLevel {
+    l: usize,
+    versions: GpuBuffer<u32>,
+    counts: GpuBuffer<u32>,
+    used: usize,
+}
+
+/// One level's buffers while a chunk synthesizes it (`GpuLazySolid::synthesize_levels`).
+struct LevelWork {
+    l: usize,
+    /// Voxels of the level's set, and how many of them are new to its state.
+    n: usize,
+    fresh: usize,
+    /// The level's voxels before the chunk: the first new voxel's slot.
+    base: u32,
+    slots: GpuBuffer<u32>,
+    flags: GpuBuffer<u32>,
+    /// The lookups' count of new voxels and of versions to compute.
+    totals: GpuBuffer<u32>,
+    order_keys: GpuBuffer<u32>,
+    order: GpuBuffer<u32>,
+    new_keys: GpuBuffer<u64>,
+    new_payloads: GpuBuffer<u32>,
+    /// The recorded insert's scratch, when the level has new voxels.
+    append: Option<AppendScratch>,
+    errors: GpuBuffer<u32>,
+    ranges: GpuBuffer<u32>,
+}
+
+/// The voxels of a chunked request.
+#[derive(Clone, Copy)]
+enum Requested<'a> {
+    /// Lazy keys on the host, in the caller's order (each chunk is walked sorted).
+    Host(&'a [u64]),
+    /// Sorted unique Morton keys of texture positions on the device, which stay there.
+    Device(&'a VoxelKeys),
+}
+
+impl Requested<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Requested::Host(keys) => keys.len(),
+            Requested::Device(keys) => keys.len(),
+        }
+    }
+}
 
 /// The specialization constant of `lazy_correct.comp` that selects its parts (`PARTS`).
 const CORRECT_PARTS_ID: u32 = 1;
@@ -476,10 +488,7 @@ impl GpuLazySolid {
             stage_ranges: StageRanges::new(gpu)?,
             gather: gpu.kernel(&synth_solid::LAZY_GATHER)?,
             colour: gpu.kernel(&synth_solid::LAZY_COLOURS)?,
-            expand: gpu.kernel(&synth_solid::LAZY_DEPS_EXPAND)?,
-            unique: gpu.kernel(&synth_solid::LAZY_DEPS_UNIQUE)?,
-            parents: gpu.kernel(&synth_solid::LAZY_DEPS_PARENTS)?,
-            sort_unique: SortUnique::new(gpu)?,
+            walk: DeviceWalk::new(gpu, n_levels)?,
             sort: RadixSort::new(gpu)?,
             params: params.clone(),
             resolution,
@@ -560,10 +569,13 @@ impl GpuLazySolid {
     /// fits the others' versions to the voxels they hold (the policy weighs what is kept,
     /// not what a request grew it to); returns how many levels that held voxels were emptied
     /// or cut back.
-    fn apply_policy(&mut self) -> SynthResult<u32> {
+    fn apply_policy(&mut self, last: bool) -> SynthResult<u32> {
         // The budget weighs each level as fitted; only the levels it keeps whole are fitted
-        // (one kept in part is rebuilt, one emptied freed).
+        // (one kept in part is rebuilt, one emptied freed), after the request's last chunk
+        // (between chunks the levels keep the room they grew, which the next chunk uses),
+        // all in one submission.
         let fits = self.policy != MemoryPolicy::Keep;
+        let mut moves = Vec::new();
         let bytes: Vec<u64> = if fits {
             self.levels.iter().map(LevelState::fitted_bytes).collect()
         } else {
@@ -577,8 +589,11 @@ impl GpuLazySolid {
             }
             match keep {
                 LevelKeep::All => {
-                    if fits {
-                        changed |= self.fit(l)?;
+                    if fits && last {
+                        if let Some(fitted) = self.levels[l].fitted_slots() {
+                            moves.push(self.resize_later(l, fitted)?);
+                            changed = true;
+                        }
                     }
                 }
                 LevelKeep::Part(bytes) => {
@@ -590,6 +605,14 @@ impl GpuLazySolid {
                     dropped += 1;
                 }
             }
+        }
+        if !moves.is_empty() {
+            self.gpu.submit(|rec| {
+                for m in &moves {
+                    self.record_move(rec, m)?;
+                }
+                Ok(())
+            })?;
         }
         if dropped > 0 || changed {
             self.write_records()?;
@@ -682,41 +705,65 @@ impl GpuLazySolid {
         Ok(keys)
     }
 
-    /// Shrinks level `l`'s versions and counts to its voxels (rounded up to
-    /// [`INITIAL_SLOTS`]) when they hold more than an eighth spare; returns whether it did.
-    fn fit(&mut self, l: usize) -> SynthResult<bool> {
-        let Some(fitted) = self.levels[l].fitted_slots() else {
-            return Ok(false);
-        };
-        self.resize(l, fitted)?;
-        Ok(true)
-    }
-
-    /// Runs lazy `keys` (in the order given) in chunks of [`GpuLazySolid::set_chunk_voxels`]:
-    /// per chunk the dependency walk and every level's synthesis, then `extract(self, first,
-    /// chunk)` while the chunk's final versions are stored, then the policy.
+    /// Runs `requested` (in the order given) in chunks of
+    /// [`GpuLazySolid::set_chunk_voxels`]: per chunk the dependency walk and every level's
+    /// synthesis, then `extract(self, first, len)` while the chunk's final versions are stored,
+    /// then the policy.
     fn run_chunks(
         &mut self,
-        keys: &[u64],
+        requested: Requested<'_>,
         extract: &mut ChunkExtract<'_>,
     ) -> SynthResult<LazyReport> {
-        let chunks: Vec<&[u64]> = if keys.is_empty() {
-            vec![keys]
-        } else {
-            keys.chunks(self.chunk_voxels).collect()
-        };
+        let total = requested.len();
         let mut report = LazyReport::default();
         let mut first = 0;
-        for chunk in chunks {
-            let mut r = self.synthesize(chunk, std::time::Instant::now())?;
-            r.peak_state_bytes = self.bytes();
-            if !chunk.is_empty() {
-                extract(self, first, chunk)?;
+        loop {
+            let len = self.chunk_voxels.min(total - first);
+            let start = std::time::Instant::now();
+            let before = self.gpu.submissions();
+            let host_keys;
+            let walk = match requested {
+                Requested::Host(keys) => {
+                    let mut sorted = keys[first..first + len].to_vec();
+                    sorted.sort_unstable();
+                    sorted.dedup();
+                    host_keys = (!sorted.is_empty())
+                        .then(|| GpuBuffer::from_slice(&self.gpu, "lazy requested keys", &sorted))
+                        .transpose()?;
+                    WalkRequest {
+                        keys: host_keys
+                            .as_ref()
+                            .map_or(DeviceAddress::NULL, GpuBuffer::address),
+                        n: sorted.len(),
+                        or_bits: 0,
+                        resolution: 0,
+                    }
+                }
+                Requested::Device(keys) => WalkRequest {
+                    keys: if len == 0 {
+                        DeviceAddress::NULL
+                    } else {
+                        keys.keys.address_at(first)?
+                    },
+                    n: len,
+                    or_bits: texture_key_bits(),
+                    resolution: self.resolution,
+                },
+            };
+            let mut r = self.synthesize(walk, start)?;
+            r.peak_state_bytes = self.bytes() + self.walk.bytes();
+            if len > 0 {
+                extract(self, first, len)?;
             }
+            report.dropped_levels = self.apply_policy(first + len >= total)?;
+            r.waits = self.gpu.submissions().since(before).waits;
             report.add(&r);
-            first += chunk.len();
-            report.dropped_levels = self.apply_policy()?;
+            first += len;
+            if first >= total {
+                break;
+            }
         }
+        self.walk.release();
         Ok(report)
     }
 
@@ -783,6 +830,14 @@ impl GpuLazySolid {
         Ok(())
     }
 
+    /// Forgets what the dependency walk learned about the size of its sets, so that the next
+    /// walks start from the smallest buffers and run again each time a set outgrows one: the
+    /// tests' way to check that a retried walk equals the reference.
+    #[doc(hidden)]
+    pub fn start_walk_small(&mut self) {
+        self.walk.start_small();
+    }
+
     /// What the last [`GpuLazySolid::colours`] request did, per level: for callers that see
     /// only a summary of it (a store that grows by a cut), such as `bench cuts`' per-level
     /// notes of what a cut recomputes.
@@ -814,10 +869,23 @@ impl GpuLazySolid {
     /// As [`GpuLazySolid::request`].
     pub fn dependencies(&mut self, requested: &[[i32; 3]]) -> SynthResult<Dependencies> {
         self.check_requested(requested)?;
-        let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
-        let sets = self.walk(&keys)?;
-        let mut levels = Vec::with_capacity(sets.len());
-        for set in &sets {
+        let mut keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        let buffer = (!keys.is_empty())
+            .then(|| GpuBuffer::from_slice(&self.gpu, "lazy requested keys", &keys))
+            .transpose()?;
+        let request = WalkRequest {
+            keys: buffer
+                .as_ref()
+                .map_or(DeviceAddress::NULL, GpuBuffer::address),
+            n: keys.len(),
+            or_bits: 0,
+            resolution: 0,
+        };
+        let walked = self.walk(request)?;
+        let mut levels = Vec::with_capacity(walked.sets.len());
+        for set in &walked.sets {
             let tagged = if set.len == 0 {
                 Vec::new()
             } else {
@@ -828,6 +896,8 @@ impl GpuLazySolid {
                 need: tagged.iter().map(|&t| untag(t).1 as u8).collect(),
             });
         }
+        self.walk.give_back(walked.sets);
+        self.walk.release();
         Ok(levels.into())
     }
 
@@ -837,10 +907,15 @@ impl GpuLazySolid {
         for &p in requested {
             check_within(p, 0..r, &limit)?;
         }
-        if requested.len() > MAX_ELEMENTS / 8 {
+        self.check_count(requested.len())
+    }
+
+    /// Refuses a request of more voxels than one walk may hold.
+    fn check_count(&self, n: usize) -> SynthResult<()> {
+        if n > MAX_ELEMENTS / 8 {
             return Err(SynthError::Parameter {
                 name: "requested voxels",
-                value: requested.len().to_string(),
+                value: n.to_string(),
                 limit: format!(
                     "at most {} per request (split the request)",
                     MAX_ELEMENTS / 8
@@ -859,37 +934,26 @@ impl GpuLazySolid {
     /// As [`GpuLazySolid::request`].
     pub fn colours(&mut self, keys: &VoxelKeys) -> SynthResult<(GpuBuffer<u32>, LazyReport)> {
         let start = std::time::Instant::now();
-        let positions: Vec<[i32; 3]> = if keys.is_empty() {
-            Vec::new()
-        } else {
-            keys.read()?
-                .iter()
-                .map(|&k| morton_decode(k, 3).map(|v| v as i32))
-                .collect()
-        };
-        self.check_requested(&positions)?;
-        let lazy: Vec<u64> = positions.iter().map(|&p| lazy_key(p)).collect();
         let n = keys.len();
+        self.check_count(n)?;
         let colours = GpuBuffer::<u32>::new(&self.gpu, "lazy colours", n.max(1))?;
-        let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy colour errors", 1)?;
-        let mut report = self.run_chunks(&lazy, &mut |me, first, chunk| {
+        let errors = GpuBuffer::<u32>::new(&self.gpu, "lazy colour errors", 1)?;
+        let mut report = self.run_chunks(Requested::Device(keys), &mut |me, first, len| {
             let push = ColoursPush {
                 levels: me.records.address(),
                 keys: keys.keys.address_at(first)?,
                 rgb: me.rgb.address(),
                 colours: colours.address_at(first)?,
                 errors: errors.address(),
-                n: chunk.len() as u32,
+                n: len as u32,
                 level: (me.levels.len() - 1) as u32,
                 side: me.synth.side(),
             };
             me.gpu.submit(|rec| {
-                rec.dispatch(
-                    &me.colour,
-                    me.colour.groups_for(chunk.len() as u64),
-                    &[],
-                    &push,
-                )
+                if first == 0 {
+                    rec.fill(&errors, 0);
+                }
+                rec.dispatch(&me.colour, me.colour.groups_for(len as u64), &[], &push)
             })?;
             Ok(())
         })?;
@@ -899,191 +963,52 @@ impl GpuLazySolid {
         Ok((colours, report))
     }
 
-    /// The dependency walk and the synthesis of every level for the lazy keys `keys`.
-    fn synthesize(&mut self, keys: &[u64], start: std::time::Instant) -> SynthResult<LazyReport> {
-        let sets = self.walk(keys)?;
+    /// The dependency walk and the synthesis of every level for `request`.
+    fn synthesize(
+        &mut self,
+        request: WalkRequest<'_>,
+        start: std::time::Instant,
+    ) -> SynthResult<LazyReport> {
+        if request.n == 0 {
+            let zeros = vec![0; self.levels.len()];
+            return Ok(LazyReport {
+                needed: zeros.clone(),
+                computed: zeros.clone(),
+                upsampled: zeros,
+                ..LazyReport::default()
+            });
+        }
+        let walked = self.walk(request)?;
         let mut report = LazyReport {
             deps_ms: start.elapsed().as_secs_f64() * 1e3,
+            walks: walked.attempts,
             ..LazyReport::default()
         };
-        for (l, set) in sets.iter().enumerate() {
-            report.needed.push(set.len as u64);
-            let (work, fresh, ms) = if set.len == 0 {
-                (0, 0, 0.0)
-            } else {
-                self.level(l, set)?
-            };
-            report.computed.push(work);
-            report.upsampled.push(fresh);
-            report.gpu_ms += ms;
-        }
+        let (computed, ms, growths) = self.synthesize_levels(&walked.sets)?;
+        report.table_growths = growths;
+        report.needed = walked.sets.iter().map(|s| s.len as u64).collect();
+        report.upsampled = walked.sets.iter().map(|s| s.fresh as u64).collect();
+        report.computed = computed;
+        report.gpu_ms = ms;
+        self.walk.give_back(walked.sets);
         Ok(report)
     }
 
-    /// The dependency walk on the GPU: per level, finest first, the sorted stage-tagged keys.
-    fn walk(&mut self, keys: &[u64]) -> SynthResult<Vec<LevelSet>> {
-        let gpu = self.gpu.clone();
-        let n_levels = self.levels.len();
-        let empty = || -> SynthResult<LevelSet> {
-            Ok(LevelSet {
-                tagged: GpuBuffer::new(&gpu, "lazy empty set", 1)?,
-                len: 0,
-            })
+    /// The dependency walk on the GPU (`walk.rs`): per level, coarsest first, the sorted
+    /// stage-tagged keys.
+    fn walk(&mut self, request: WalkRequest<'_>) -> SynthResult<WalkSets> {
+        let schedules: Vec<LevelSchedule> = self.levels.iter().map(|l| l.schedule).collect();
+        let info = self.gpu.info();
+        let (max_alloc, heap) = (
+            info.max_memory_allocation_size.min(info.max_buffer_size),
+            info.heap_size,
+        );
+        let state = self.bytes();
+        let check = move |what: &str, bytes: u64, total: u64| {
+            check_fits(what, bytes, state + total, max_alloc, heap)
         };
-        let mut sets: Vec<LevelSet> = Vec::with_capacity(n_levels);
-        let errors = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk errors", 1)?;
-        let mut target = if keys.is_empty() {
-            None
-        } else {
-            let buf = GpuBuffer::from_slice(&gpu, "lazy requested keys", keys)?;
-            let unique =
-                self.sort_unique
-                    .run(&buf, keys.len(), 3 * LAZY_AXIS_BITS, "lazy requested set")?;
-            Some((unique.keys, unique.len))
-        };
-        for l in (0..n_levels).rev() {
-            let Some((plain, n)) = target.take().filter(|t| t.1 > 0) else {
-                sets.push(empty()?);
-                continue;
-            };
-            let schedule = self.levels[l].schedule;
-            let last = schedule.final_stage();
-            let mut tagged = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), n)?;
-            gpu.submit(|rec| {
-                let push = ParentsPush {
-                    levels: self.records.address(),
-                    src: plain.address(),
-                    dst: tagged.address(),
-                    n: n as u32,
-                    level: l as u32,
-                    stage: last,
-                    mode: 1,
-                };
-                rec.dispatch(&self.parents, self.parents.groups_for(n as u64), &[], &push)
-            })?;
-            let mut len = n;
-            for stage in (1..=last).rev() {
-                let cls = schedule.stage_class(stage);
-                let flags = GpuBuffer::<u32>::new(&gpu, "lazy walk flags", len)?;
-                let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk count", 1)?;
-                let count = ExpandPush {
-                    levels: self.records.address(),
-                    tagged: tagged.address(),
-                    flags: flags.address(),
-                    out_keys: DeviceAddress::NULL,
-                    errors: errors.address(),
-                    n: len as u32,
-                    level: l as u32,
-                    stage,
-                    cls,
-                    version: schedule.version_at(stage, cls),
-                    write: 0,
-                };
-                gpu.submit(|rec| {
-                    let k = &self.expand;
-                    rec.dispatch(k, k.groups_for(len as u64), &[], &count)?;
-                    self.scan.record(rec, &flags, &flags, len, Some(&total))
-                })?;
-                let grow = total.read()?[0] as usize;
-                if grow == 0 {
-                    continue;
-                }
-                let m = len + 18 * grow;
-                if m > MAX_ELEMENTS {
-                    return Err(SynthError::Parameter {
-                        name: "lazy dependency set",
-                        value: format!("{m} entries at level {l}"),
-                        limit: format!("at most {MAX_ELEMENTS} (split the request)"),
-                    });
-                }
-                let info = gpu.info();
-                check_fits(
-                    &format!("the dependency set of level {l}"),
-                    m as u64 * 8,
-                    self.bytes() + m as u64 * 24,
-                    info.max_memory_allocation_size.min(info.max_buffer_size),
-                    info.heap_size,
-                )?;
-                let out = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), m)?;
-                let heads = GpuBuffer::<u32>::new(&gpu, "lazy walk heads", m)?;
-                let kept = GpuBuffer::<u32>::zeroed(&gpu, "lazy walk kept", 1)?;
-                gpu.submit(|rec| {
-                    let k = &self.expand;
-                    let write = ExpandPush {
-                        out_keys: out.address(),
-                        write: 1,
-                        ..count
-                    };
-                    rec.dispatch(k, k.groups_for(len as u64), &[], &write)?;
-                    self.sort.record_u64(rec, &out, None, m, 64)?;
-                    let u = &self.unique;
-                    let p = TaggedUniquePush {
-                        tagged: out.address(),
-                        flags: heads.address(),
-                        out_keys: DeviceAddress::NULL,
-                        n: m as u32,
-                        write: 0,
-                    };
-                    rec.dispatch(u, u.groups_for(m as u64), &[], &p)?;
-                    self.scan.record(rec, &heads, &heads, m, Some(&kept))
-                })?;
-                let next_len = kept.read()?[0] as usize;
-                let next = GpuBuffer::<u64>::new(&gpu, format!("lazy set level {l}"), next_len)?;
-                gpu.submit(|rec| {
-                    let u = &self.unique;
-                    let p = TaggedUniquePush {
-                        tagged: out.address(),
-                        flags: heads.address(),
-                        out_keys: next.address(),
-                        n: m as u32,
-                        write: 1,
-                    };
-                    rec.dispatch(u, u.groups_for(m as u64), &[], &p)
-                })?;
-                tagged = next;
-                len = next_len;
-            }
-            if l > 0 {
-                let parents =
-                    GpuBuffer::<u64>::new(&gpu, format!("lazy parents of level {l}"), len)?;
-                gpu.submit(|rec| {
-                    let push = ParentsPush {
-                        levels: self.records.address(),
-                        src: tagged.address(),
-                        dst: parents.address(),
-                        n: len as u32,
-                        level: l as u32,
-                        stage: 0,
-                        mode: 0,
-                    };
-                    rec.dispatch(
-                        &self.parents,
-                        self.parents.groups_for(len as u64),
-                        &[],
-                        &push,
-                    )
-                })?;
-                let unique =
-                    self.sort_unique
-                        .run(&parents, len, 3 * LAZY_AXIS_BITS, "lazy parents")?;
-                let mut count = unique.len;
-                if count > 0 && unique.keys.read_range(count - 1, 1)?[0] == NO_KEY {
-                    count -= 1;
-                }
-                target = Some((unique.keys, count));
-            }
-            sets.push(LevelSet { tagged, len });
-        }
-        let e = errors.read()?[0];
-        if e != 0 {
-            return Err(SynthError::Parameter {
-                name: "lazy margin",
-                value: format!("{e} dependencies outside the state's extent"),
-                limit: format!("dependencies must stay within {LAZY_MARGIN} voxels of the texture"),
-            });
-        }
-        sets.reverse();
-        Ok(sets)
+        self.walk
+            .walk(self.records.address(), &schedules, request, &check)
     }
 
     /// Synthesizes the finest-level voxels `requested` (positions in `[0, R)³`) and returns
@@ -1098,29 +1023,27 @@ impl GpuLazySolid {
         let keys: Vec<u64> = requested.iter().map(|&p| lazy_key(p)).collect();
         let n = keys.len();
         if n == 0 {
-            let mut report = self.run_chunks(&keys, &mut |_, _, _| Ok(()))?;
+            let mut report = self.run_chunks(Requested::Host(&keys), &mut |_, _, _| Ok(()))?;
             report.wall_ms = start.elapsed().as_secs_f64() * 1e3;
             return Ok((Vec::new(), report));
         }
         let keys_buf = GpuBuffer::from_slice(&self.gpu, "lazy requested keys", &keys)?;
         let out = GpuBuffer::<[u32; 3]>::new(&self.gpu, "lazy requested triples", n)?;
-        let errors = GpuBuffer::<u32>::zeroed(&self.gpu, "lazy gather errors", 1)?;
-        let mut report = self.run_chunks(&keys, &mut |me, first, chunk| {
+        let errors = GpuBuffer::<u32>::new(&self.gpu, "lazy gather errors", 1)?;
+        let mut report = self.run_chunks(Requested::Host(&keys), &mut |me, first, len| {
             let push = GatherPush {
                 levels: me.records.address(),
                 keys: keys_buf.address_at(first)?,
                 triples: out.address_at(first)?,
                 errors: errors.address(),
-                n: chunk.len() as u32,
+                n: len as u32,
                 level: (me.levels.len() - 1) as u32,
             };
             me.gpu.submit(|rec| {
-                rec.dispatch(
-                    &me.gather,
-                    me.gather.groups_for(chunk.len() as u64),
-                    &[],
-                    &push,
-                )
+                if first == 0 {
+                    rec.fill(&errors, 0);
+                }
+                rec.dispatch(&me.gather, me.gather.groups_for(len as u64), &[], &push)
             })?;
             Ok(())
         })?;
@@ -1130,171 +1053,238 @@ impl GpuLazySolid {
         Ok((triples, report))
     }
 
-    /// Synthesizes level `l`'s dependency set; returns the versions computed, the voxels
-    /// upsampled (new to the state) and the device time in milliseconds.
-    fn level(&mut self, l: usize, set: &LevelSet) -> SynthResult<(u64, u64, f64)> {
+    /// Synthesizes every level's dependency set in two submissions, whatever the number of
+    /// levels: first every level's lookups and the inserts of its new voxels (room made
+    /// beforehand from the walk's count of them), then every level's upsampling and
+    /// correction, coarsest first. Returns per level the versions computed, the device time of
+    /// the second submission in milliseconds, and the hash tables made, grown or refilled
+    /// (each waits on the host a few times; the growth is geometric).
+    fn synthesize_levels(&mut self, sets: &[LevelSet]) -> SynthResult<(Vec<u64>, f64, u32)> {
         let gpu = self.gpu.clone();
-        let n = set.len;
-        let keys_buf = &set.tagged;
-        let slots = GpuBuffer::<u32>::new(&gpu, format!("lazy slots level {l}"), n)?;
-        let flags = GpuBuffer::<u32>::new(&gpu, format!("lazy new flags level {l}"), n)?;
-        let total = GpuBuffer::<u32>::zeroed(&gpu, "lazy new count", 1)?;
-        let work = GpuBuffer::<u32>::zeroed(&gpu, "lazy work", 1)?;
-        let order_keys = GpuBuffer::<u32>::new(&gpu, format!("lazy order keys level {l}"), n)?;
-        let order = GpuBuffer::<u32>::new(&gpu, format!("lazy order level {l}"), n)?;
-        gpu.submit(|rec| {
-            let push = PreparePush {
-                levels: self.records.address(),
-                keys: keys_buf.address(),
-                slots: slots.address(),
-                flags: flags.address(),
-                work: work.address(),
-                order_keys: order_keys.address(),
-                order: order.address(),
-                n: n as u32,
-                level: l as u32,
-            };
-            rec.dispatch(&self.prepare, self.prepare.groups_for(n as u64), &[], &push)?;
-            self.scan.record(rec, &flags, &flags, n, Some(&total))
-        })?;
-        let fresh = total.read()?[0] as usize;
-        let work = work.read()?[0] as u64;
-        if work == 0 {
-            return Ok((0, 0, 0.0));
-        }
-        if fresh > 0 {
-            self.reserve(l, self.levels[l].len as usize + fresh)?;
-            let new_keys = GpuBuffer::<u64>::new(&gpu, "lazy new keys", fresh)?;
-            let new_payloads = GpuBuffer::<u32>::new(&gpu, "lazy new slots", fresh)?;
-            gpu.submit(|rec| {
-                let push = AssignPush {
-                    levels: self.records.address(),
-                    keys: keys_buf.address(),
-                    slots: slots.address(),
-                    offsets: flags.address(),
-                    new_keys: new_keys.address(),
-                    new_payloads: new_payloads.address(),
-                    n: n as u32,
-                    level: l as u32,
-                    base: self.levels[l].len,
-                };
-                rec.dispatch(&self.assign, self.assign.groups_for(n as u64), &[], &push)
-            })?;
+        // Room for every level's new voxels: versions and counts (copied at the start of the
+        // first submission) and table cells.
+        let mut moved = Vec::new();
+        let mut growths = 0;
+        for (l, set) in sets.iter().enumerate() {
+            if set.len == 0 || set.fresh == 0 {
+                continue;
+            }
+            moved.extend(self.reserve_later(l, self.levels[l].len as usize + set.fresh)?);
             let state = &mut self.levels[l];
+            let total = u64::from(state.len) + set.fresh as u64;
             match &mut state.table {
                 Some(t) => {
-                    t.insert(&new_keys, &new_payloads, fresh)
-                        .map_err(|e| hash_error(l, e))?;
+                    if t.reserve(total).map_err(|e| hash_error(l, e))? {
+                        growths += 1;
+                    }
                 }
                 None => {
                     let config = RobinHoodConfig {
                         validate: true,
                         ..RobinHoodConfig::default()
                     };
-                    state.table = Some(
-                        RobinHoodTable::build(
-                            &self.hash,
-                            state.universe,
-                            &new_keys,
-                            &new_payloads,
-                            fresh,
-                            config,
-                        )
-                        .map_err(|e| hash_error(l, e))?,
-                    );
+                    let t = RobinHoodTable::with_room(&self.hash, state.universe, total, config)
+                        .map_err(|e| hash_error(l, e))?;
+                    state.table = Some(t);
+                    growths += 1;
                 }
             }
-            state.len += fresh as u32;
-            self.write_records()?;
         }
-        let errors = GpuBuffer::<u32>::zeroed(&gpu, "lazy synthesis errors", 1)?;
+        self.write_records()?;
+        let mut work: Vec<LevelWork> = Vec::new();
+        for (l, set) in sets.iter().enumerate() {
+            if set.len == 0 {
+                continue;
+            }
+            let n = set.len;
+            let fresh = set.fresh;
+            let stages = self.levels[l].schedule.final_stage();
+            work.push(LevelWork {
+                l,
+                n,
+                fresh,
+                base: self.levels[l].len,
+                slots: GpuBuffer::new(&gpu, format!("lazy slots level {l}"), n)?,
+                flags: GpuBuffer::new(&gpu, format!("lazy new flags level {l}"), n)?,
+                totals: GpuBuffer::new(&gpu, format!("lazy new and work level {l}"), 2)?,
+                order_keys: GpuBuffer::new(&gpu, format!("lazy order keys level {l}"), n)?,
+                order: GpuBuffer::new(&gpu, format!("lazy order level {l}"), n)?,
+                new_keys: GpuBuffer::new(&gpu, "lazy new keys", fresh.max(1))?,
+                new_payloads: GpuBuffer::new(&gpu, "lazy new slots", fresh.max(1))?,
+                append: match (&self.levels[l].table, fresh) {
+                    (Some(t), 1..) => Some(t.append_scratch()?),
+                    _ => None,
+                },
+                errors: GpuBuffer::new(&gpu, "lazy synthesis errors", 1)?,
+                ranges: GpuBuffer::new(
+                    &gpu,
+                    format!("lazy stage ranges level {l}"),
+                    (stages * LAZY_RANGE_WORDS) as usize,
+                )?,
+            });
+        }
+        // Every level's lookups, new slots and inserts.
+        gpu.submit(|rec| {
+            for m in &moved {
+                self.record_move(rec, m)?;
+            }
+            for w in &work {
+                rec.fill(&w.totals, 0);
+                rec.fill(&w.errors, 0);
+            }
+            for w in &work {
+                let l = w.l;
+                let push = PreparePush {
+                    levels: self.records.address(),
+                    keys: sets[l].tagged.address(),
+                    slots: w.slots.address(),
+                    flags: w.flags.address(),
+                    work: w.totals.address_at(1)?,
+                    order_keys: w.order_keys.address(),
+                    order: w.order.address(),
+                    n: w.n as u32,
+                    level: l as u32,
+                };
+                let k = &self.prepare;
+                rec.dispatch(k, k.groups_for(w.n as u64), &[], &push)?;
+                self.scan
+                    .record(rec, &w.flags, &w.flags, w.n, Some(&w.totals))?;
+                let (Some(scratch), Some(table)) = (&w.append, &self.levels[l].table) else {
+                    continue;
+                };
+                let push = AssignPush {
+                    levels: self.records.address(),
+                    keys: sets[l].tagged.address(),
+                    slots: w.slots.address(),
+                    offsets: w.flags.address(),
+                    new_keys: w.new_keys.address(),
+                    new_payloads: w.new_payloads.address(),
+                    n: w.n as u32,
+                    level: l as u32,
+                    base: w.base,
+                };
+                rec.dispatch(&self.assign, self.assign.groups_for(w.n as u64), &[], &push)?;
+                table.record_append(rec, scratch, &w.new_keys, &w.new_payloads, w.fresh)?;
+            }
+            Ok(())
+        })?;
+        let mut computed = vec![0u64; sets.len()];
+        for w in &mut work {
+            let l = w.l;
+            let totals = w.totals.read()?;
+            if totals[0] as usize != w.fresh {
+                return Err(SynthError::Parameter {
+                    name: "lazy walk",
+                    value: format!("{} new voxels at level {l}", w.fresh),
+                    limit: format!("the lookups found {} (a device fault?)", totals[0]),
+                });
+            }
+            computed[l] = u64::from(totals[1]);
+            if let Some(scratch) = w.append.take() {
+                let table = self.levels[l].table.as_mut().expect("made above");
+                let inserted = table
+                    .finish_append(scratch, w.fresh)
+                    .map_err(|e| hash_error(l, e))?;
+                if !inserted {
+                    // An age overflowed: the table is as it was; the host insert grows it.
+                    table
+                        .insert(&w.new_keys, &w.new_payloads, w.fresh)
+                        .map_err(|e| hash_error(l, e))?;
+                    growths += 1;
+                }
+            }
+            self.levels[l].len += w.fresh as u32;
+        }
+        self.write_records()?;
+        // Every level's upsampling and correction.
         let side = self.synth.side();
-        let spacing = self.synth.spacing(l);
-        let table = self.synth.level_table(l);
-        let schedule = self.levels[l].schedule;
-        let sort = &mut self.sort;
         let grouped = self.visit == VisitOrder::Grouped;
-        let stages = schedule.final_stage();
-        let ranges = GpuBuffer::<u32>::new(
-            &gpu,
-            format!("lazy stage ranges level {l}"),
-            (stages * LAZY_RANGE_WORDS) as usize,
-        )?;
         let ((), stamps) = gpu.submit_timed(|rec| {
             rec.timestamp()?;
-            // The correction's visiting order (lazy_prepare.comp) and each stage's stretch of
-            // it: a stage visits only the voxels it may correct, side by side in whole SIMD
-            // groups. Unsorted, `order` is the identity and every stretch all of it.
-            if grouped {
-                sort.record_u32_pairs(rec, &order_keys, &order, n, LAZY_ORDER_BITS)?;
-            }
-            self.stage_ranges.record(
-                rec,
-                &order_keys,
-                &ranges,
-                n,
-                schedule,
-                !grouped,
-                self.correct.workgroup_size(),
-            )?;
-            let push = LazyUpsamplePush {
-                levels: self.records.address(),
-                keys: keys_buf.address(),
-                slots: slots.address(),
-                errors: errors.address(),
-                n: n as u32,
-                level: l as u32,
-                side,
-                spacing,
-                seed: self.params.seed,
-                strength: self.params.jitter[l],
-            };
-            rec.dispatch(
-                &self.upsample,
-                self.upsample.groups_for(n as u64),
-                &[],
-                &push,
-            )?;
-            for stage in 1..=stages {
-                let cls = schedule.stage_class(stage);
-                let push = LazyCorrectPush {
+            for w in &work {
+                let l = w.l;
+                if computed[l] == 0 {
+                    continue;
+                }
+                let n = w.n;
+                let spacing = self.synth.spacing(l);
+                let table = self.synth.level_table(l);
+                let schedule = self.levels[l].schedule;
+                // The correction's visiting order (lazy_prepare.comp) and each stage's
+                // stretch of it: a stage visits only the voxels it may correct, side by side
+                // in whole SIMD groups. Unsorted, `order` is the identity and every stretch
+                // all of it.
+                if grouped {
+                    self.sort
+                        .record_u32_pairs(rec, &w.order_keys, &w.order, n, LAZY_ORDER_BITS)?;
+                }
+                self.stage_ranges.record(
+                    rec,
+                    &w.order_keys,
+                    &w.ranges,
+                    n,
+                    schedule,
+                    !grouped,
+                    self.correct.workgroup_size(),
+                )?;
+                let push = LazyUpsamplePush {
                     levels: self.records.address(),
-                    table: table.address(),
-                    keys: keys_buf.address(),
-                    order: order.address(),
-                    ranges: ranges.address(),
-                    slots: slots.address(),
-                    errors: errors.address(),
+                    keys: sets[l].tagged.address(),
+                    slots: w.slots.address(),
+                    errors: w.errors.address(),
+                    n: n as u32,
                     level: l as u32,
-                    stage,
-                    cls,
-                    version: schedule.version_at(stage, cls),
                     side,
                     spacing,
-                    keep_current: self.params.keep_current as u32,
                     seed: self.params.seed,
                     strength: self.params.jitter[l],
                 };
-                rec.dispatch_indirect(
-                    &self.correct,
-                    &ranges,
-                    u64::from((stage - 1) * LAZY_RANGE_WORDS),
-                    &[],
-                    &push,
-                )?;
+                let k = &self.upsample;
+                rec.dispatch(k, k.groups_for(n as u64), &[], &push)?;
+                for stage in 1..=schedule.final_stage() {
+                    let cls = schedule.stage_class(stage);
+                    let push = LazyCorrectPush {
+                        levels: self.records.address(),
+                        table: table.address(),
+                        keys: sets[l].tagged.address(),
+                        order: w.order.address(),
+                        ranges: w.ranges.address(),
+                        slots: w.slots.address(),
+                        errors: w.errors.address(),
+                        level: l as u32,
+                        stage,
+                        cls,
+                        version: schedule.version_at(stage, cls),
+                        side,
+                        spacing,
+                        keep_current: self.params.keep_current as u32,
+                        seed: self.params.seed,
+                        strength: self.params.jitter[l],
+                    };
+                    rec.dispatch_indirect(
+                        &self.correct,
+                        &w.ranges,
+                        u64::from((stage - 1) * LAZY_RANGE_WORDS),
+                        &[],
+                        &push,
+                    )?;
+                }
             }
             rec.timestamp()
         })?;
-        check_errors(&errors, "dependencies missing during synthesis")?;
-        Ok((work, fresh as u64, (stamps[1] - stamps[0]) * 1e-6))
+        for w in &work {
+            check_errors(&w.errors, "dependencies missing during synthesis")?;
+        }
+        Ok((computed, (stamps[1] - stamps[0]) * 1e-6, growths))
     }
 
-    /// Grows level `l`'s versions and counts to hold `slots` voxels.
-    fn reserve(&mut self, l: usize, slots: usize) -> SynthResult<()> {
-        let state = &mut self.levels[l];
+    /// Grows level `l`'s versions and counts to hold `slots` voxels, returning the copy of
+    /// what they held for the caller to record before any work reads the level.
+    fn reserve_later(&mut self, l: usize, slots: usize) -> SynthResult<Option<MovedLevel>> {
+        let state = &self.levels[l];
         let have = state.counts.len();
         if slots <= have {
-            return Ok(());
+            return Ok(None);
         }
         let stride = state.stride as usize;
         // Half as much again, so that a level growing over many chunks copies its versions
@@ -1311,12 +1301,13 @@ impl GpuLazySolid {
                 ),
             });
         }
-        self.resize(l, grown)
+        self.resize_later(l, grown).map(Some)
     }
 
     /// Moves level `l`'s versions and counts into buffers of `grown` voxels (at least the
-    /// voxels it holds), refusing what the device cannot hold.
-    fn resize(&mut self, l: usize, grown: usize) -> SynthResult<()> {
+    /// voxels it holds), refusing what the device cannot hold, and returns the copy of what
+    /// they held for the caller to record before any work reads the level.
+    fn resize_later(&mut self, l: usize, grown: usize) -> SynthResult<MovedLevel> {
         let stride = self.levels[l].stride as usize;
         let words = grown as u64 * 3 * stride as u64;
         let info = self.gpu.info();
@@ -1330,20 +1321,33 @@ impl GpuLazySolid {
             info.heap_size,
         )?;
         let state = &mut self.levels[l];
-        let versions = GpuBuffer::<u32>::zeroed(
+        let versions = GpuBuffer::<u32>::new(
             &self.gpu,
             format!("lazy versions level {l}"),
             words as usize,
         )?;
-        let counts = GpuBuffer::<u32>::zeroed(&self.gpu, format!("lazy counts level {l}"), grown)?;
+        let counts = GpuBuffer::<u32>::new(&self.gpu, format!("lazy counts level {l}"), grown)?;
         let used = state.len as usize;
-        self.gpu.submit(|rec| {
-            rec.copy(&state.versions, 0, &versions, 0, used * 3 * stride)?;
-            rec.copy(&state.counts, 0, &counts, 0, used)
-        })?;
-        state.versions = versions;
-        state.counts = counts;
-        Ok(())
+        Ok(MovedLevel {
+            l,
+            versions: std::mem::replace(&mut state.versions, versions),
+            counts: std::mem::replace(&mut state.counts, counts),
+            used,
+        })
+    }
+
+    /// Records the copy of a moved level's versions and counts into its new buffers (the
+    /// counts past its voxels zeroed).
+    fn record_move(
+        &self,
+        rec: &mut lazysolid_compute::gpu::Recorder<'_>,
+        m: &MovedLevel,
+    ) -> lazysolid_compute::gpu::GpuResult<()> {
+        let state = &self.levels[m.l];
+        let words = m.used * 3 * state.stride as usize;
+        rec.fill(&state.counts, 0);
+        rec.copy(&m.versions, 0, &state.versions, 0, words)?;
+        rec.copy(&m.counts, 0, &state.counts, 0, m.used)
     }
 }
 

@@ -9,8 +9,7 @@
 use crate::{SynthError, SynthResult};
 use lazysolid_compute::hash::{morton_decode, morton_encode};
 
-/// Bits per axis of a key's position.
-pub const LAZY_AXIS_BITS: u32 = 19;
+pub use crate::shader_constants::LAZY_AXIS_BITS;
 
 /// Added to every coordinate so that positions `−LAZY_BIAS..LAZY_BIAS` map onto
 /// `0..2^LAZY_AXIS_BITS`.

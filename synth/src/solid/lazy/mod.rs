@@ -10,6 +10,7 @@ mod matter;
 mod policy;
 mod state_cpu;
 pub(crate) mod visit_order;
+pub(crate) mod walk;
 
 pub use correct_parts::CorrectParts;
 pub use deps::{
