@@ -39,6 +39,15 @@ const uint LAZY_STAGE_MAX = (1u << LAZY_STAGE_BITS) - 1u;
 // after every real key, and the walk's unique pass drops it.
 const uint64_t LAZY_NO_KEY = (1ul << (3u * LAZY_AXIS_BITS)) - 1ul;
 
+// Workgroup counts (x, y, 1) of an indirect dispatch of `width`-wide workgroups over `count`
+// invocations, folded into y past 65535 as Kernel::groups_for folds them (0: runs nothing).
+uvec3 lazy_groups(uint count, uint width) {
+    uint blocks = (count + width - 1u) / width;
+    uint x = min(blocks, 65535u);
+    uint y = x == 0u ? 1u : (blocks + x - 1u) / x;
+    return uvec3(x, y, 1u);
+}
+
 uint64_t lazy_untag_key(uint64_t t) {
     return t >> LAZY_STAGE_BITS;
 }

@@ -46,13 +46,11 @@ void main() {
         first = lower_bound(lazy_order_key(0u, cls, 63u));
         count = lower_bound(lazy_order_key(0u, cls, stage) + 1u) - first;
     }
-    uint blocks = (count + pc.width - 1u) / pc.width;
-    uint x = min(blocks, 65535u);
-    uint y = x == 0u ? 1u : (blocks + x - 1u) / x;
+    uvec3 g = lazy_groups(count, pc.width);
     uint w = (stage - 1u) * LAZY_RANGE_WORDS;
-    U32Ptr(pc.ranges).v[w] = x;
-    U32Ptr(pc.ranges).v[w + 1u] = y;
-    U32Ptr(pc.ranges).v[w + 2u] = 1u;
+    U32Ptr(pc.ranges).v[w] = g.x;
+    U32Ptr(pc.ranges).v[w + 1u] = g.y;
+    U32Ptr(pc.ranges).v[w + 2u] = g.z;
     U32Ptr(pc.ranges).v[w + 3u] = first;
     U32Ptr(pc.ranges).v[w + 4u] = count;
 }

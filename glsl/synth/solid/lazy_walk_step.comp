@@ -13,6 +13,7 @@
 //   over the length at word `count`; op 0 also writes those of the expanded set there.
 // op 4: `cap` into word `count` (the request's length, which the host knows).
 #include "common.glsl"
+#include "synth/lazy.glsl"
 
 layout(push_constant, scalar) uniform Push {
     uint64_t words;
@@ -24,15 +25,12 @@ layout(push_constant, scalar) uniform Push {
     uint width;
 } pc;
 
-// Workgroup counts over `len` invocations, folded into y past 65535 as Kernel::groups_for
-// folds them (a count of 0 runs nothing).
+// The workgroup counts over `len` invocations into words `args`.
 void write_args(U32Ptr w, uint len) {
-    uint blocks = (len + pc.width - 1u) / pc.width;
-    uint x = min(blocks, 65535u);
-    uint y = x == 0u ? 1u : (blocks + x - 1u) / x;
-    w.v[pc.args] = x;
-    w.v[pc.args + 1u] = y;
-    w.v[pc.args + 2u] = 1u;
+    uvec3 g = lazy_groups(len, pc.width);
+    w.v[pc.args] = g.x;
+    w.v[pc.args + 1u] = g.y;
+    w.v[pc.args + 2u] = g.z;
 }
 
 void main() {
