@@ -2,8 +2,8 @@
 //! errors for bad films and unwritable destinations.
 
 use lazysolid_renderer::output::{
-    read_exr_rgb, srgb_oetf, write_exr, write_layer_png, write_png, Film, LayerMapping, Operator,
-    OutputError, ToneMap,
+    read_exr_layer, read_exr_rgb, srgb_oetf, write_exr, write_layer_png, write_png, Film,
+    LayerMapping, Operator, OutputError, ToneMap,
 };
 
 /// A 7x5 film whose values exercise the f32 range: tiny, fractional, large, zero.
@@ -72,8 +72,17 @@ fn exr_holds_the_auxiliary_layers() {
             "normal.Z"
         ]
     );
-    // The main image is still what read_exr_rgb finds.
+    // The main image is still what read_exr_rgb finds, and a layer is read by its names.
     assert_eq!(read_exr_rgb(&path).unwrap().2, film.color());
+    let (w, h, read_albedo) = read_exr_layer(&path, ["albedo.R", "albedo.G", "albedo.B"]).unwrap();
+    assert_eq!(
+        (w, h, read_albedo),
+        (film.width(), film.height(), albedo.clone())
+    );
+    let err = read_exr_layer(&path, ["albedo.R", "albedo.G", "albedo.A"])
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("albedo.R, albedo.G, albedo.A"), "{err}");
     // And every layer's samples are the ones given.
     let image = exr::prelude::read_all_flat_layers_from_file(&path).unwrap();
     let channel = |name: &str| -> Vec<f32> {
@@ -112,7 +121,7 @@ fn exr_without_rgb_is_a_clear_error() {
     Image::from_layer(layer).write().to_file(&path).unwrap();
     let err = read_exr_rgb(&path).unwrap_err().to_string();
     assert!(
-        err.contains("depth-only.exr") && err.contains("R, G and B") && err.contains("found: Z"),
+        err.contains("depth-only.exr") && err.contains("R, G, B") && err.contains("found: Z"),
         "{err}"
     );
     let missing = dir.path().join("absent.exr");

@@ -196,8 +196,9 @@ impl Bins {
 }
 
 /// Otsu's threshold of `values`: the cut that maximizes the between-class variance; `None`
-/// when all values are equal.
-fn otsu(values: &[f32]) -> Option<f32> {
+/// when all values are equal. Public because a picture's classes are judged by the same cut
+/// as the exemplar's (`lazysolid` example `albedo_share`).
+pub fn otsu(values: &[f32]) -> Option<f32> {
     let bins = Bins::of(values)?;
     let (n, total, _) = bins.moments();
     let (mut below, mut below_sum) = (0.0f64, 0.0f64);

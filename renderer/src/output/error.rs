@@ -67,10 +67,12 @@ pub enum OutputError {
         cause: image::ImageError,
     },
     /// An EXR file has no image this renderer can read.
-    #[error("{file}: no layer has all of the R, G and B channels (channels found: {found})")]
+    #[error("{file}: no layer has all of the channels {wanted} (channels found: {found})")]
     MissingRgb {
         /// The file.
         file: PathBuf,
+        /// The three channels looked for, comma-separated.
+        wanted: String,
         /// Every channel the file has, comma-separated.
         found: String,
     },

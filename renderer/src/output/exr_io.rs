@@ -73,6 +73,20 @@ pub fn write_exr(film: &Film, path: impl AsRef<Path>) -> Result<(), OutputError>
 /// The file is missing or unreadable, is not a valid OpenEXR file, or has no layer with all of
 /// `R`, `G` and `B` (the error lists the channels it has).
 pub fn read_exr_rgb(path: impl AsRef<Path>) -> Result<(u32, u32, Vec<[f32; 3]>), OutputError> {
+    read_exr_layer(path, ["R", "G", "B"])
+}
+
+/// Reads three channels of an OpenEXR file by name (`["albedo.R", "albedo.G", "albedo.B"]` for
+/// the albedo layer lazysolid writes), from the first layer that has all three, as `(width,
+/// height, row-major pixels, top row first)`; half or integer samples are converted to f32.
+///
+/// # Errors
+/// The file is missing or unreadable, is not a valid OpenEXR file, or has no layer with all
+/// three channels (the error lists the channels it has).
+pub fn read_exr_layer(
+    path: impl AsRef<Path>,
+    names: [&str; 3],
+) -> Result<(u32, u32, Vec<[f32; 3]>), OutputError> {
     let path = path.as_ref();
     let file = std::fs::File::open(path).map_err(|cause| OutputError::Io {
         file: path.to_path_buf(),
@@ -94,7 +108,7 @@ pub fn read_exr_rgb(path: impl AsRef<Path>) -> Result<(u32, u32, Vec<[f32; 3]>),
     for layer in &image.layer_data {
         let list = &layer.channel_data.list;
         let find = |name: &str| list.iter().find(|c| c.name.eq(name));
-        if let (Some(r), Some(g), Some(b)) = (find("R"), find("G"), find("B")) {
+        if let (Some(r), Some(g), Some(b)) = (find(names[0]), find(names[1]), find(names[2])) {
             let pixels = r
                 .sample_data
                 .values_as_f32()
@@ -108,6 +122,7 @@ pub fn read_exr_rgb(path: impl AsRef<Path>) -> Result<(u32, u32, Vec<[f32; 3]>),
     }
     Err(OutputError::MissingRgb {
         file: path.to_path_buf(),
+        wanted: names.join(", "),
         found: if found.is_empty() {
             "none".into()
         } else {

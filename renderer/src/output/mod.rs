@@ -14,7 +14,7 @@ mod tonemap;
 
 pub use animation::{preview_frame, write_gif};
 pub use error::OutputError;
-pub use exr_io::{read_exr_rgb, write_exr};
+pub use exr_io::{read_exr_layer, read_exr_rgb, write_exr};
 pub use film::Film;
 pub(crate) use lazysolid_compute::atomic_file::write_atomically;
 pub(crate) use png_io::write_rgb8;
