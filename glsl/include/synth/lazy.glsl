@@ -1,4 +1,4 @@
-// Lazy solid synthesis state on the GPU (synth/src/solid/lazy/gpu.rs): per level a
+// Lazy solid synthesis state on the GPU (synth/src/solid/lazy/gpu/mod.rs): per level a
 // coherent Robin Hood table from the voxel's Morton key (its absolute position plus a margin)
 // to a slot, and per slot the versions computed so far (version j: the triple after pass j,
 // 0 the upsampled one) and their count. The host keeps one LazyLevel record per level in a
@@ -10,7 +10,7 @@
 #include "morton.glsl"
 #include "hash/robin_hood_lookup.glsl"
 
-// Must match `LazyLevelRecord` in synth/src/solid/lazy/gpu.rs (scalar layout, 60 bytes).
+// Must match `LazyLevelRecord` in synth/src/solid/lazy/gpu/mod.rs (scalar layout, 60 bytes).
 struct LazyLevel {
     uint64_t cells;        // the table's cells (unused while table_size is 0)
     uint64_t fastmod_m;    // the table size's reciprocal

@@ -63,7 +63,7 @@ bool better(uint d, uint rank, uvec3 t, uint bd, uint br, uvec3 bt) {
 // an ablation): a merely translated triple has a near-zero distance inside its block and would
 // otherwise win although its three exemplar colours disagree.
 // The parts of the decision a profile runs (`parts` of solid_correct; CorrectParts in
-// synth/src/solid/lazy/gpu.rs): reading the neighbours, then the neighbourhood sums, then each
+// synth/src/solid/lazy/gpu/mod.rs): reading the neighbours, then the neighbourhood sums, then each
 // gathered set's own-role distance, then everything. Below SOLID_PARTS_ALL the current triple
 // is returned, kept dependent on what was computed so that the compiler keeps that work.
 const uint SOLID_PARTS_NEIGHBOURS = 1u;
