@@ -265,7 +265,7 @@ bool surface_uv(TraceHit h, out SurfaceUv su) {
     su.dpdv = vec3(0.0);
     su.tangent = vec3(0.0);
     su.sign = 1.0;
-    if (offset == 0xffffffffu) {
+    if (offset == NO_UVS) {
         return false;
     }
     uint slot = offset + (h.triangle - bvh_instances[h.instance].triangle_offset);
@@ -500,7 +500,7 @@ void main() {
                 if (image_albedo) {
                     albedo = has_uv ? image_lookup(m.albedo_image, su.uv, fp_a, fp_b).rgb : vec3(1.0, 0.0, 1.0);
                 } else {
-                    albedo = store_slot == 0xffffffffu
+                    albedo = store_slot == NO_STORE
                                  ? solid_texture_albedo(m, s.p_object)
                                  : store_albedo(store_slot, s.p_surface_object, s.n_object, relief_gradient);
                 }

@@ -38,7 +38,7 @@ void main() {
     RayHit out_hit;
     out_hit.t = h.t;
     out_hit.instance = h.instance;
-    out_hit.triangle = found ? cwbvh_mesh_triangle(h.triangle) : 0xffffffffu;
+    out_hit.triangle = found ? cwbvh_mesh_triangle(h.triangle) : NO_HIT;
     out_hit.u = h.u;
     out_hit.v = h.v;
     out_hit.pad0 = cwbvh_stack_overflowed ? 1u : 0u;

@@ -77,6 +77,17 @@ pub const PATH_TRACE_VMF_LOBES_ID: u32 = 6;
 /// `GpuMaterial::albedo_image` / `normal_image` of a material without that image.
 pub const IMAGE_NONE: u32 = 4294967295;
 
+/// An instance's store slot (written by `SceneStores::build`, read from `instance_stores` by
+/// `path_trace.comp`) when its albedo is not read from a store. Like the sentinels below it is
+/// `u32::MAX`, spelled as a literal because only literals become `#define`s.
+pub const NO_STORE: u32 = 4294967295;
+/// `GpuInstance::uv_offset` of an instance whose mesh has no texture coordinates
+/// (`surface_uv` in `path_trace.comp` then reports none).
+pub const NO_UVS: u32 = 4294967295;
+/// Marks "no hit": `TraceHit::instance` in `render/cwbvh.glsl`, `GpuRayHit::instance` and
+/// `triangle` as `trace_rays.comp` writes them, and the CPU reference's.
+pub const NO_HIT: u32 = 4294967295;
+
 /// Analytic light kinds of a GPU light.
 pub const LIGHT_SPHERE: u32 = 0;
 /// See [`LIGHT_SPHERE`].

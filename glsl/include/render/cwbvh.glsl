@@ -23,7 +23,7 @@ struct BvhInstance {
     uint triangle_offset;
     uint material;
     uint mesh;
-    uint uv_offset;  // first BvhTriangleUvs record of the mesh, 0xffffffff without UVs
+    uint uv_offset;  // first BvhTriangleUvs record of the mesh, NO_UVS without UVs
     uint pad0, pad1, pad2;
 };
 layout(binding = 4, scalar) readonly buffer BvhInstances { BvhInstance bvh_instances[]; };
@@ -47,7 +47,7 @@ bool cwbvh_stack_overflowed = false;
 
 struct TraceHit {
     float t;
-    uint instance;   // 0xffffffff on a miss
+    uint instance;   // NO_HIT on a miss
     uint triangle;   // leaf slot in BvhTriangles (global)
     float u;         // barycentric weight of vertex 1
     float v;         // barycentric weight of vertex 2
@@ -148,7 +148,7 @@ bool cwbvh_trace(vec3 world_o, vec3 world_d, float tmin, float tmax, bool any_hi
     uint stack_base = gl_LocalInvocationIndex * CWBVH_STACK_SIZE;
     uint stack_size = 0u;
     hit.t = 1.0 / 0.0;
-    hit.instance = 0xffffffffu;
+    hit.instance = NO_HIT;
     hit.triangle = 0u;
     hit.u = 0.0;
     hit.v = 0.0;
@@ -255,7 +255,7 @@ bool cwbvh_trace(vec3 world_o, vec3 world_d, float tmin, float tmax, bool any_hi
             current = cwbvh_stacks[stack_base + --stack_size];
         }
     }
-    return hit.instance != 0xffffffffu;
+    return hit.instance != NO_HIT;
 }
 
 // Mesh triangle index (mesh order) of a hit's leaf slot.

@@ -63,8 +63,9 @@ pub struct GpuTriangleUvs {
     pub flipped: u32,
 }
 
-/// [`GpuInstance::uv_offset`] of an instance whose mesh has no texture coordinates.
-pub const NO_UVS: u32 = u32::MAX;
+/// [`GpuInstance::uv_offset`] of an instance whose mesh has no texture coordinates; defined with
+/// the constants shared with GLSL, which `path_trace.comp` compares the offset with.
+pub use crate::shader_constants::NO_UVS;
 
 /// A placed mesh as the traversal and the shading kernels see it.
 #[repr(C)]

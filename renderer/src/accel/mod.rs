@@ -33,5 +33,6 @@ pub fn build_params() -> obvhs::BvhBuildParams {
     obvhs::BvhBuildParams::medium_build()
 }
 
-/// Marks "no hit" in [`GpuRayHit::instance`] and the CPU reference.
-pub const NO_HIT: u32 = u32::MAX;
+/// Marks "no hit" in [`GpuRayHit::instance`] and the CPU reference; defined with the
+/// constants shared with GLSL, which `render/cwbvh.glsl` and `trace_rays.comp` write.
+pub use crate::shader_constants::NO_HIT;

@@ -56,8 +56,9 @@ pub struct StoreRead {
     pub relief: f32,
 }
 
-/// Marks an instance whose albedo is not read from a store.
-pub const NO_STORE: u32 = u32::MAX;
+/// Marks an instance whose albedo is not read from a store; defined with the constants shared
+/// with GLSL, which `path_trace.comp` compares the slot with.
+pub use crate::shader_constants::NO_STORE;
 
 /// A store a scene baked, of any of the four structures: what callers insert into before
 /// [`SceneStores::refresh`].
