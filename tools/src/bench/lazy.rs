@@ -8,6 +8,7 @@
 use super::harness::{time_cpu, Bench, Throughput};
 use super::plot::rgb_image;
 use super::CommonArgs;
+use crate::cli::assets::ExemplarDir;
 use crate::cli::tuning::SolidOrder;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
@@ -29,7 +30,6 @@ use lazysolid_synth::solid::lazy::{
 use lazysolid_synth::solid::{pack_rgb, voxel_colour, LevelSchedule, Orientation, SolidExemplars};
 use lazysolid_synth::{load_solid, FitMode};
 use std::cell::RefCell;
-use std::path::PathBuf;
 
 /// What to measure.
 #[derive(Args)]
@@ -86,16 +86,19 @@ pub struct SolidExemplarArg {
     /// The exemplar playing every role: a name in the assets' exemplars or a path.
     #[arg(long, default_value = "terra")]
     pub exemplar: String,
-    /// Where named exemplars live; default: the assets' exemplars.
-    #[arg(long, value_name = "DIR")]
-    pub exemplar_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub exemplar_dir: ExemplarDir,
 }
 
 impl SolidExemplarArg {
     /// Loads the exemplar as the three roles of a solid texture, fitted by the rule of
     /// `lazysolid solid --fit auto` and oriented by its default rule, and prints how.
     pub fn load(&self) -> anyhow::Result<SolidExemplars> {
-        let path = assets::exemplar("--exemplar", &self.exemplar, self.exemplar_dir.as_deref())?;
+        let path = assets::exemplar(
+            "--exemplar",
+            &self.exemplar,
+            self.exemplar_dir.path.as_deref(),
+        )?;
         let fitted = load_solid(&path, FitMode::Auto, None)
             .with_context(|| format!("loading --exemplar {}", path.display()))?;
         println!("exemplar fit: {}", fitted.fit);

@@ -9,6 +9,7 @@ use super::CommonArgs;
 use crate::cli::multiscale::load_graph;
 use crate::cli::output::write_atomically;
 use crate::cli::resolution::Resolution;
+use crate::cli::tuning::Energy;
 use crate::cli::GlobalArgs;
 use clap::Args;
 use lazysolid_compute::atomic_file::write_bytes_atomically;
@@ -25,6 +26,10 @@ use std::time::Instant;
 
 /// Options of the suite.
 #[derive(Args)]
+#[command(mut_arg("samples", |a| a
+    .default_value("256")
+    .help("Energy samples per depth, a regular subgrid of each quality window: 256 here (4096 in \
+           the other commands), since every depth of the zoom is scored")))]
 pub struct MultiscaleBenchArgs {
     #[command(flatten)]
     pub common: CommonArgs,
@@ -44,9 +49,8 @@ pub struct MultiscaleBenchArgs {
     /// Size of the per-depth quality windows, WxH in pixels (N for NxN).
     #[arg(long, value_name = "WxH", default_value = "128x128")]
     pub quality_res: Resolution,
-    /// Energy samples per depth (a regular subgrid of the quality window).
-    #[arg(long, default_value_t = 256)]
-    pub energy_samples: u32,
+    #[command(flatten)]
+    pub energy: Energy,
     /// Seed.
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
@@ -64,7 +68,7 @@ fn level_energy(
     level: u32,
     out: &[[u8; 3]],
     size: Resolution,
-    samples: u32,
+    samples: usize,
 ) -> f64 {
     let e = &analysis.exemplars[exemplar];
     let h = 1i32 << (e.finest - level);
@@ -260,7 +264,7 @@ pub fn run(args: &MultiscaleBenchArgs, global: &GlobalArgs) -> anyhow::Result<()
                 level,
                 &colours,
                 q,
-                args.energy_samples,
+                args.energy.samples,
             );
             // The same pixels without their transfers: the stack texels alone, which the
             // governing level's energy measures apart from the colour adaptation.
@@ -282,7 +286,7 @@ pub fn run(args: &MultiscaleBenchArgs, global: &GlobalArgs) -> anyhow::Result<()
                 level,
                 &raw,
                 q,
-                args.energy_samples,
+                args.energy.samples,
             );
             let repetition = if s0.magnified() {
                 f64::NAN

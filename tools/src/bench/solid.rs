@@ -47,11 +47,12 @@
 use super::harness::{time_cpu, Bench, Throughput};
 use super::CommonArgs;
 use crate::cli::assets;
+use crate::cli::assets::ExemplarDir;
 use crate::cli::candidate_builder::Candidates;
 use crate::cli::fit_mode::Fit;
 use crate::cli::solid::{synthesize_cube, CubeRequest, SolidRun};
 use crate::cli::synth::write_png;
-use crate::cli::tuning::{RoleOrientation, Schedule, SolidOrder};
+use crate::cli::tuning::{Energy, OrientationRule, Schedule, SolidOrder};
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -76,7 +77,6 @@ const CANDIDATES_GPU: &str = "lazysolid gpu kernels (wall)";
 const CANDIDATES_HOST: &str = "lazysolid host, pruned (wall)";
 const END_TO_END_COLD: &str = "lazysolid end-to-end cold (wall)";
 const END_TO_END_WARM: &str = "lazysolid end-to-end warm (wall)";
-use std::path::PathBuf;
 
 /// What to measure.
 #[derive(Args)]
@@ -96,10 +96,8 @@ pub struct SolidArgs {
     /// Three exemplars playing E_x, E_y, E_z of one more case (empty: none).
     #[arg(long, value_delimiter = ',', default_value = "terra,brick,walnut")]
     pub three: Vec<String>,
-    /// Where named exemplars live; default: the assets' exemplars (scripts/fetch-assets.sh
-    /// fills them), found like every other command's.
-    #[arg(long, value_name = "DIR")]
-    pub exemplar_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub exemplar_dir: ExemplarDir,
     /// Exemplar sides whose candidate precompute is timed.
     #[arg(long, value_delimiter = ',', default_value = "64,128")]
     pub candidate_sides: Vec<u32>,
@@ -133,9 +131,8 @@ pub struct SolidArgs {
     /// rows stay the first seed's.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
     pub solid_seeds: u32,
-    /// Most pixels of each slice the energy evaluates.
-    #[arg(long, default_value_t = 4096)]
-    pub energy_samples: usize,
+    #[command(flatten)]
+    pub energy: Energy,
     /// Only the first exemplar, the first candidate side and the first size.
     #[arg(long)]
     pub quick: bool,
@@ -150,10 +147,8 @@ pub struct SolidArgs {
     pub schedule: Schedule,
     #[command(flatten)]
     pub order: SolidOrder,
-    /// Whether a role may see its exemplar mirrored (`lazysolid solid --orientation`); with
-    /// the ablations, a case whose role the rule mirrored is also synthesized as given.
-    #[arg(long, value_enum, default_value_t = RoleOrientation::Auto)]
-    pub orientation: RoleOrientation,
+    #[command(flatten)]
+    pub orientation: OrientationRule,
 }
 
 /// One quality row: a variant of one case, per axis.
@@ -170,7 +165,7 @@ struct QualityRow {
 
 /// An exemplar fitted to `side`² by `--fit` (the rule of `lazysolid solid`).
 fn load_fitted(args: &SolidArgs, name: &str, side: u32) -> anyhow::Result<FittedExemplar> {
-    let path = assets::exemplar("--exemplars", name, args.exemplar_dir.as_deref())?;
+    let path = assets::exemplar("--exemplars", name, args.exemplar_dir.path.as_deref())?;
     load_solid(&path, args.fit.into(), Some(side))
         .with_context(|| format!("loading {}", path.display()))
 }
@@ -206,7 +201,7 @@ fn exemplars_of(
     side: u32,
 ) -> anyhow::Result<(SolidExemplars, Mirroring, SolidExemplars, Vec<ExemplarFit>)> {
     let (given, fits) = given_exemplars(args, case, side)?;
-    let (oriented, mirroring) = given.clone().with_orientation(args.orientation.into());
+    let (oriented, mirroring) = given.clone().with_orientation(args.orientation.rule.into());
     Ok((oriented, mirroring, given, fits))
 }
 
@@ -527,7 +522,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             bench.status(format!("{case}: scoring"));
             let scorers = role_scorers(&run.exemplars);
             let q = |s: &SolidSynthesis, c: &[[u8; 3]]| {
-                axis_quality(&energy, &scorers, &run.exemplars, s, c, args.energy_samples)
+                axis_quality(&energy, &scorers, &run.exemplars, s, c, args.energy.samples)
             };
             let mut push = |variant: &str, axes, consistency| {
                 quality.push(QualityRow {
@@ -724,7 +719,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                         &given,
                         &as_given.synthesis,
                         &as_given.colours,
-                        args.energy_samples,
+                        args.energy.samples,
                     )?;
                     push("as given", axes, Some(as_given.consistency));
                     drawn.push(("-as-given".into(), as_given));
@@ -739,7 +734,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 &exemplars,
                 n,
                 args.seed,
-                args.energy_samples,
+                args.energy.samples,
             )?;
             push("2d synth", two_d, None);
             let name = case.replace('+', "-");

@@ -10,6 +10,7 @@
 //! 3. an `assets/` folder in the current folder or one of its parents.
 
 use anyhow::{bail, Context};
+use clap::Args;
 use std::path::{Path, PathBuf};
 
 /// The asset folder by the rule above, or an error saying where it looked.
@@ -77,4 +78,13 @@ fn named(
             known.join(", ")
         }
     )
+}
+
+/// Where named exemplars live, for the commands that take several or one by name.
+#[derive(Args, Clone, Debug, Default)]
+pub struct ExemplarDir {
+    /// Where named exemplars live; default: the assets' exemplars (scripts/fetch-assets.sh
+    /// fills them), found as every other command finds them
+    #[arg(long = "exemplar-dir", value_name = "DIR")]
+    pub path: Option<PathBuf>,
 }

@@ -9,7 +9,7 @@ use super::components::components;
 use super::fit_mode::Fit;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
 use super::synth::write_png;
-use super::tuning::{Features, RoleOrientation, Schedule, SolidOrder};
+use super::tuning::{Energy, Features, OrientationRule, Schedule, SolidOrder};
 use super::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -94,9 +94,8 @@ pub struct SolidArgs {
     /// the structures (docs/solid.md, "The balance's levels")
     #[arg(long, value_name = "N")]
     pub balance_levels: Option<u32>,
-    /// Most pixels of each slice the neighbourhood energy evaluates.
-    #[arg(long, default_value_t = 4096)]
-    pub energy_samples: usize,
+    #[command(flatten)]
+    pub energy: Energy,
     /// Where the candidates are computed (the same candidates either way): auto is the host
     /// on a CPU driver (lavapipe), the GPU otherwise.
     #[arg(long, value_enum, default_value_t = Candidates::Auto)]
@@ -112,11 +111,8 @@ pub struct SolidArgs {
     pub order: SolidOrder,
     #[command(flatten)]
     pub features: Features,
-    /// Whether a role may see its exemplar mirrored left-right: auto does so where the
-    /// exemplars' diagonal preferences cannot all hold in one volume (docs/solid.md,
-    /// "Diagonal orientation"; the line `orientation:` tells what was done)
-    #[arg(long, value_enum, default_value_t = RoleOrientation::Auto)]
-    pub orientation: RoleOrientation,
+    #[command(flatten)]
+    pub orientation: OrientationRule,
 }
 
 fn parse_offset3(s: &str) -> Result<[i32; 3], String> {
@@ -398,7 +394,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let (exemplars, mirroring) = exemplars
         .with_feature_weight(args.features.feature_weight)?
         .with_feature_mask(args.features.feature_mask.into())
-        .with_orientation(args.orientation.into());
+        .with_orientation(args.orientation.rule.into());
     let candidate_params = CandidateParams {
         strip: args.strip,
         s: args.s,
@@ -438,7 +434,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         &run.exemplars,
         &run.synthesis,
         &run.colours,
-        args.energy_samples,
+        args.energy.samples,
     )?;
 
     let notes: Vec<String> = fits.iter().map(|f| format!("exemplar fit: {f}")).collect();

@@ -4,7 +4,7 @@
 use super::components::components;
 use super::output::{check_writable, write_atomically};
 use super::resolution::Resolution;
-use super::tuning::{Coherence, Features, Schedule};
+use super::tuning::{Coherence, Energy, Features, Schedule};
 use super::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -43,9 +43,8 @@ pub struct SynthArgs {
     /// LAZYSOLID_CACHE_DIR, else in the user's cache folder, e.g. ~/.cache/lazysolid).
     #[arg(long)]
     pub no_cache: bool,
-    /// Most output pixels the neighbourhood energy evaluates (a regular subgrid beyond that).
-    #[arg(long, default_value_t = 4096)]
-    pub energy_samples: usize,
+    #[command(flatten)]
+    pub energy: Energy,
     /// The PNG to write; the coordinate map goes next to it as NAME.coords.png (both checked
     /// before synthesis starts).
     #[arg(short, long)]
@@ -199,7 +198,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
 
     let start = Instant::now();
     let energy = EnergyKernel::new(&gpu)?;
-    let minima = energy.minima(&exemplar, &colours, w, h, args.energy_samples)?;
+    let minima = energy.minima(&exemplar, &colours, w, h, args.energy.samples)?;
     let report = EnergyReport::from_minima(&minima);
     let energy_s = start.elapsed().as_secs_f64();
     let histogram = histogram_distance(&exemplar.rgb, &colours);

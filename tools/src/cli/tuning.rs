@@ -119,3 +119,27 @@ pub struct SolidOrder {
     #[arg(long, value_name = "N")]
     pub parallel_levels: Option<u32>,
 }
+
+/// Most pixels the neighbourhood energy evaluates: one flag for every command that reports
+/// the energy, so a 2D window and a solid's slices are scored on the same footing.
+pub const DEFAULT_ENERGY_SAMPLES: usize = 4096;
+
+/// How many pixels the neighbourhood energy (the quality figure of every synthesis) evaluates.
+#[derive(Args, Clone, Debug)]
+pub struct Energy {
+    /// Most pixels of each output the neighbourhood energy evaluates (a 2D window, each slice of
+    /// a solid, each quality window of a multiscale depth), a regular subgrid beyond that
+    #[arg(long = "energy-samples", value_name = "N", default_value_t = DEFAULT_ENERGY_SAMPLES)]
+    pub samples: usize,
+}
+
+/// Whether the solid synthesizer may mirror a role's exemplar.
+#[derive(Args, Clone, Debug)]
+pub struct OrientationRule {
+    /// Whether a role may see its exemplar mirrored left-right: auto does so where the
+    /// exemplars' diagonal preferences cannot all hold in one volume (docs/solid.md, "Diagonal
+    /// orientation"; the line `orientation:` tells what was done). In `bench solid` (unless
+    /// --no-ablations) a case whose role the rule mirrored is also synthesized as given
+    #[arg(long = "orientation", value_name = "ORIENTATION", value_enum, default_value_t = RoleOrientation::Auto)]
+    pub rule: RoleOrientation,
+}

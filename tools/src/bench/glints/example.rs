@@ -30,7 +30,11 @@ pub(super) fn load_image(args: &GlintsArgs) -> anyhow::Result<Option<HeightImage
     if args.exemplar == "generated" {
         return Ok(None);
     }
-    let path = assets::exemplar("--exemplar", &args.exemplar, args.exemplar_dir.as_deref())?;
+    let path = assets::exemplar(
+        "--exemplar",
+        &args.exemplar,
+        args.exemplar_dir.path.as_deref(),
+    )?;
     let is_pat = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("pat"));

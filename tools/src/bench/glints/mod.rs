@@ -21,6 +21,7 @@ mod structures;
 
 use super::harness::Bench;
 use super::CommonArgs;
+use crate::cli::assets::ExemplarDir;
 use crate::cli::resolution::Resolution;
 use crate::cli::GlobalArgs;
 use anyhow::ensure;
@@ -66,9 +67,8 @@ pub struct GlintsArgs {
     /// bits, any size) or a GIMP pattern, or `generated` (bumps and scratches at every size).
     #[arg(long, default_value = "crinklepaper")]
     pub exemplar: String,
-    /// Where named exemplars live; default: the assets' exemplars.
-    #[arg(long, value_name = "DIR")]
-    pub exemplar_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub exemplar_dir: ExemplarDir,
     /// Height of the image's full luminance range, in texels.
     #[arg(long, default_value_t = 4.0)]
     pub relief: f32,

@@ -22,8 +22,9 @@ mod quality;
 use super::harness::{time_cpu, Bench, Throughput};
 use super::plot::bar_chart;
 use super::CommonArgs;
+use crate::cli::assets::ExemplarDir;
 use crate::cli::resolution::Resolution;
-use crate::cli::tuning::Schedule;
+use crate::cli::tuning::{Energy, Schedule};
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{ensure, Context};
 use clap::Args;
@@ -36,7 +37,6 @@ use lazysolid_synth::{
     DEFAULT_FINEST_PASSES, DEFAULT_PASSES,
 };
 use quality::SeedScores;
-use std::path::PathBuf;
 
 /// What to compare.
 #[derive(Args)]
@@ -52,10 +52,8 @@ pub struct SynthArgs {
         default_value = "leather,brick,walnut"
     )]
     pub exemplars: Vec<String>,
-    /// Where named exemplars live; default: the assets' exemplars (scripts/fetch-assets.sh
-    /// fills them).
-    #[arg(long, value_name = "DIR")]
-    pub exemplar_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub exemplar_dir: ExemplarDir,
     /// Output sizes, one case each (square: N or NxN).
     #[arg(
         long,
@@ -71,9 +69,8 @@ pub struct SynthArgs {
     /// energy moves by up to ±45 % with the layout it draws, so fewer seeds decide little.
     #[arg(long, default_value_t = 8)]
     pub quality_seeds: u32,
-    /// Most output pixels the neighbourhood energy evaluates, for both outputs.
-    #[arg(long, default_value_t = 4096)]
-    pub energy_samples: usize,
+    #[command(flatten)]
+    pub energy: Energy,
     /// CPU threads of texture-synthesis and of the exemplar analysis.
     #[arg(long, default_value_t = 2)]
     pub cpu_threads: usize,
@@ -186,7 +183,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let exemplars = names
         .iter()
         .map(|n| {
-            let path = assets::exemplar("--exemplars", n, args.exemplar_dir.as_deref())?;
+            let path = assets::exemplar("--exemplars", n, args.exemplar_dir.path.as_deref())?;
             let fitted = load_plane(&path, Border::Wrap).with_context(|| {
                 format!(
                     "loading exemplar {} (scripts/fetch-assets.sh fetches the GIMP patterns)",
@@ -347,7 +344,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     image,
                     coords,
                     size,
-                    args.energy_samples,
+                    args.energy.samples,
                 )
             };
             let mut ours_q = SeedScores {
@@ -424,7 +421,7 @@ pub fn run(args: &SynthArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let mut notes = vec![
         (
             "energy samples (max)".to_string(),
-            args.energy_samples as f64,
+            args.energy.samples as f64,
         ),
         ("seed".to_string(), args.seed as f64),
         ("quality seeds".to_string(), args.quality_seeds as f64),
