@@ -33,12 +33,12 @@
 //! the feature as much say as the colour. A texture without structures (speckle: every pixel
 //! within a pixel of a border) gets no channel: below [`SPECKLE_DEVIATION`] pixels of distance
 //! deviation the channel is off, ramping to its full weight over [`SPECKLE_RAMP`] pixels.
-//! Measured (2026-12-03, 128³ from 128², SWD ratio x / y / z without → with the channel):
-//! cracked 2.23 / 2.36 / 2.54 → 0.92 / 1.07 / 0.77, stone33 2.31 / 2.91 / 2.81 → 1.72 / 1.31 /
-//! 1.70, but slate (speckle, deviation 0.66 px) 1.97 / 1.79 / 2.05 → 3.46 / 3.20 / 3.20; a
-//! channel proportional to the distance's own spread instead (no switch) kept slate at 2.2–2.4
-//! but lost most of the gain on cracked (1.22 / 1.45 / 1.54) and stone33 (2.41 / 2.58 / 3.26). The synthesized output is colour only; the channel
-//! only shapes which neighbourhoods count as alike.
+//! Speckle is switched off rather than weighted like the rest because the channel brought the
+//! SWD ratios of structured exemplars (cracked, stone33) far down but raised a speckled one's
+//! (slate); a channel proportional to the distance's own spread instead spared slate but lost
+//! most of the gain on the others (`docs/solid.md`, "The feature channel and its mask";
+//! the figures in `docs/log/solid.md`, "Feature distance"). The synthesized output is colour
+//! only; the channel only shapes which neighbourhoods count as alike.
 
 use super::stack::gaussian_blur;
 
@@ -97,7 +97,8 @@ pub enum FeatureMask {
     /// a connected structure that reaches clearly farther (or Otsu's is speckle).
     #[default]
     Auto,
-    /// Otsu's split always (the rule before 2026-12-05, less marble1's fallback): an ablation.
+    /// Otsu's split always, speckle included: an ablation that shows what the minimum-error
+    /// split gains where the rule takes it.
     Otsu,
     /// The minimum-error split always.
     MinimumError,
@@ -122,7 +123,8 @@ impl FeatureMask {
 /// Smallest share of the pixels the minimum-error class must hold to replace an Otsu split
 /// that is not speckle: cracked's 2.2 % crack shadows, Craters' 1.1 % and crinklepaper's 0.6 %
 /// are detail of a structure Otsu already split well (forced, they cost 0.2–0.7 of SWD ratio),
-/// while the joints, cells, mortar and veins that gained are 9–12 % (128² fits, 2026-12-05).
+/// while the joints, cells, mortar and veins that gained are 9–12 % (128² fits;
+/// `docs/log/solid.md`, "Joints, cells, mortar").
 pub const MIN_STRUCTURE_SHARE: f64 = 0.05;
 
 /// How much farther (distance deviation) the minimum-error class must reach than Otsu's to

@@ -91,8 +91,9 @@ pub fn synthesized_neighbourhood(
 ///
 /// Sums of three `i8` predictions and `3 ×` an `i8` both stay within ±384, so each difference
 /// fits an `i16` and its square an `i32`: in 16-bit lanes the x86-64 baseline (SSE2) multiplies
-/// and adds pairs in one instruction, about 3× the speed of 32-bit lanes, which it cannot
-/// multiply (measured 2026-12-03; the CPU correction spends most of its time here).
+/// and adds pairs in one instruction, while it cannot multiply 32-bit lanes. That matters
+/// because the CPU correction spends most of its time here; the gain is in
+/// `docs/log/solid.md` ("Open", "Candidate time at 128²").
 pub fn neighbourhood_distance(
     synthesized: &[i16; NEIGHBOURHOOD_DIMS],
     exemplar: &[i8; NEIGHBOURHOOD_DIMS],

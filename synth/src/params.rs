@@ -103,11 +103,10 @@ pub fn default_passes(levels: u32) -> Vec<u32> {
 /// with `h` the level spacing) is not corrected. At such a level every neighbourhood wraps
 /// around the exemplar, the best match of a jittered block is the exemplar's own layout, and
 /// the correction heals the jitter back into a near-tiling that every finer level inherits:
-/// a grid of the exemplar's large structures, visible at a glance at 512² (measured on nine
-/// exemplars at 512², 2026-12-04: layout repetition 0.24–0.57 with these levels corrected,
-/// −0.01–0.12 without, at a calibrated SWD within 0.07 of before on eight of them and the
-/// neighbourhood energy, which rewards copying, 4–42 % higher; docs/synthesis.md, "Layout
-/// levels").
+/// a grid of the exemplar's large structures, visible at a glance at 512². Leaving these levels
+/// uncorrected removes the grid at nearly the same calibrated SWD, while the neighbourhood
+/// energy, which rewards copying, rises (docs/synthesis.md, "Layout levels: left uncorrected";
+/// the figures in docs/log/synthesis.md, "Layout levels").
 pub fn default_passes_for(levels: u32, exemplar_side: u32) -> Vec<u32> {
     let finest = levels.saturating_sub(1);
     let mut passes = default_passes(levels);
@@ -150,8 +149,8 @@ pub struct SynthParams {
     /// is none of the gathered candidates. Off by default: upsampling and jitter only translate
     /// a parent's triple, so inside a block it keeps a near-zero distance and wins, although
     /// its three exemplar colours disagree and the median shows them as axis-aligned
-    /// rectangles (`docs/solid.md`, "Correction"). On reproduces the rule before 2026-12-03,
-    /// an ablation of `bench solid`.
+    /// rectangles (`docs/solid.md`, "Correction"). On is the `keep current` ablation of
+    /// `bench solid`, which shows those rectangles.
     pub keep_current: bool,
     /// Solid synthesis only: how many of the finest levels correct every voxel at once per
     /// pass (Jacobi) instead of in eight ordered parity subpasses (`solid/schedule.rs`). A

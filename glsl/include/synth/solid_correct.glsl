@@ -59,9 +59,9 @@ bool better(uint d, uint rank, uvec3 t, uint bd, uint br, uvec3 bt) {
 // The corrected triple of the voxel whose 3x3x3 neighbourhood (x fastest, 13 the centre) is
 // `around`; only the 19 voxels of the three planes through the centre are read. `table` holds
 // the level's 15 buffer addresses (see correct.comp). The current triple competes only as one
-// of the gathered candidates unless `keep_current` is set (the rule before 2026-12-03, kept as
-// an ablation): a merely translated triple has a near-zero distance inside its block and would
-// otherwise win although its three exemplar colours disagree.
+// of the gathered candidates unless `keep_current` is set (an ablation for `bench solid`): a
+// merely translated triple has a near-zero distance inside its block and would otherwise win
+// although its three exemplar colours disagree.
 // The parts of the decision a profile runs (`parts` of solid_correct; CorrectParts in
 // synth/src/solid/lazy/gpu/mod.rs): reading the neighbours, then the neighbourhood sums, then each
 // gathered set's own-role distance, then everything. Below SOLID_PARTS_ALL the current triple

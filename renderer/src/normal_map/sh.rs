@@ -123,9 +123,9 @@ mod tests {
 
     /// The basis is orthonormal (checked by quadrature over the sphere) and the band-2
     /// Lambertian response matches the brute-force mean clamped cosine within the truncation
-    /// error of bands 4 and up (measured 2026-12-05: at most 0.074 for a single normal, the
-    /// worst case, on the unit scale of the cosine; 0.014 for the coarsest level of a bumpy
-    /// map).
+    /// error of bands 4 and up. That error is at most 0.074 for a single normal, the worst case,
+    /// on the unit scale of the cosine, and 0.014 for the coarsest level of a bumpy map, which
+    /// averaging smooths; the bounds below sit above these.
     #[test]
     fn lambert_response_matches_the_brute_force_mean_to_truncation_error() {
         // Orthonormality on a (cos θ, φ) midpoint grid.

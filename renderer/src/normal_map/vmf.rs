@@ -61,7 +61,8 @@ pub fn kappa_from_length_exact(r: f64) -> f64 {
 /// `√(4π/(2l+1))`, i.e. how much of band `l` a lobe of concentration `κ` lets through. The
 /// thesis derives it for κ > 2; against [`zonal_attenuation_exact`] it errs by up to 0.24
 /// (κ = 2), 0.10 (κ = 10) and 0.03 (κ = 100) over l ≤ 8, where [`zonal_attenuation_heat`] errs
-/// by 0.069, 0.014 and 0.0011 (measured 2026-12-05).
+/// by 0.069, 0.014 and 0.0011 (`zonal_attenuation_matches_the_numerical_projection` holds both
+/// forms to these errors).
 pub fn zonal_attenuation(l: u32, kappa: f64) -> f64 {
     (-f64::from(l * l) / (2.0 * kappa)).exp()
 }
@@ -318,8 +319,8 @@ mod tests {
             let approx = kappa_from_length(r);
             worst = worst.max((approx - kappa).abs() / kappa);
         }
-        // Banerjee's approximation is within 5 % of the exact inverse (measured 2026-12-05 on
-        // κ from 0.01 to 2000: worst 4.94 % near κ = 4.9).
+        // Banerjee's approximation is within 5 % of the exact inverse over κ from 0.01 to 2000
+        // (worst 4.94 % near κ = 4.9), the bound that the moments' round-trip test relies on.
         assert!(worst < 0.05, "worst relative error {worst}");
         // The limits: r = 0 is uniform, r = 1 the cap.
         assert_eq!(kappa_from_length(0.0), 0.0);
@@ -352,8 +353,8 @@ mod tests {
     }
 
     /// Eq. 7.19 and the heat-kernel form against the integral they approximate, over l ≤ 8,
-    /// held to the errors measured 2026-12-05 (see [`zonal_attenuation`]); the heat-kernel form
-    /// is the closer at every κ.
+    /// held to the errors that [`zonal_attenuation`] states, so that its documentation stays
+    /// true; the heat-kernel form is the closer at every κ.
     #[test]
     fn zonal_attenuation_matches_the_numerical_projection() {
         for (kappa, thesis_bound, heat_bound) in [

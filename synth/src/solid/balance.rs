@@ -1,18 +1,17 @@
 //! Usage balance: a per-pixel penalty on exemplar coordinates that the correction would
 //! otherwise over-use, so that the volume keeps the exemplar's histogram of structures.
 //!
-//! **Why.** Measured on walnut 128² → 128³ (2026-12-03, `bench solid`): the candidates use
-//! the exemplar evenly (the 10 % most used pixels hold 25–32 % of the candidate coordinates,
-//! the luminance standard deviation of what they point at is 16.3 against the exemplar's
-//! 16.6), but every correction pass of the finest levels narrows what the volume uses: after
-//! the last pass the 10 % most used pixels hold 61–66 % of the voxels, the standard deviation
-//! drops to 13.9 and the mean gradient from 16.7 to 12.5. The neighbourhood distance of a
-//! voxel whose three planes only partly agree is smallest for a candidate near the average of
-//! the predictions, so smooth, mid-tone pixels win and dark spots, outlines and cracks fade
-//! (the slices' SWD ratio rose with more passes: 2.4–3.0 at the defaults, 2.7–3.5 at three).
-//! Kopf et al. 2007 counter the same drift in texture optimization by re-weighting with the
-//! output's current histogram; here that histogram is a global quantity, which a lazy
-//! synthesizer (any box, any order, the same voxels) cannot read.
+//! **Why.** The candidates use the exemplar evenly, with about the exemplar's own luminance
+//! spread, but every correction pass of the finest levels narrows what the volume uses: the
+//! most used tenth of the exemplar's pixels comes to hold most of the voxels, and the
+//! luminance spread and the mean gradient fall. The neighbourhood distance of a voxel whose
+//! three planes only partly agree is smallest for a candidate near the average of the
+//! predictions, so smooth, mid-tone pixels win and dark spots, outlines and cracks fade, the
+//! more so the more passes run (counted on walnut with `bench solid`: `docs/log/solid.md`,
+//! "Usage balance"; `docs/solid.md`, "Usage balance"). Kopf et al. 2007 counter the same drift
+//! in texture optimization by re-weighting with the output's current histogram; here that
+//! histogram is a global quantity, which a lazy synthesizer (any box, any order, the same
+//! voxels) cannot read.
 //!
 //! **What.** A deterministic *pilot* measures the drift once per exemplar: level by level,
 //! coarsest first, a fixed [`PILOT_SIDE`]³ box of that level (at [`PILOT_ORIGIN`], seed

@@ -57,7 +57,8 @@ pub struct CandidateParams {
     /// [`MAX_CANDIDATES`] smallest crossbar errors (the "crossbar only" ablation).
     pub coherence: bool,
     /// Strength of the usage balance (`balance.rs`) that [`CandidateBuilder`] adds to the
-    /// candidates; 0: none (the builders' own sets, as before 2026-12-03).
+    /// candidates; 0: none (the builders' own sets, as `bench solid`'s `no balance` ablation
+    /// uses them).
     ///
     /// [`CandidateBuilder`]: super::CandidateBuilder
     pub balance: u32,

@@ -1,21 +1,10 @@
 //! Default correction passes of the volume synthesizer.
 //!
-//! Measured on the 64² terra exemplar, one 64³ cube each (lavapipe, 2026-12-01; mean over the
-//! three mid slices of the 7×7 neighbourhood energy and of the histogram distance, period
-//! repetition 0.00 in every case):
-//!
-//! | passes (coarse, finest) | voxel updates | energy | histogram |
-//! |-------------------------|--------------:|-------:|----------:|
-//! | 4, 2 (the 2D defaults)  | 2.00 M        | 13.6 k | 0.226     |
-//! | 2, 2                    | 0.92 M        | 14.5 k | 0.193     |
-//! | 2, 1 (these defaults)   | 0.53 M        | 15.7 k | 0.185     |
-//! | 1, 1                    | 0.36 M        | 15.5 k | 0.221     |
-//!
-//! The 2D defaults score 13 % lower energy (and a worse histogram) for 3.8× the updates of
-//! these; the slices look alike (short crack fragments where the exemplar has long cracks, in
-//! every row). Two passes at the coarse levels (the thesis uses 2) correct the layout where it
-//! is cheap; the finest level, most of the voxels and the cost of lazy synthesis around a
-//! surface, gets one.
+//! Two passes at the coarse levels (the thesis uses 2) correct the layout where it is cheap;
+//! the finest level, most of the voxels and the cost of lazy synthesis around a surface, gets
+//! one. The 2D defaults (4 coarse, 2 finest) buy a somewhat lower neighbourhood energy, and a
+//! worse histogram, for several times the voxel updates, with slices that look alike
+//! (`docs/log/solid.md`, "Volume synthesizer", "Default correction passes").
 
 use crate::params::{given_or, jitter_schedule, pass_schedule};
 

@@ -45,7 +45,7 @@ pub enum Orientation {
     /// The rule of the module docs.
     #[default]
     Auto,
-    /// Every role sees its image as given (the rule before 2026-12-05): an ablation.
+    /// Every role sees its image as given: an ablation that shows what the mirroring gains.
     Keep,
     /// The rule at any size of the correlations (only their signs).
     Mirror,

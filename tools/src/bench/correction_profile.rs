@@ -3,8 +3,8 @@
 //! once per cumulative part of the correction (`CorrectParts`), every dispatch timed by
 //! timestamps of its own; the notes give each part's added correction time and, for the whole
 //! correction, every kernel's device time and dispatches. A last run visits the voxels in their
-//! keys' order instead of grouped (`VisitOrder`), the correction before 2026-12-06, for the
-//! ratio of the two measured in one sitting.
+//! keys' order instead of grouped (`VisitOrder::Keys`), so that what the grouping gains is the
+//! ratio of two runs of one sitting (`docs/lazy.md`, "Where the device time goes").
 
 use lazysolid_compute::gpu::Gpu;
 use lazysolid_synth::solid::lazy::{CorrectParts, GpuLazySolid, MemoryPolicy, VisitOrder};

@@ -25,19 +25,20 @@
 //! - `own role`, `mean colour`: the defaults' triples, each axis's slice coloured by its own
 //!   role's exemplar alone (a diagnostic, not a volume) or by the mean of the three instead of
 //!   the median;
-//! - `no balance`: candidates without the usage balance (`balance.rs`; the rule before
-//!   2026-12-03);
+//! - `no balance`: candidates without the usage balance (`balance.rs`), which shows how much
+//!   of the exemplar's contrast the balance keeps;
 //! - `balance finest`: the usage balance at the finest level only (`--balance-levels 1`),
 //!   which is where slate's slices lose their excess contrast at 2–4 pixels;
 //! - `no feature`: the appearance space of colour alone, without the feature-distance
-//!   channel (`synth/feature.rs`; the rule before 2026-12-03, second session);
-//! - `otsu mask`: the features found by Otsu's split always, as before 2026-12-05 (the rule
-//!   takes the minimum-error split where Otsu's takes part of the body; `synth/feature.rs`);
+//!   channel (`synth/feature.rs`), which shows what the channel adds;
+//! - `otsu mask`: the features found by Otsu's split always, which shows what the rule gains
+//!   by taking the minimum-error split where Otsu's takes part of the body (`synth/feature.rs`);
 //! - `as given`: every role sees its image as given, where the orientation rule mirrored one
-//!   (`solid/orientation.rs`; the rule before 2026-12-05, third session), scored against the
-//!   images as given;
+//!   (`solid/orientation.rs`), scored against the images as given, which shows what the
+//!   mirroring gains;
 //! - `keep current`: the correction's current triple competes even when it is none of the
-//!   gathered candidates (the rule before 2026-12-03);
+//!   gathered candidates, which brings back the axis-aligned blocks that leaving it out
+//!   removes (`docs/solid.md`, "Correction");
 //! - `crossbar only`: candidates without the coherence filter (each pixel's 12 smallest
 //!   crossbar errors);
 //! - `extruded`: every voxel copies `E_z` at its (x, y), i.e. `E_z` extruded along z;
@@ -84,8 +85,8 @@ pub struct SolidArgs {
     #[command(flatten)]
     pub common: CommonArgs,
     /// Exemplars playing all three roles: GIMP pattern names in --exemplar-dir (NAME.pat) or
-    /// paths; each is fitted to the side measured by --fit (until 2026-12-03: the top-left
-    /// square of that side).
+    /// paths; each is fitted to the side measured by --fit, as `lazysolid solid` fits it, so
+    /// that the bench measures the exemplar a user gets.
     #[arg(
         long,
         value_name = "NAME|PATH",
@@ -709,7 +710,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     }
                 }
                 // The orientation rule's ablation, where it mirrored a role: every role as
-                // given (the rule before 2026-12-05, third session).
+                // given, so that the row shows what the mirroring gains.
                 if mirroring.mirrored.is_some() {
                     let as_given = synthesize_cube(&gpu, given.clone(), &request, Some(&cache))?;
                     // Scored against the images as given, which its slices were made from.

@@ -27,8 +27,8 @@ pub enum VisitOrder {
     /// Sorted on [`order_key`], each stage dispatched over its own stretch.
     #[default]
     Grouped,
-    /// The keys' Morton order, every stage dispatched over every voxel (the correction before
-    /// 2026-12-06).
+    /// The keys' Morton order, every stage dispatched over every voxel: kept so that a profile
+    /// measures what the grouping gains (`docs/lazy.md`, "Where the device time goes").
     Keys,
 }
 
