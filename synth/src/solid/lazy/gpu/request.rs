@@ -69,7 +69,7 @@ impl GpuLazySolid {
     }
 
     /// The dependency sets of the finest-level voxels `requested` given what is stored,
-    /// walked on the GPU and read back (what [`dependencies_cpu`](super::dependencies_cpu)
+    /// walked on the GPU and read back (what [`dependencies_cpu`](crate::solid::lazy::dependencies_cpu)
     /// computes from the same stored versions).
     ///
     /// # Errors
