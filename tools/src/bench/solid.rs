@@ -102,11 +102,13 @@ pub struct SolidArgs {
     /// Exemplar sides whose candidate precompute is timed.
     #[arg(long, value_delimiter = ',', default_value = "64,128")]
     pub candidate_sides: Vec<u32>,
-    /// Candidate builders timed at each candidate side (side by side, and checked equal when
-    /// both run); `host` alone keeps a large side within minutes on a CPU device, where the
-    /// kernels' brute force takes about five minutes at 128².
+    /// Where the candidates are computed, as `lazysolid solid --candidates`, here a list of the
+    /// builders timed at each candidate side (side by side, and checked equal when both run);
+    /// `host` alone keeps a large side within minutes on a CPU device, where the kernels'
+    /// brute force takes about five minutes at 128². `auto` is refused: a timing names its
+    /// builder.
     #[arg(long, value_delimiter = ',', default_value = "gpu,host")]
-    pub builders: Vec<Candidates>,
+    pub candidates: Vec<Candidates>,
     /// Exemplar side of the synthesis and quality cases.
     #[arg(long, default_value_t = 64)]
     pub side: u32,
@@ -360,6 +362,10 @@ fn figure(
 pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     ensure!(!args.exemplars.is_empty(), "--exemplars names no exemplar");
     ensure!(!args.voxel_res.is_empty(), "--voxel-res names no cube side");
+    ensure!(
+        !args.candidates.contains(&Candidates::Auto),
+        "--candidates auto: bench solid times named builders; list host, gpu or both"
+    );
     // `--three ""` names none.
     let three: Vec<&String> = args.three.iter().filter(|n| !n.is_empty()).collect();
     ensure!(
@@ -409,8 +415,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             // Both builders, side by side; the host's pruned searches must give the kernels'
             // candidates bit for bit.
             let mut results = Vec::new();
-            let both = args.builders.contains(&Candidates::Gpu)
-                && args.builders.contains(&Candidates::Host);
+            let both = args.candidates.contains(&Candidates::Gpu)
+                && args.candidates.contains(&Candidates::Host);
             for (builder, baseline) in [
                 (CandidateBuilder::Gpu, None),
                 (CandidateBuilder::Host, both.then_some(CANDIDATES_GPU)),
@@ -419,7 +425,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     CandidateBuilder::Gpu => Candidates::Gpu,
                     _ => Candidates::Host,
                 };
-                if !args.builders.contains(&chosen) {
+                if !args.candidates.contains(&chosen) {
                     continue;
                 }
                 let mut last = None;

@@ -4,9 +4,10 @@
 //! "unexpected argument".
 
 /// `(subcommand, old, new)`; `*` for a rename that holds wherever the old flag was accepted.
-const RENAMED: [(&str, &str, &str); 18] = [
+const RENAMED: [(&str, &str, &str); 19] = [
     ("solid", "--size", "--voxel-res"),
     ("bench solid", "--sizes", "--voxel-res"),
+    ("bench solid", "--builders", "--candidates"),
     ("multiscale", "--size", "--res"),
     ("zoom", "--size", "--res"),
     ("zoom", "-o", "--out-dir"),

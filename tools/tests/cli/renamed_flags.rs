@@ -32,6 +32,11 @@ fn renamed_flags_are_refused_by_name() {
         ),
         (&["bench", "synth", "--sizes", "64"], "--sizes", "--res"),
         (
+            &["bench", "solid", "--builders", "host"],
+            "--builders",
+            "--candidates",
+        ),
+        (
             &["bench", "prims", "--out", "results"],
             "--out",
             "--out-dir",

@@ -136,7 +136,7 @@ fn without_ablations_scores_the_default_only(pooled: &str) {
                 "--exemplars",
                 "granite1",
             ])
-            .args(["--three", "", "--builders", "host", "--solid-seeds", "1"])
+            .args(["--three", "", "--candidates", "host", "--solid-seeds", "1"])
             .args(SMALLEST),
         out.path(),
         &["own role", "mean colour", "extruded E_z", "2d synth"],
@@ -219,4 +219,13 @@ fn bench_solid_refuses_a_seed_count_out_of_range() {
             "{err}"
         );
     }
+}
+
+#[test]
+fn bench_solid_refuses_auto_candidates() {
+    let (ok, _, err) = run(lazysolid().args(["bench", "solid", "--candidates", "auto,host"]));
+    assert!(
+        !ok && err.contains("--candidates auto") && err.contains("host, gpu"),
+        "{err}"
+    );
 }
