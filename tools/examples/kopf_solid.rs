@@ -26,11 +26,11 @@
 
 use anyhow::ensure;
 use clap::{Parser, ValueEnum};
+use lazysolid_synth::histogram_distance;
 use lazysolid_synth::solid::{
-    colour_slice, role_scorers, ImageScorer, Orientation, SliceRatios, SolidExemplars,
+    colour_slice, role_scorers, ImageScorer, SliceRatios, SolidExemplars, SolidRecipe,
     QUALITY_SLICES, ROLES, ROLE_AXES,
 };
-use lazysolid_synth::{histogram_distance, load_solid, FitMode};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
@@ -450,9 +450,14 @@ fn main() -> anyhow::Result<()> {
         args.spacing >= 1 && args.spacing <= HALF,
         "--spacing: 1..={HALF}"
     );
-    let fitted = load_solid(&args.exemplar, FitMode::Auto, Some(args.side))?;
-    let (exemplars, mirroring) = SolidExemplars::new(fitted.exemplar, [None, None, None])?
-        .with_orientation(Orientation::Auto);
+    // The exemplar prepared as lazysolid's own synthesizer prepares it (fitted, oriented), so
+    // the two methods start from the same images.
+    let sources = SolidRecipe {
+        exemplar_side: Some(args.side),
+        ..SolidRecipe::new(&args.exemplar)
+    }
+    .load()?;
+    let (exemplars, mirroring) = (sources.exemplars, sources.mirroring);
     let m = exemplars.side() as usize;
     ensure!(
         m >> (args.levels - 1) >= 2 * SIDE as usize,

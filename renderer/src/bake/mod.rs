@@ -22,11 +22,10 @@ use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::relief::relief_pixels_per_alpha;
 use lazysolid_synth::solid::lazy::{
-    CutInfo, GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy,
-    SharedLazy, StoredMatter, SynthesisInfo,
+    CutInfo, GpuLazySolid, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy, SharedLazy,
+    StoredMatter, SynthesisInfo,
 };
-use lazysolid_synth::solid::{Orientation, SolidExemplars};
-use lazysolid_synth::{load_solid, FitMode, SynthError};
+use lazysolid_synth::SynthError;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -44,20 +43,14 @@ pub(crate) struct Baker<'a> {
     lazy: HashMap<(PathBuf, u32, u32, MemoryPolicy, bool), SharedLazy>,
 }
 
-/// The lazy synthesis state of exemplar `spec` at resolution `r`, with the solid defaults and
-/// the candidates through the user's cache.
+/// The lazy synthesis state of `spec`'s recipe at resolution `r`, with the candidates
+/// through the user's cache.
 fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, SynthError> {
-    let image = load_solid(&spec.exemplar, FitMode::Auto, None)?.exemplar;
-    // Oriented as `lazysolid solid` does by default, so a scene's matter is the command's.
-    let (exemplars, _) =
-        SolidExemplars::new(image, [None, None, None])?.with_orientation(Orientation::Auto);
     let cache = DiskCache::user().ok();
-    let options = LazyOptions {
-        policy: Some(spec.policy),
-        relief: spec.relief > 0.0,
-        ..LazyOptions::new(spec.seed)
-    };
-    GpuLazySolid::with_options(gpu, &exemplars, &options, r, cache.as_ref())
+    spec.recipe
+        .load()?
+        .prepare(gpu, cache.as_ref(), &mut |_, _| {})?
+        .lazy(gpu, r, spec.policy)
 }
 
 impl<'a> Baker<'a> {
@@ -101,11 +94,11 @@ impl<'a> Baker<'a> {
             ))));
         };
         let key = (
-            synth.exemplar.clone(),
-            synth.seed,
+            synth.recipe.exemplar.clone(),
+            synth.recipe.seed,
             r,
             synth.policy,
-            synth.relief > 0.0,
+            synth.recipe.relief,
         );
         if let Some(lazy) = self.lazy.get(&key) {
             return Ok(MatterColours::Lazy(lazy.clone()));

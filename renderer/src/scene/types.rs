@@ -325,13 +325,13 @@ pub struct SolidTexture {
 /// voxels the store needs are synthesized).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SynthesizedSpec {
-    /// The exemplar image (GIMP pattern, PNG or JPEG).
-    pub exemplar: std::path::PathBuf,
+    /// What the matter is made from: the exemplar (GIMP pattern, PNG or JPEG) fitted and
+    /// oriented by the defaults `lazysolid solid` uses, the texture's seed, and the relief
+    /// channel when `relief` is on; the same recipe gives the command's volume.
+    pub recipe: lazysolid_synth::solid::SolidRecipe,
     /// How the image becomes the solid exemplar (`lazysolid solid --fit auto`'s rule), decided
     /// when the scene is read and reported with the render.
     pub fit: lazysolid_synth::ExemplarFit,
-    /// Seed of the synthesis's jitter.
-    pub seed: u32,
     /// What the synthesis state keeps between requests (`memory = "keep"` or `"32MB"`).
     pub policy: lazysolid_synth::solid::lazy::MemoryPolicy,
     /// Slope of the relief's feature walls (`relief = …`; 0: none): the texels carry the

@@ -22,6 +22,7 @@ mod loop_budget;
 mod nrrd;
 mod orientation;
 mod plan;
+mod recipe;
 mod relief;
 mod roles;
 mod schedule;
@@ -68,6 +69,9 @@ pub use orientation::{
     exemplar_diagonal, mirrored, role_to_mirror, Mirroring, Orientation, MIN_DIAGONAL_CORRELATION,
 };
 pub use plan::{plan_boxes, plan_levels, LevelPlan, Subpass, VolumeBox, CLASSES_3D, SUBPASSES_3D};
+pub use recipe::{
+    PreparedSolid, SolidCube, SolidRecipe, SolidSchedule, SolidSources, DEFAULT_SOLID_SEED,
+};
 pub use relief::{role_texel, voxel_texel, SolidRelief};
 pub use roles::{
     image_axis, project, shared_axis, SolidExemplars, MAX_SOLID_SIDE, MIN_SOLID_SIDE, ROLES,

@@ -13,6 +13,7 @@
 //! first dispatch).
 
 use super::harness::{time_cpu, Bench, Throughput};
+use super::lazy::prepare;
 use super::CommonArgs;
 use crate::cli::{assets, GlobalArgs};
 use anyhow::{anyhow, ensure, Context};
@@ -25,12 +26,10 @@ use lazysolid_compute::store::{HashStore, StoreKernels};
 use lazysolid_compute::voxel::Voxelizer;
 use lazysolid_renderer::fracture::{cut_pieces, fracture, random_sites, Fragment, Plane};
 use lazysolid_renderer::mesh::Mesh;
-use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    GpuLazySolid, LazyOptions, MatterColours, MatterSpec, MatterVoxels, MemoryPolicy, SharedLazy,
-    StoredMatter,
+    MatterColours, MatterSpec, MatterVoxels, MemoryPolicy, SharedLazy, StoredMatter,
 };
-use lazysolid_synth::solid::SolidExemplars;
+use lazysolid_synth::solid::PreparedSolid;
 use std::sync::{Arc, Mutex};
 
 /// What to measure.
@@ -143,28 +142,18 @@ impl Rise {
 struct Setup<'a> {
     gpu: &'a Gpu,
     kernels: std::sync::Arc<StoreKernels>,
-    exemplars: &'a SolidExemplars,
+    prepared: &'a PreparedSolid,
     mesh: &'a Mesh,
-    seed: u32,
     memory: Option<MemoryPolicy>,
-    cache: Option<DiskCache>,
 }
 
 impl Holder {
     /// A fresh state and store holding the outer surface at resolution `r`.
     fn new(setup: &Setup<'_>, voxelizer: &mut Voxelizer, r: u32) -> anyhow::Result<Holder> {
-        let options = LazyOptions {
-            policy: setup.memory,
-            ..LazyOptions::new(setup.seed)
-        };
-        let lazy = GpuLazySolid::with_options(
-            setup.gpu,
-            setup.exemplars,
-            &options,
-            r,
-            setup.cache.as_ref(),
-        )
-        .context("the lazy synthesis state")?;
+        let lazy = setup
+            .prepared
+            .lazy(setup.gpu, r, setup.memory.unwrap_or_default())
+            .context("the lazy synthesis state")?;
         let mesh = setup.mesh;
         let lazy: SharedLazy = Arc::new(Mutex::new(lazy));
         let (matter, _) = StoredMatter::build(
@@ -264,18 +253,16 @@ pub fn run(args: &CutsArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     // Device time is the sum over every submission of a cut, bracketed by timestamps.
     gpu.time_submissions(true);
     gpu.profile_dispatches(args.profile_dispatches);
-    let exemplars = args.exemplar.load()?;
+    let prepared = prepare(&gpu, &args.exemplar.recipe(args.seed)?)?;
     let mesh_path = assets::mesh("--mesh", &args.mesh)?;
     let mesh = Mesh::load_unit_cube(&mesh_path)
         .with_context(|| format!("loading --mesh {}", mesh_path.display()))?;
     let setup = Setup {
         gpu: &gpu,
         kernels: StoreKernels::new(&gpu)?,
-        exemplars: &exemplars,
+        prepared: &prepared,
         mesh: &mesh,
-        seed: args.seed,
         memory: args.memory,
-        cache: DiskCache::user().ok(),
     };
     let mut voxelizer = Voxelizer::new(&gpu)?;
     // Each cut is new surface, measured once: the harness runs each case once, unwarmed (a

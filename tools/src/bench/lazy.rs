@@ -25,10 +25,11 @@ use lazysolid_compute::voxel::{VoxelKeys, Voxelizer};
 use lazysolid_renderer::mesh::Mesh;
 use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::solid::lazy::{
-    finest_growth_cpu, lazy_key, GpuLazySolid, LazyOptions, LazyReport, MemoryPolicy,
+    finest_growth_cpu, lazy_key, GpuLazySolid, LazyReport, MemoryPolicy,
 };
-use lazysolid_synth::solid::{pack_rgb, voxel_colour, LevelSchedule, Orientation, SolidExemplars};
-use lazysolid_synth::{load_solid, FitMode};
+use lazysolid_synth::solid::{
+    pack_rgb, voxel_colour, LevelSchedule, PreparedSolid, SolidRecipe, SolidSchedule,
+};
 use std::cell::RefCell;
 
 /// What to measure.
@@ -91,22 +92,33 @@ pub struct SolidExemplarArg {
 }
 
 impl SolidExemplarArg {
-    /// Loads the exemplar as the three roles of a solid texture, fitted by the rule of
-    /// `lazysolid solid --fit auto` and oriented by its default rule, and prints how.
-    pub fn load(&self) -> anyhow::Result<SolidExemplars> {
+    /// The recipe of the suite's solid texture: the exemplar playing every role, `seed`, and
+    /// the defaults of `lazysolid solid` for everything else.
+    pub fn recipe(&self, seed: u32) -> anyhow::Result<SolidRecipe> {
         let path = assets::exemplar(
             "--exemplar",
             &self.exemplar,
             self.exemplar_dir.path.as_deref(),
         )?;
-        let fitted = load_solid(&path, FitMode::Auto, None)
-            .with_context(|| format!("loading --exemplar {}", path.display()))?;
-        println!("exemplar fit: {}", fitted.fit);
-        let (exemplars, mirroring) = SolidExemplars::new(fitted.exemplar, [None, None, None])?
-            .with_orientation(Orientation::Auto);
-        println!("orientation: {mirroring}");
-        Ok(exemplars)
+        Ok(SolidRecipe {
+            seed,
+            ..SolidRecipe::new(path)
+        })
     }
+}
+
+/// Prepares `recipe` (exemplars, analysis, candidates through the user's cache), printing how
+/// the exemplar was fitted and oriented.
+pub fn prepare(gpu: &Gpu, recipe: &SolidRecipe) -> anyhow::Result<PreparedSolid> {
+    let sources = recipe
+        .load()
+        .with_context(|| format!("loading --exemplar {}", recipe.exemplar.display()))?;
+    for fit in &sources.fits {
+        println!("exemplar fit: {fit}");
+    }
+    println!("orientation: {}", sources.mirroring);
+    let cache = DiskCache::user().ok();
+    Ok(sources.prepare(gpu, cache.as_ref(), &mut |_, _| {})?)
 }
 
 /// Thesis figures for the same meshes at 1024³ (003 lines 1090–1096).
@@ -138,15 +150,18 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     let gpu = global.gpu()?;
     // Device time is the sum over every submission of a request, bracketed by timestamps.
     gpu.time_submissions(true);
-    let exemplars = args.exemplar.load()?;
-    let cache = DiskCache::user().ok();
-    let state = |r: u32| {
-        let options = LazyOptions {
+    let recipe = SolidRecipe {
+        schedule: SolidSchedule {
             parallel_levels: args.order.parallel_levels,
-            policy: args.memory,
-            ..LazyOptions::new(args.seed)
-        };
-        GpuLazySolid::with_options(&gpu, &exemplars, &options, r, cache.as_ref())
+            ..SolidSchedule::default()
+        },
+        ..args.exemplar.recipe(args.seed)?
+    };
+    let prepared = prepare(&gpu, &recipe)?;
+    let exemplars = prepared.exemplars();
+    let state = |r: u32| {
+        prepared
+            .lazy(&gpu, r, args.memory.unwrap_or_default())
             .context("the lazy synthesis state")
     };
     let side = exemplars.side();
@@ -209,7 +224,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             // them four times over.
             let colours: Vec<u32> = triples
                 .iter()
-                .map(|&t| pack_rgb(voxel_colour(&exemplars, t)) | 0xff00_0000)
+                .map(|&t| pack_rgb(voxel_colour(exemplars, t)) | 0xff00_0000)
                 .collect();
             drop(triples);
             let colours = GpuBuffer::from_slice(&gpu, "requested colours", &colours)?;
@@ -362,7 +377,7 @@ pub fn run(args: &LazyArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             // Image rows top down: y up in the mesh.
             let row = r - 1 - p[1] as u32;
             let at = ((row * r + p[0] as u32) * 3) as usize;
-            pixels[at..at + 3].copy_from_slice(&voxel_colour(&exemplars, *t));
+            pixels[at..at + 3].copy_from_slice(&voxel_colour(exemplars, *t));
         }
         let stem = std::path::Path::new(name)
             .file_stem()

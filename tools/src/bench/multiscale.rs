@@ -6,7 +6,7 @@
 
 use super::harness::{Bench, Throughput};
 use super::CommonArgs;
-use crate::cli::multiscale::load_graph;
+use crate::cli::assets::load_graph;
 use crate::cli::output::write_atomically;
 use crate::cli::resolution::Resolution;
 use crate::cli::tuning::Energy;

@@ -8,7 +8,7 @@
 //! Timed rows (wall time on the host): the candidate precompute per exemplar side
 //! (`--candidate-sides`, default 64 and 128) and the synthesis of a cube per `--voxel-res`
 //! (default 64 and 128: the GPU synthesis alone, the candidates read from the cache), and per
-//! case the whole `synthesize_cube` — CPU analysis, candidates, kernels, synthesis, colours,
+//! case the whole preparation and cube of the recipe — CPU analysis, candidates, kernels, synthesis, colours,
 //! slab — with the candidate cache cold (entry removed before each run: the precompute is
 //! paid; first size only) and warm (read back, as on every later run of an exemplar). The
 //! cache is a temporary folder, not the user's. Quality, from one run
@@ -51,8 +51,7 @@ use crate::cli::assets;
 use crate::cli::assets::ExemplarDir;
 use crate::cli::candidate_builder::Candidates;
 use crate::cli::fit_mode::Fit;
-use crate::cli::solid::{synthesize_cube, CubeRequest, SolidRun};
-use crate::cli::synth::write_png;
+use crate::cli::output::write_png;
 use crate::cli::tuning::{Energy, OrientationRule, Schedule, SolidOrder};
 use crate::cli::GlobalArgs;
 use anyhow::{ensure, Context};
@@ -62,15 +61,15 @@ use lazysolid_compute::gpu::Gpu;
 use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::solid::{
-    analyze_solid, axis_quality, candidates_key, oblique, role_scorers, slice, slice_ratios,
-    AxisQuality, CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, Mirroring,
-    SliceRatios, SolidExemplars, SolidSynthesis, TripleConsistency, VolumeBox,
-    CANDIDATES_CACHE_KIND, DEFAULT_SOLID_PARALLEL_LEVELS, QUALITY_SLICES, ROLE_NAMES,
+    axis_quality, candidates_key, oblique, role_scorers, slice, slice_ratios, AxisQuality,
+    CandidateBuilder, CandidateParams, ImageScorer, LevelTriples, Mirroring, Orientation,
+    PreparedSolid, SliceRatios, SolidCube, SolidExemplars, SolidRecipe, SolidSchedule,
+    SolidSources, SolidSynthesis, TripleConsistency, VolumeBox, CANDIDATES_CACHE_KIND,
+    DEFAULT_SOLID_PARALLEL_LEVELS, QUALITY_SLICES, ROLE_NAMES,
 };
 use lazysolid_synth::{
-    analyze, default_passes_for, default_plane_jitter, load_solid, pack, period_repetition, unpack,
-    AnalysisParams, EnergyKernel, Exemplar, ExemplarFit, FittedExemplar, GpuSynthesizer, Region,
-    SynthParams,
+    analyze, default_passes_for, default_plane_jitter, pack, period_repetition, unpack,
+    AnalysisParams, EnergyKernel, Exemplar, GpuSynthesizer, Region, SynthParams,
 };
 use serde::Serialize;
 
@@ -166,46 +165,59 @@ struct QualityRow {
     consistency: Option<TripleConsistency>,
 }
 
-/// An exemplar fitted to `side`² by `--fit` (the rule of `lazysolid solid`).
-fn load_fitted(args: &SolidArgs, name: &str, side: u32) -> anyhow::Result<FittedExemplar> {
-    let path = assets::exemplar("--exemplars", name, args.exemplar_dir.path.as_deref())?;
-    load_solid(&path, args.fit.into(), Some(side))
-        .with_context(|| format!("loading {}", path.display()))
-}
-
-/// A case's exemplars as given (one name for all roles, or three joined by `+`) and how each
-/// was fitted.
-fn given_exemplars(
-    args: &SolidArgs,
-    case: &str,
-    side: u32,
-) -> anyhow::Result<(SolidExemplars, Vec<ExemplarFit>)> {
+/// The recipe of a case (one name for all roles, or three joined by `+`) with its exemplars
+/// fitted to `side`² by `--fit` (the rule of `lazysolid solid`) and oriented by
+/// `--orientation`: the defaults otherwise, with the suite's seed and schedule.
+fn recipe_of(args: &SolidArgs, case: &str, side: u32) -> anyhow::Result<SolidRecipe> {
+    let path =
+        |name: &str| assets::exemplar("--exemplars", name, args.exemplar_dir.path.as_deref());
     let names: Vec<&str> = case.split('+').collect();
-    if names.len() == 1 {
-        let main = load_fitted(args, names[0], side)?;
-        return Ok((
-            SolidExemplars::new(main.exemplar, [None, None, None])?,
-            vec![main.fit],
-        ));
-    }
-    let [a, b, c] = [0, 1, 2].map(|r| load_fitted(args, names[r], side));
-    let (a, b, c) = (a?, b?, c?);
-    let fits = vec![a.fit, b.fit, c.fit];
-    let roles = [Some(a.exemplar.clone()), Some(b.exemplar), Some(c.exemplar)];
-    // All three roles given: the main image (the first again) is dropped.
-    Ok((SolidExemplars::new(a.exemplar, roles)?, fits))
+    let roles = if names.len() == 1 {
+        [None, None, None]
+    } else {
+        ensure!(
+            names.len() == 3,
+            "{case}: a case is one exemplar or three joined by +"
+        );
+        [
+            Some(path(names[0])?),
+            Some(path(names[1])?),
+            Some(path(names[2])?),
+        ]
+    };
+    Ok(SolidRecipe {
+        roles,
+        fit: args.fit.into(),
+        exemplar_side: Some(side),
+        orientation: args.orientation.rule.into(),
+        schedule: args.schedule.solid(&args.order),
+        seed: args.seed,
+        ..SolidRecipe::new(path(names[0])?)
+    })
 }
 
-/// A case's exemplars oriented by `--orientation` (`lazysolid solid`'s default rule), what
-/// the rule did, the exemplars as given and how each was fitted.
-fn exemplars_of(
-    args: &SolidArgs,
-    case: &str,
-    side: u32,
-) -> anyhow::Result<(SolidExemplars, Mirroring, SolidExemplars, Vec<ExemplarFit>)> {
-    let (given, fits) = given_exemplars(args, case, side)?;
-    let (oriented, mirroring) = given.clone().with_orientation(args.orientation.rule.into());
-    Ok((oriented, mirroring, given, fits))
+/// Loads `recipe`'s exemplars, naming the case on failure.
+fn load(recipe: &SolidRecipe, case: &str) -> anyhow::Result<SolidSources> {
+    recipe
+        .load()
+        .with_context(|| format!("loading the exemplars of {case}"))
+}
+
+/// `sources` prepared through `cache` and an `n`³ cube at the origin synthesized from them:
+/// the whole work of one end-to-end run.
+fn cube(
+    gpu: &Gpu,
+    sources: &SolidSources,
+    n: u32,
+    cache: Option<&DiskCache>,
+) -> anyhow::Result<(PreparedSolid, SolidCube)> {
+    let prepared = sources.prepare(gpu, cache, &mut |_, _| {})?;
+    let window = VolumeBox {
+        origin: [0; 3],
+        size: [n; 3],
+    };
+    let cube = prepared.cube(gpu, window, &mut |_| {})?;
+    Ok((prepared, cube))
 }
 
 /// The `extruded` ablation: `E_z` at (x, y) everywhere along z, with the triples that say so.
@@ -410,8 +422,8 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
 
     for case in cases {
         for &side in candidate_sides {
-            let (exemplars, ..) = exemplars_of(args, case, side)?;
-            let analysis = analyze_solid(&exemplars);
+            let sources = load(&recipe_of(args, case, side)?, case)?;
+            let analysis = sources.analyze();
             // Both builders, side by side; the host's pruned searches must give the kernels'
             // candidates bit for bit.
             let mut results = Vec::new();
@@ -444,7 +456,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                             builder.compute(
                                 &gpu,
                                 &analysis,
-                                &CandidateParams::default(),
+                                &sources.recipe.candidates,
                                 &mut |_| {},
                             )
                         });
@@ -459,22 +471,17 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 "{case} {side}²: the host's candidates differ from the GPU's"
             );
         }
-        let (exemplars, mirroring, given, fits) = exemplars_of(args, case, args.side)?;
-        let fits: Vec<String> = fits.iter().map(ToString::to_string).collect();
+        let recipe = recipe_of(args, case, args.side)?;
+        let sources = load(&recipe, case)?;
+        let exemplars = &sources.exemplars;
+        let mirroring = sources.mirroring;
+        let fits: Vec<String> = sources.fits.iter().map(ToString::to_string).collect();
         fit_lines.push((case.clone(), fits.clone()));
         orientation_lines.push((case.clone(), mirroring));
-        let key = candidates_key(&exemplars, &CandidateParams::default());
+        let key = candidates_key(exemplars, &recipe.candidates);
         for (i, &n) in sizes.iter().enumerate() {
-            let request = CubeRequest {
-                seed: args.seed,
-                passes: &args.schedule.passes,
-                jitter: &args.schedule.jitter,
-                parallel_levels: args.order.parallel_levels,
-                ..CubeRequest::new(n)
-            };
-            let cube = |cache: Option<&DiskCache>| {
-                synthesize_cube(&gpu, exemplars.clone(), &request, cache)
-            };
+            // A variant of the recipe, prepared and synthesized at this size.
+            let variant = |r: SolidRecipe| cube(&gpu, &load(&r, case)?, n, Some(&cache));
             let tag = format!("{case} {}² -> {n}³", args.side);
             let mut last = None;
             bench.case(
@@ -484,9 +491,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 Throughput::Elements,
                 None,
                 || {
-                    let run = cube(Some(&cache))?;
+                    let (prepared, run) = cube(&gpu, &sources, n, Some(&cache))?;
                     let ms = run.synthesis_s * 1e3;
-                    last = Some(run);
+                    last = Some((prepared, run));
                     Ok(ms)
                 },
             )?;
@@ -507,18 +514,19 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                         if *expected == CacheOutcome::Miss {
                             cache.remove(CANDIDATES_CACHE_KIND, &key)?;
                         }
-                        let (run, ms) = time_cpu(|| cube(Some(&cache)));
-                        let run = run?;
+                        let (run, ms) = time_cpu(|| cube(&gpu, &sources, n, Some(&cache)));
+                        let (prepared, _) = run?;
                         ensure!(
-                            run.cached == *expected,
+                            prepared.cached == *expected,
                             "{tag} {name}: the candidate cache did {:?}",
-                            run.cached
+                            prepared.cached
                         );
                         Ok(ms)
                     },
                 )?;
             }
-            let run = last.expect("ran at least once");
+            let (prepared, run) = last.expect("ran at least once");
+            let exemplars = prepared.exemplars();
             peak.push((
                 format!("{case} {n}³ peak GPU MiB"),
                 run.peak_bytes as f64 / 1048576.0,
@@ -527,9 +535,9 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 continue;
             }
             bench.status(format!("{case}: scoring"));
-            let scorers = role_scorers(&run.exemplars);
+            let scorers = role_scorers(exemplars);
             let q = |s: &SolidSynthesis, c: &[[u8; 3]]| {
-                axis_quality(&energy, &scorers, &run.exemplars, s, c, args.energy.samples)
+                axis_quality(&energy, &scorers, exemplars, s, c, args.energy.samples)
             };
             let mut push = |variant: &str, axes, consistency| {
                 quality.push(QualityRow {
@@ -548,15 +556,10 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 for k in 1..args.solid_seeds {
                     let seed = args.seed.wrapping_add(k);
                     bench.status(format!("{case}: scoring seed {seed}"));
-                    let other = synthesize_cube(
-                        &gpu,
-                        exemplars.clone(),
-                        &CubeRequest {
-                            seed,
-                            ..request.clone()
-                        },
-                        Some(&cache),
-                    )?;
+                    let (_, other) = variant(SolidRecipe {
+                        seed,
+                        ..recipe.clone()
+                    })?;
                     for (a, figures) in pooled.iter_mut().enumerate() {
                         figures.extend(slice_ratios(
                             &scorers[a],
@@ -581,7 +584,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     .iter()
                     .map(|t| {
                         let (x, y) = unpack(t[r]);
-                        run.exemplars.role(r).at(x, y)
+                        exemplars.role(r).at(x, y)
                     })
                     .collect();
                 own.push(q(&run.synthesis, &colours)?[r]);
@@ -596,7 +599,7 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 .map(|t| {
                     let c: [[u8; 3]; 3] = std::array::from_fn(|r| {
                         let (x, y) = unpack(t[r]);
-                        run.exemplars.role(r).at(x, y)
+                        exemplars.role(r).at(x, y)
                     });
                     std::array::from_fn(|ch| {
                         ((u32::from(c[0][ch]) + u32::from(c[1][ch]) + u32::from(c[2][ch]) + 1) / 3)
@@ -611,17 +614,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             );
             // The ablations' volumes; those marked drawn go into the figures beside the
             // default's, under their variant's name.
-            let mut drawn: Vec<(String, SolidRun)> = Vec::new();
+            let mut drawn: Vec<(String, SolidCube)> = Vec::new();
             if !args.no_ablations {
-                let ablation = |candidate_params: CandidateParams, keep_current: bool| {
-                    let r = CubeRequest {
-                        candidate_params,
-                        keep_current,
-                        ..request.clone()
-                    };
-                    synthesize_cube(&gpu, exemplars.clone(), &r, Some(&cache))
+                let candidates = |c: CandidateParams| SolidRecipe {
+                    candidates: c,
+                    ..recipe.clone()
                 };
-                let defaults = CandidateParams::default();
+                let defaults = recipe.candidates;
                 // The finest level's other correction order: ordered subpasses when the
                 // default is parallel, and the reverse.
                 let other_order = if DEFAULT_SOLID_PARALLEL_LEVELS > 0 {
@@ -629,63 +628,60 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 } else {
                     1
                 };
-                // (variant, drawn, run), in the rows' order.
-                let runs: Vec<(&str, bool, SolidRun)> = vec![
-                    ("keep current", true, ablation(defaults, true)?),
+                // (variant, drawn, recipe), in the rows' order.
+                let variants: Vec<(&str, bool, SolidRecipe)> = vec![
+                    (
+                        "keep current",
+                        true,
+                        SolidRecipe {
+                            schedule: SolidSchedule {
+                                keep_current: true,
+                                ..recipe.schedule.clone()
+                            },
+                            ..recipe.clone()
+                        },
+                    ),
                     (
                         "crossbar only",
                         false,
-                        ablation(
-                            CandidateParams {
-                                coherence: false,
-                                ..defaults
-                            },
-                            false,
-                        )?,
+                        candidates(CandidateParams {
+                            coherence: false,
+                            ..defaults
+                        }),
                     ),
                     (
                         "no balance",
                         true,
-                        ablation(
-                            CandidateParams {
-                                balance: 0,
-                                ..defaults
-                            },
-                            false,
-                        )?,
+                        candidates(CandidateParams {
+                            balance: 0,
+                            ..defaults
+                        }),
                     ),
                     (
                         "balance finest",
                         false,
-                        ablation(
-                            CandidateParams {
-                                balance_levels: Some(1),
-                                ..defaults
-                            },
-                            false,
-                        )?,
+                        candidates(CandidateParams {
+                            balance_levels: Some(1),
+                            ..defaults
+                        }),
                     ),
                     (
                         "no feature",
                         true,
-                        synthesize_cube(
-                            &gpu,
-                            exemplars.clone().with_feature_weight(0)?,
-                            &request,
-                            Some(&cache),
-                        )?,
+                        SolidRecipe {
+                            feature_weight: 0,
+                            ..recipe.clone()
+                        },
                     ),
                     // The mask rule's ablation: Otsu's split always (the minimum-error one is
                     // taken by the rule where Otsu's takes part of the body; synth/feature.rs).
                     (
                         "otsu mask",
                         false,
-                        synthesize_cube(
-                            &gpu,
-                            exemplars.clone().with_feature_mask(FeatureMask::Otsu),
-                            &request,
-                            Some(&cache),
-                        )?,
+                        SolidRecipe {
+                            feature_mask: FeatureMask::Otsu,
+                            ..recipe.clone()
+                        },
                     ),
                     (
                         if other_order == 0 {
@@ -694,17 +690,19 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                             "parallel finest"
                         },
                         true,
-                        synthesize_cube(
-                            &gpu,
-                            exemplars.clone(),
-                            &CubeRequest {
+                        SolidRecipe {
+                            schedule: SolidSchedule {
                                 parallel_levels: Some(other_order),
-                                ..request.clone()
+                                ..recipe.schedule.clone()
                             },
-                            Some(&cache),
-                        )?,
+                            ..recipe.clone()
+                        },
                     ),
                 ];
+                let mut runs = Vec::new();
+                for (name, draw, r) in variants {
+                    runs.push((name, draw, variant(r)?.1));
+                }
                 for (variant, draw, ablated) in runs {
                     push(
                         variant,
@@ -718,7 +716,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                 // The orientation rule's ablation, where it mirrored a role: every role as
                 // given, so that the row shows what the mirroring gains.
                 if mirroring.mirrored.is_some() {
-                    let as_given = synthesize_cube(&gpu, given.clone(), &request, Some(&cache))?;
+                    let (as_given, given) = {
+                        let (prepared, cube) = variant(SolidRecipe {
+                            orientation: Orientation::Keep,
+                            ..recipe.clone()
+                        })?;
+                        (cube, prepared.sources.exemplars)
+                    };
                     // Scored against the images as given, which its slices were made from.
                     let axes = axis_quality(
                         &energy,
@@ -732,13 +736,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
                     drawn.push(("-as-given".into(), as_given));
                 }
             }
-            let (ex, ex_colours) = extruded(&exemplars, n);
+            let (ex, ex_colours) = extruded(exemplars, n);
             push("extruded E_z", q(&ex, &ex_colours)?, None);
             let (two_d, image) = synth_2d(
                 &gpu,
                 &energy,
                 &scorers,
-                &exemplars,
+                exemplars,
                 n,
                 args.seed,
                 args.energy.samples,

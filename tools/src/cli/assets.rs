@@ -11,6 +11,7 @@
 
 use anyhow::{bail, Context};
 use clap::Args;
+use lazysolid_synth::multiscale::ExemplarGraph;
 use std::path::{Path, PathBuf};
 
 /// The asset folder by the rule above, or an error saying where it looked.
@@ -87,4 +88,17 @@ pub struct ExemplarDir {
     /// fills them), found as every other command finds them
     #[arg(long = "exemplar-dir", value_name = "DIR")]
     pub path: Option<PathBuf>,
+}
+
+/// Loads the graph, resolving images as asset names or paths relative to the graph file.
+pub fn load_graph(path: &Path) -> anyhow::Result<ExemplarGraph> {
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let resolve = |value: &str| -> Result<PathBuf, String> {
+        if value.contains(['/', '\\', '.']) {
+            Ok(dir.join(value))
+        } else {
+            exemplar("image", value, None).map_err(|e| format!("{e:#}"))
+        }
+    };
+    Ok(ExemplarGraph::load(path, &resolve)?)
 }

@@ -4,12 +4,13 @@
 //! frame a window at a fractional depth (a blend of the two depths around it), as numbered PNGs
 //! and an animated GIF. See docs/multiscale.md.
 
+use super::assets::load_graph;
 use super::components::components;
+use super::output::write_png;
 use super::output::{check_writable, check_writable_dir};
 use super::resolution::Resolution;
-use super::synth::write_png;
 use super::tuning::{Coherence, Schedule};
-use super::{assets, GlobalArgs};
+use super::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
 use lazysolid_synth::multiscale::{
@@ -17,7 +18,7 @@ use lazysolid_synth::multiscale::{
     MultiscaleGpu, MultiscaleParams, MultiscaleSynthesis,
 };
 use lazysolid_synth::{AnalysisParams, Region};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 /// Options shared by `multiscale` and `zoom`.
@@ -88,19 +89,6 @@ pub struct ZoomArgs {
 
 fn parse_pair<T: std::str::FromStr>(s: &str) -> Result<(T, T), String> {
     components(s, "", "a number").map(|[x, y]| (x, y))
-}
-
-/// Loads the graph, resolving images as asset names or paths relative to the graph file.
-pub fn load_graph(path: &Path) -> anyhow::Result<ExemplarGraph> {
-    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let resolve = |value: &str| -> Result<PathBuf, String> {
-        if value.contains(['/', '\\', '.']) {
-            Ok(dir.join(value))
-        } else {
-            assets::exemplar("image", value, None).map_err(|e| format!("{e:#}"))
-        }
-    };
-    Ok(ExemplarGraph::load(path, &resolve)?)
 }
 
 /// A graph analysed, with its analysis time.

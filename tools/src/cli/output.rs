@@ -83,3 +83,18 @@ pub fn write_atomically(
         write(w).with_context(|| format!("writing {}", path.display()))
     })
 }
+
+/// Writes an RGB PNG whole or not at all.
+pub fn write_png(path: &Path, width: u32, height: u32, rgb: &[[u8; 3]]) -> anyhow::Result<()> {
+    let bytes: Vec<u8> = rgb.iter().flatten().copied().collect();
+    write_atomically(path, |w| {
+        Ok(image::write_buffer_with_format(
+            w,
+            &bytes,
+            width,
+            height,
+            image::ExtendedColorType::Rgb8,
+            image::ImageFormat::Png,
+        )?)
+    })
+}

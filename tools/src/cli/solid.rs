@@ -1,4 +1,4 @@
-//! `lazysolid solid EXEMPLAR [--ex IMG] [--ey IMG] [--ez IMG] --size N [--offset X,Y,Z]
+//! `lazysolid solid EXEMPLAR [--ex IMG] [--ey IMG] [--ez IMG] [--voxel-res N] [--offset X,Y,Z]
 //! [--seed S] -o OUT.nrrd`: synthesize a box of the unbounded solid texture from 2D exemplars
 //! on the device, write it as NRRD with orthogonal and oblique slices, the candidate slab and
 //! a render of a cube and a sphere carved out of it (`solid_render.rs`), and score the slices
@@ -7,28 +7,24 @@
 use super::candidate_builder::Candidates;
 use super::components::components;
 use super::fit_mode::Fit;
+use super::output::write_png;
 use super::solid_render::{carved_scene, file_name, render_carved, RENDER_SPP};
-use super::synth::write_png;
 use super::tuning::{Energy, Features, OrientationRule, Schedule, SolidOrder};
 use super::GlobalArgs;
 use anyhow::{ensure, Context};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use lazysolid_compute::atomic_file::write_bytes_atomically;
-use lazysolid_compute::gpu::Gpu;
 use lazysolid_renderer::output::{Operator, ToneMap};
-use lazysolid_synth::cache::{CacheOutcome, DiskCache};
+use lazysolid_synth::cache::DiskCache;
 use lazysolid_synth::feature::feature_map;
 use lazysolid_synth::quality::reachable_gap;
 use lazysolid_synth::solid::{
-    analyze_solid, axis_quality, candidate_slab, candidates_cached, check_box, encode_nrrd,
-    level_schedules, oblique, plan_levels, role_scorers, slice, solid_jitter_or_default,
-    solid_passes_or_default, triple_consistency, CandidateBuilder, CandidateParams,
-    GpuSolidSynthesizer, SolidExemplars, SolidSynthesis, TripleConsistency, VolumeBox,
-    DEFAULT_BALANCE, DEFAULT_S, DEFAULT_SOLID_PARALLEL_LEVELS, DEFAULT_STRIP, MAX_SOLID_SIDE,
-    MIN_SOLID_SIDE, QUALITY_SLICES, ROLE_NAMES,
+    axis_quality, check_box, encode_nrrd, oblique, role_scorers, slice, CandidateParams,
+    SolidExemplars, SolidRecipe, VolumeBox, DEFAULT_BALANCE, DEFAULT_S, DEFAULT_STRIP,
+    MAX_SOLID_SIDE, MIN_SOLID_SIDE, QUALITY_SLICES, ROLE_NAMES,
 };
-use lazysolid_synth::{load_solid, EnergyKernel, ExemplarFit, FitMode, SynthParams};
+use lazysolid_synth::EnergyKernel;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -164,36 +160,11 @@ fn sibling(output: &Path, suffix: &str) -> PathBuf {
     output.with_file_name(format!("{stem}.{suffix}.png"))
 }
 
-/// Loads and fits the exemplars of the roles: `main` by `mode` (to `side` when given), the
-/// role images to the side `main` got, since every role shares an axis with the others.
-/// Returns the exemplars and how each image in use was fitted, in the order of
-/// `SolidExemplars::images`.
-pub fn load_exemplars(
-    main: &Path,
-    roles: [Option<&Path>; 3],
-    mode: FitMode,
-    side: Option<u32>,
-) -> anyhow::Result<(SolidExemplars, Vec<ExemplarFit>)> {
-    let main = load_solid(main, mode, side)?;
-    let side = main.exemplar.width;
-    let mut fits = vec![main.fit];
-    let mut given = [None, None, None];
-    for (slot, path) in given.iter_mut().zip(roles) {
-        if let Some(path) = path {
-            let f = load_solid(path, mode, Some(side))?;
-            fits.push(f.fit);
-            *slot = Some(f.exemplar);
-        }
+fn bar(message: &'static str, shown: bool) -> ProgressBar {
+    if !shown {
+        return ProgressBar::hidden();
     }
-    // The main image is unused when all three roles are given (SolidExemplars drops it).
-    if fits.len() == 4 {
-        fits.remove(0);
-    }
-    Ok((SolidExemplars::new(main.exemplar, given)?, fits))
-}
-
-fn bar(len: u64, message: &'static str) -> ProgressBar {
-    let bar = ProgressBar::new(len).with_style(
+    let bar = ProgressBar::new(0).with_style(
         ProgressStyle::with_template("{msg} [{bar:30}] level {pos}/{len} {elapsed}")
             .expect("valid template"),
     );
@@ -201,158 +172,29 @@ fn bar(len: u64, message: &'static str) -> ProgressBar {
     bar
 }
 
-/// A synthesized cube and the times it took.
-pub struct SolidRun {
-    /// The exemplars.
-    pub exemplars: SolidExemplars,
-    /// The synthesis.
-    pub synthesis: SolidSynthesis,
-    /// Colours of the window, x fastest.
-    pub colours: Vec<[u8; 3]>,
-    /// CPU analysis, seconds.
-    pub analysis_s: f64,
-    /// GPU candidates (wall), seconds.
-    pub candidates_s: f64,
-    /// GPU synthesis (wall), seconds.
-    pub synthesis_s: f64,
-    /// Peak GPU memory of the synthesis, bytes.
-    pub peak_bytes: u64,
-    /// Voxels computed (upsampled and jittered) over all levels, window and padding.
-    pub voxels: u64,
-    /// Voxel updates of all correction subpasses over all levels.
-    pub voxel_updates: u64,
-    /// Candidate slab picture: width, height, pixels.
-    pub slab: (u32, u32, Vec<[u8; 3]>),
-    /// Fallbacks of the coherence filter, over all levels.
-    pub fallbacks: u64,
-    /// What the candidate cache did.
-    pub cached: CacheOutcome,
-    /// Where the candidates were (or would have been) computed.
-    pub builder: CandidateBuilder,
-    /// How consistent the window's triples are (`TripleConsistency`).
-    pub consistency: TripleConsistency,
-}
-
-/// What [`synthesize_cube`] makes and how.
-#[derive(Clone, Debug)]
-pub struct CubeRequest<'a> {
-    /// The candidates' parameters.
-    pub candidate_params: CandidateParams,
-    /// Where the candidates are computed when the cache does not hold them.
-    pub builder: CandidateBuilder,
-    /// Seed of the jitter.
-    pub seed: u32,
-    /// Correction passes (one, or one per level; empty: the defaults).
-    pub passes: &'a [u32],
-    /// Jitter strengths (one, or one per level; empty: the defaults).
-    pub jitter: &'a [f32],
-    /// The correction's current triple always competes (`SynthParams::keep_current`).
-    pub keep_current: bool,
-    /// Finest levels corrected in parallel passes (`None`: the default).
-    pub parallel_levels: Option<u32>,
-    /// Cube side.
-    pub n: u32,
-    /// Absolute position of the cube's first voxel.
-    pub offset: [i32; 3],
-    /// Show progress bars.
-    pub progress: bool,
-}
-
-impl CubeRequest<'_> {
-    /// The defaults for a cube of side `n` at the origin, without progress bars.
-    pub fn new(n: u32) -> CubeRequest<'static> {
-        CubeRequest {
-            candidate_params: CandidateParams::default(),
-            builder: CandidateBuilder::Auto,
-            seed: 1,
-            passes: &[],
-            jitter: &[],
-            keep_current: false,
-            parallel_levels: None,
-            n,
-            offset: [0; 3],
-            progress: false,
+impl SolidArgs {
+    /// The recipe the flags describe: the defaults where a flag is absent.
+    pub fn recipe(&self) -> SolidRecipe {
+        SolidRecipe {
+            roles: [self.ex.clone(), self.ey.clone(), self.ez.clone()],
+            fit: self.fit.into(),
+            exemplar_side: self.exemplar_side,
+            orientation: self.orientation.rule.into(),
+            feature_weight: self.features.feature_weight,
+            feature_mask: self.features.feature_mask.into(),
+            candidates: CandidateParams {
+                strip: self.strip,
+                s: self.s,
+                coherence: true,
+                balance: self.balance,
+                balance_levels: self.balance_levels,
+            },
+            builder: self.candidates.into(),
+            schedule: self.schedule.solid(&self.order),
+            seed: self.seed,
+            ..SolidRecipe::new(&self.exemplar)
         }
     }
-}
-
-/// Analysis, candidates and synthesis of a cube of side `n` at `offset`.
-pub fn synthesize_cube(
-    gpu: &Gpu,
-    exemplars: SolidExemplars,
-    request: &CubeRequest,
-    cache: Option<&DiskCache>,
-) -> anyhow::Result<SolidRun> {
-    let CubeRequest {
-        ref candidate_params,
-        builder,
-        seed,
-        passes,
-        jitter,
-        keep_current,
-        parallel_levels,
-        n,
-        offset,
-        progress,
-    } = *request;
-    let start = Instant::now();
-    let analysis = analyze_solid(&exemplars);
-    let analysis_s = start.elapsed().as_secs_f64();
-    let levels = analysis.levels.len() as u32;
-    let params = SynthParams::new(
-        levels,
-        seed,
-        &solid_passes_or_default(passes, levels),
-        &solid_jitter_or_default(jitter, levels),
-    )?
-    .with_keep_current(keep_current)
-    .with_parallel_levels(parallel_levels.unwrap_or(DEFAULT_SOLID_PARALLEL_LEVELS.min(levels)))
-    .context("--parallel-levels")?;
-    let show = |b: ProgressBar| if progress { b } else { ProgressBar::hidden() };
-    let start = Instant::now();
-    // The sets, then the usage balance's pilot, one step per level each.
-    let steps = levels * if candidate_params.balance > 0 { 2 } else { 1 };
-    let b = show(bar(steps as u64, "candidates"));
-    let (candidates, cached) = candidates_cached(&exemplars, candidate_params, cache, || {
-        builder.compute(gpu, &analysis, candidate_params, &mut |_| b.inc(1))
-    })?;
-    b.finish_and_clear();
-    let candidates_s = start.elapsed().as_secs_f64();
-    let window = VolumeBox {
-        origin: offset,
-        size: [n; 3],
-    };
-    let synth = GpuSolidSynthesizer::new(gpu, &analysis, &candidates)?;
-    let b = show(bar(levels as u64, "synthesizing"));
-    let start = Instant::now();
-    let (synthesis, _) = synth
-        .synthesize(&analysis, &candidates, &params, window, false, &mut |_| {
-            b.inc(1)
-        })
-        .with_context(|| format!("--size {n}: the volume does not fit the device"))?;
-    let synthesis_s = start.elapsed().as_secs_f64();
-    b.finish_and_clear();
-    let colours = synthesis.colours(&exemplars);
-    let schedules = level_schedules(&params);
-    let plan = plan_levels(window, &schedules);
-    let slab = candidate_slab(&exemplars, &candidates, 4);
-    let consistency = triple_consistency(&exemplars, &candidates, &synthesis);
-    Ok(SolidRun {
-        builder: builder.resolve(gpu),
-        consistency,
-        peak_bytes: synth.peak_bytes(window, &schedules),
-        voxels: plan.iter().map(|p| p.region.voxels() as u64).sum(),
-        voxel_updates: plan.iter().map(|p| p.updates()).sum(),
-        fallbacks: candidates.reports.iter().map(|r| r.fallbacks).sum(),
-        cached,
-        exemplars,
-        synthesis,
-        colours,
-        analysis_s,
-        candidates_s,
-        synthesis_s,
-        slab,
-    })
 }
 
 /// Runs the command.
@@ -385,24 +227,11 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
             "--exemplar-side {side}: must be a power of two in {MIN_SOLID_SIDE}..={MAX_SOLID_SIDE}"
         );
     }
-    let (exemplars, fits) = load_exemplars(
-        &args.exemplar,
-        [args.ex.as_deref(), args.ey.as_deref(), args.ez.as_deref()],
-        args.fit.into(),
-        args.exemplar_side,
-    )?;
-    let (exemplars, mirroring) = exemplars
-        .with_feature_weight(args.features.feature_weight)?
-        .with_feature_mask(args.features.feature_mask.into())
-        .with_orientation(args.orientation.rule.into());
-    let candidate_params = CandidateParams {
-        strip: args.strip,
-        s: args.s,
-        coherence: true,
-        balance: args.balance,
-        balance_levels: args.balance_levels,
-    };
-    candidate_params.check()?;
+    let recipe = args.recipe();
+    recipe.candidates.check()?;
+    let sources = recipe.load()?;
+    let fits = sources.fits.clone();
+    let mirroring = sources.mirroring;
     let gpu = global.gpu()?;
     let n = args.voxel_res;
     let cache = if args.no_cache {
@@ -410,28 +239,30 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     } else {
         Some(DiskCache::user().context("the candidate cache (--no-cache runs without it)")?)
     };
-    let run = synthesize_cube(
-        &gpu,
-        exemplars,
-        &CubeRequest {
-            candidate_params,
-            builder: args.candidates.into(),
-            seed: args.seed,
-            passes: &args.schedule.passes,
-            jitter: &args.schedule.jitter,
-            keep_current: false,
-            parallel_levels: args.order.parallel_levels,
-            n,
-            offset: args.offset,
-            progress: true,
-        },
-        cache.as_ref(),
-    )?;
+    // The sets, then the usage balance's pilot, one step per level each.
+    let b = bar("candidates", true);
+    let prepared = sources.prepare(&gpu, cache.as_ref(), &mut |done, total| {
+        b.set_length(total as u64);
+        b.set_position(done as u64);
+    })?;
+    b.finish_and_clear();
+    let levels = prepared.analysis.levels.len() as u64;
+    let b = bar("synthesizing", true);
+    b.set_length(levels);
+    let window = VolumeBox {
+        origin: args.offset,
+        size: [n; 3],
+    };
+    let run = prepared
+        .cube(&gpu, window, &mut |_| b.inc(1))
+        .with_context(|| format!("--voxel-res {n}: the volume does not fit the device"))?;
+    b.finish_and_clear();
+    let exemplars = prepared.exemplars();
     let energy = EnergyKernel::new(&gpu)?;
     let quality = axis_quality(
         &energy,
-        &role_scorers(&run.exemplars),
-        &run.exemplars,
+        &role_scorers(exemplars),
+        exemplars,
         &run.synthesis,
         &run.colours,
         args.energy.samples,
@@ -474,20 +305,16 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     )?;
     let (sw, sh, slab) = &run.slab;
     write_png(&sibling(&args.output, "slab"), *sw, *sh, slab)?;
-    let features = feature_pictures(&run.exemplars);
+    let features = feature_pictures(exemplars);
     if let Some((w, h, picture)) = &features.picture {
         write_png(&sibling(&args.output, "features"), *w, *h, picture)?;
     }
 
-    let m = run.exemplars.side();
+    let m = exemplars.side();
     println!(
         "exemplars {m}x{m}: {}",
         (0..3)
-            .map(|r| format!(
-                "{} = {}",
-                ROLE_NAMES[r],
-                run.exemplars.role(r).source.display()
-            ))
+            .map(|r| format!("{} = {}", ROLE_NAMES[r], exemplars.role(r).source.display()))
             .collect::<Vec<_>>()
             .join(", ")
     );
@@ -502,13 +329,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         "cube {n}^3 at ({}, {}, {}), seed {}, strip {}, S {}",
         args.offset[0], args.offset[1], args.offset[2], args.seed, args.strip, args.s
     );
-    println!("analysis (CPU)    {:8.3} s", run.analysis_s);
+    println!("analysis (CPU)    {:8.3} s", prepared.analysis_s);
     println!(
         "candidates ({:<4})  {:8.3} s ({} coherence fallbacks; cache {}{})",
-        run.builder.name(),
-        run.candidates_s,
+        prepared.builder.name(),
+        prepared.candidates_s,
         run.fallbacks,
-        run.cached.label(),
+        prepared.cached.label(),
         cache
             .as_ref()
             .map(|c| format!(" in {}", c.dir().display()))

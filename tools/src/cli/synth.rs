@@ -2,7 +2,7 @@
 //! of the unbounded texture plane from an exemplar on the device, and score it.
 
 use super::components::components;
-use super::output::{check_writable, write_atomically};
+use super::output::{check_writable, write_png};
 use super::resolution::Resolution;
 use super::tuning::{Coherence, Energy, Features, Schedule};
 use super::{assets, GlobalArgs};
@@ -70,26 +70,6 @@ fn parse_offset(s: &str) -> Result<(i32, i32), String> {
 fn coords_path(output: &Path) -> PathBuf {
     let stem = output.file_stem().unwrap_or_default().to_string_lossy();
     output.with_file_name(format!("{stem}.coords.png"))
-}
-
-/// Writes an RGB PNG whole or not at all.
-pub(crate) fn write_png(
-    path: &Path,
-    width: u32,
-    height: u32,
-    rgb: &[[u8; 3]],
-) -> anyhow::Result<()> {
-    let bytes: Vec<u8> = rgb.iter().flatten().copied().collect();
-    write_atomically(path, |w| {
-        Ok(image::write_buffer_with_format(
-            w,
-            &bytes,
-            width,
-            height,
-            image::ExtendedColorType::Rgb8,
-            image::ImageFormat::Png,
-        )?)
-    })
 }
 
 /// Runs the command.

@@ -5,6 +5,7 @@
 use clap::{Args, ValueEnum};
 use lazysolid_synth::feature::FeatureMask;
 use lazysolid_synth::solid::Orientation;
+use lazysolid_synth::solid::SolidSchedule;
 use lazysolid_synth::{DEFAULT_COHERENCE_K, DEFAULT_COHERENCE_SPREAD, DEFAULT_PERIOD_PENALTY};
 
 /// The per-level schedule of the pyramid synthesis: how strongly each level is jittered and
@@ -25,6 +26,19 @@ pub struct Schedule {
     /// x, y and z, so fewer passes make a small run possible on a slow device.
     #[arg(long, value_delimiter = ',')]
     pub passes: Vec<u32>,
+}
+
+impl Schedule {
+    /// The solid recipe's schedule these flags and `order` give (empty lists: the solid
+    /// defaults).
+    pub fn solid(&self, order: &SolidOrder) -> SolidSchedule {
+        SolidSchedule {
+            passes: self.passes.clone(),
+            jitter: self.jitter.clone(),
+            keep_current: false,
+            parallel_levels: order.parallel_levels,
+        }
+    }
 }
 
 /// The 2D correction's candidate sets: their size and spread, and the period penalty that

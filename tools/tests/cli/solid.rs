@@ -1,7 +1,7 @@
 //! `lazysolid solid`: solid synthesis writes the volume, its slices, slab and render with the
 //! candidate cache and metrics, and names each bad input without writing anything.
 
-use crate::support::{lazysolid, run, terra_square};
+use crate::support::{fnv1a, lazysolid, run, terra_square};
 
 #[test]
 fn solid_writes_volume_slices_and_slab_with_metrics() {
@@ -62,6 +62,21 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
     let header_end = nrrd.windows(2).position(|w| w == b"\n\n").unwrap() + 2;
     assert!(nrrd.starts_with(b"NRRD0004\n"));
     assert_eq!(nrrd.len() - header_end, 64 * 64 * 64 * 3);
+    // Byte for byte what the command wrote before the solid recipe replaced its own pipeline
+    // (10d48bd): the volume and every picture but the render, whose floats are compared by
+    // FLIP elsewhere. A deliberate change of the synthesis updates these digests.
+    assert_eq!(fnv1a(&nrrd[header_end..]), 0x4d1c_991d_c9b3_6c82, "volume");
+    for (name, digest) in [
+        ("x", 0x81f1_8823_9256_d0b5_u64),
+        ("y", 0x88a7_b25b_c865_b0da),
+        ("z", 0xc60c_7799_fe31_59a2),
+        ("oblique", 0x750d_7a78_fd60_5783),
+        ("slab", 0xc872_ba8f_4d19_4642),
+        ("features", 0x641e_4359_3163_8d04),
+    ] {
+        let bytes = std::fs::read(out_dir.join(format!("terra.{name}.png"))).unwrap();
+        assert_eq!(fnv1a(&bytes), digest, "terra.{name}.png");
+    }
     for (name, width) in [
         ("x", 64),
         ("y", 64),

@@ -118,3 +118,11 @@ pub(crate) fn terra_square(dir: &std::path::Path, side: u32) -> std::path::PathB
         .unwrap();
     path
 }
+
+/// The 64-bit FNV-1a digest of `bytes`: how the tests pin outputs that must stay byte for
+/// byte what they were.
+pub(crate) fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}

@@ -13,7 +13,7 @@ use crate::scene::volume::{mean_linear, VolumeTexture};
 use crate::scene::{SceneError, SolidTexture, SolidTextureKind, StoreSpec, SynthesizedSpec};
 use glam::Vec3;
 use lazysolid_synth::solid::lazy::MemoryPolicy;
-use lazysolid_synth::{load_solid, FitMode};
+use lazysolid_synth::solid::{SolidRecipe, DEFAULT_SOLID_SEED};
 use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
@@ -148,16 +148,22 @@ fn synthesized_texture(
     let file = crate::assets::exemplar(exemplar.get_ref(), base)
         .map_err(|problem| doc.invalid(exemplar.span(), field.clone(), problem))?;
     must_exist(doc, exemplar.span().start, field.clone(), &file)?;
-    // The rule `lazysolid solid` applies by default; the store's synthesis fits the same way.
-    let fitted = load_solid(&file, FitMode::Auto, None)
-        .map_err(|e| doc.invalid(exemplar.span(), field.clone(), e.to_string()))?;
-    let image = &fitted.exemplar;
-    let (w, h) = (image.width, image.height);
-    let mean = Vec3::from_array(mean_linear((0..w * h).map(|i| image.at(i % w, i / w))));
     let seed = match &raw.seed {
         Some(s) => *s.get_ref(),
-        None => 1,
+        None => DEFAULT_SOLID_SEED,
     };
+    let recipe = SolidRecipe {
+        seed,
+        relief: relief > 0.0,
+        ..SolidRecipe::new(&file)
+    };
+    // The recipe's exemplars, as the bake will prepare them: a bad image fails here.
+    let sources = recipe
+        .load()
+        .map_err(|e| doc.invalid(exemplar.span(), field.clone(), e.to_string()))?;
+    let image = sources.given.role(0);
+    let (w, h) = (image.width, image.height);
+    let mean = Vec3::from_array(mean_linear((0..w * h).map(|i| image.at(i % w, i / w))));
     let policy = match &raw.memory {
         Some(m) => m
             .get_ref()
@@ -172,9 +178,8 @@ fn synthesized_texture(
         scale: 1.0,
         volume: None,
         synthesized: Some(SynthesizedSpec {
-            exemplar: file,
-            fit: fitted.fit,
-            seed,
+            recipe,
+            fit: sources.fits[0].clone(),
             policy,
             relief,
         }),

@@ -16,7 +16,7 @@ pub use correct_parts::CorrectParts;
 pub use deps::{
     class_index, dependencies_cpu, finest_growth_cpu, Dependencies, LevelDeps, PLANE_NEIGHBOURS,
 };
-pub use gpu::{GpuLazySolid, LazyOptions, LazyReport, LAZY_MARGIN};
+pub use gpu::{GpuLazySolid, LazyReport, LAZY_MARGIN};
 pub use keys::{
     check_request, lazy_key, lazy_position, tag, untag, LAZY_AXIS_BITS, LAZY_BIAS, MAX_LAZY_COORD,
     STAGE_BITS, STAGE_MAX,

@@ -1,7 +1,7 @@
 //! `lazysolid bench lazy`: lazy synthesis of a mesh's voxels, each store's bytes and the
 //! cross-section figure.
 
-use crate::support::{lazysolid, terra_square, BenchRun};
+use crate::support::{fnv1a, lazysolid, terra_square, BenchRun};
 
 /// `bench lazy` on the bunny at 16³ with a 16² terra crop (its candidates take seconds): the
 /// timed row, the per-level notes, each store's bytes and the cross-section figure at the
@@ -75,6 +75,10 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
         .expect("a figures folder");
     let section = image::open(figures.join("bunny00-32-section-z16.png")).unwrap();
     assert_eq!((section.width(), section.height()), (32, 32));
+    // Byte for byte the figure drawn before the solid recipe made the suite's lazy states
+    // (10d48bd).
+    let bytes = std::fs::read(figures.join("bunny00-32-section-z16.png")).unwrap();
+    assert_eq!(fnv1a(&bytes), 0xfedb_450e_fffb_c4d9);
     assert!(bench.json()["rows"]
         .as_array()
         .is_some_and(|r| r.len() == 1));

@@ -33,18 +33,11 @@ use super::keys::{check_within, lazy_key, untag};
 use super::policy::{LevelKeep, MemoryPolicy, LAZY_CHUNK_VOXELS};
 use super::visit_order::{StageRanges, VisitOrder};
 use super::walk::{texture_key_bits, DeviceWalk, LevelSet, WalkRequest, WalkSets};
-use crate::cache::DiskCache;
 use crate::kernels::synth_solid;
 use crate::shader_constants::{LAZY_ORDER_BITS, LAZY_RANGE_WORDS};
-use crate::solid::analysis::{analyze_solid, SolidAnalysis};
-use crate::solid::candidates::CandidateParams;
+use crate::solid::analysis::SolidAnalysis;
 use crate::solid::candidates::SolidCandidates;
-use crate::solid::candidates_cache::candidates_cached;
-use crate::solid::candidates_host::CandidateBuilder;
 use crate::solid::cpu::check_levels;
-use crate::solid::defaults::{
-    default_solid_jitter, default_solid_passes, DEFAULT_SOLID_PARALLEL_LEVELS,
-};
 use crate::solid::gpu::GpuSolidSynthesizer;
 use crate::solid::relief::{role_texel, SolidRelief};
 use crate::solid::roles::{SolidExemplars, ROLES};
@@ -65,7 +58,7 @@ mod memory;
 mod report;
 mod request;
 
-pub use report::{LazyOptions, LazyReport};
+pub use report::LazyReport;
 
 /// Voxels of room around the requested `[0, R)³` at every level: the dependencies reach at
 /// most 5 voxels a side per pass and level along x (3 along y, 2 along z) plus half the
@@ -518,61 +511,6 @@ impl GpuLazySolid {
         .collect();
         keys.sort_unstable();
         Ok(keys)
-    }
-
-    /// The lazy state of `exemplars` at `resolution` with the solid synthesizer's defaults and
-    /// `seed`: the analysis, and the candidates through `cache` (computed on the GPU on a
-    /// miss). How scenes make one.
-    ///
-    /// # Errors
-    /// As [`GpuLazySolid::new`], and candidate or cache failures.
-    pub fn with_defaults(
-        gpu: &Gpu,
-        exemplars: &SolidExemplars,
-        seed: u32,
-        resolution: u32,
-        cache: Option<&DiskCache>,
-    ) -> SynthResult<GpuLazySolid> {
-        GpuLazySolid::with_options(gpu, exemplars, &LazyOptions::new(seed), resolution, cache)
-    }
-
-    /// As [`GpuLazySolid::with_defaults`], with `options` overriding them (how `bench lazy`
-    /// and `bench cuts` measure the alternatives).
-    ///
-    /// # Errors
-    /// As [`GpuLazySolid::with_defaults`], and options that do not fit the pyramid.
-    pub fn with_options(
-        gpu: &Gpu,
-        exemplars: &SolidExemplars,
-        options: &LazyOptions,
-        resolution: u32,
-        cache: Option<&DiskCache>,
-    ) -> SynthResult<GpuLazySolid> {
-        let analysis = analyze_solid(exemplars);
-        let params = CandidateParams::default();
-        let (candidates, _) = candidates_cached(exemplars, &params, cache, || {
-            // The same candidates on either side; natively on the host on a CPU device.
-            CandidateBuilder::Auto.compute(gpu, &analysis, &params, &mut |_| {})
-        })?;
-        let levels = analysis.levels.len() as u32;
-        let synth = SynthParams::new(
-            levels,
-            options.seed,
-            &default_solid_passes(levels),
-            &default_solid_jitter(levels),
-        )?
-        .with_parallel_levels(
-            options
-                .parallel_levels
-                .unwrap_or(DEFAULT_SOLID_PARALLEL_LEVELS.min(levels)),
-        )?;
-        let mut state =
-            GpuLazySolid::new(gpu, exemplars, &analysis, &candidates, &synth, resolution)?;
-        state.set_policy(options.policy.unwrap_or_default());
-        if options.relief {
-            state.set_relief(exemplars, Some(SolidRelief::of(exemplars)))?;
-        }
-        Ok(state)
     }
 
     /// Rewrites the records the kernels read (they keep the buffers they point into alive).

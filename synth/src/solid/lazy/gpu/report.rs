@@ -1,33 +1,5 @@
-//! What a lazy state is made with besides its exemplars, and what each request did: the
-//! figures `bench lazy`, `bench cuts` and the renderer print.
-
-use super::*;
-
-/// What a lazy state is made with besides its exemplars and resolution: the seed, and
-/// overrides of the synthesizer's defaults (`None`: the default).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LazyOptions {
-    /// Seed of the jitter.
-    pub seed: u32,
-    /// Finest levels corrected in parallel passes (`SynthParams::parallel_levels`).
-    pub parallel_levels: Option<u32>,
-    /// What the state keeps between requests.
-    pub policy: Option<MemoryPolicy>,
-    /// Whether the texels carry the relief channel in alpha (`crate::relief`).
-    pub relief: bool,
-}
-
-impl LazyOptions {
-    /// The defaults with `seed`.
-    pub fn new(seed: u32) -> LazyOptions {
-        LazyOptions {
-            seed,
-            parallel_levels: None,
-            policy: None,
-            relief: false,
-        }
-    }
-}
+//! What each request of a lazy state did: the figures `bench lazy`, `bench cuts` and the
+//! renderer print.
 
 /// What one request did.
 #[derive(Clone, Debug, Default, PartialEq)]
