@@ -94,15 +94,23 @@ impl SceneStore {
     }
 }
 
+/// `$body` with `$s` bound to the store inside `$store`, whatever its kind: the one list of
+/// [`SceneStore`]'s variants that every forwarding method shares.
+macro_rules! with_store {
+    ($store:expr, $s:ident => $body:expr) => {
+        match $store {
+            SceneStore::Hash($s) => $body,
+            SceneStore::Octree($s) => $body,
+            SceneStore::Perfect($s) => $body,
+            SceneStore::TileTree($s) => $body,
+        }
+    };
+}
+
 /// A scene store forwards to the store of its kind, so matter can grow in any of the four.
 impl MatterStore for SceneStore {
     fn insert_unit(&self) -> InsertUnit {
-        match self {
-            SceneStore::Hash(s) => SparseStore::insert_unit(s),
-            SceneStore::Octree(s) => SparseStore::insert_unit(s),
-            SceneStore::Perfect(s) => SparseStore::insert_unit(s),
-            SceneStore::TileTree(s) => SparseStore::insert_unit(s),
-        }
+        with_store!(self, s => SparseStore::insert_unit(s))
     }
 
     fn insert(
@@ -110,12 +118,7 @@ impl MatterStore for SceneStore {
         keys: &VoxelKeys,
         colours: &ColourSource<'_>,
     ) -> Result<StoreReport, StoreError> {
-        match self {
-            SceneStore::Hash(s) => SparseStore::insert(s, keys, colours),
-            SceneStore::Octree(s) => SparseStore::insert(s, keys, colours),
-            SceneStore::Perfect(s) => SparseStore::insert(s, keys, colours),
-            SceneStore::TileTree(s) => SparseStore::insert(s, keys, colours),
-        }
+        with_store!(self, s => SparseStore::insert(s, keys, colours))
     }
 
     fn insert_surface(
@@ -124,23 +127,11 @@ impl MatterStore for SceneStore {
         triangles: &[[u32; 3]],
         colours: &ColourSource<'_>,
     ) -> Result<StoreReport, StoreError> {
-        match self {
-            SceneStore::Hash(s) => SparseStore::insert_surface(s, positions, triangles, colours),
-            SceneStore::Octree(s) => SparseStore::insert_surface(s, positions, triangles, colours),
-            SceneStore::Perfect(s) => SparseStore::insert_surface(s, positions, triangles, colours),
-            SceneStore::TileTree(s) => {
-                SparseStore::insert_surface(s, positions, triangles, colours)
-            }
-        }
+        with_store!(self, s => SparseStore::insert_surface(s, positions, triangles, colours))
     }
 
     fn size(&self) -> (u64, u64) {
-        match self {
-            SceneStore::Hash(s) => (s.len(), s.bytes()),
-            SceneStore::Octree(s) => (s.len(), s.bytes()),
-            SceneStore::Perfect(s) => (s.len(), s.bytes()),
-            SceneStore::TileTree(s) => (s.len(), s.bytes()),
-        }
+        with_store!(self, s => (s.len(), s.bytes()))
     }
 }
 

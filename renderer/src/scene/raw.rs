@@ -185,21 +185,11 @@ pub(super) struct RawTexture {
     pub exemplar: Option<Spanned<String>>,
     pub seed: Option<Spanned<u32>>,
     pub memory: Option<Spanned<String>>,
-    pub store: Option<Spanned<RawStoreKind>>,
+    /// A [`StoreKind`](crate::scene::StoreKind) by its name, checked when resolved.
+    pub store: Option<Spanned<String>>,
     pub resolution: Option<Spanned<u32>>,
     pub filter: Option<Spanned<RawStoreFilter>>,
     pub relief: Option<Spanned<f32>>,
-}
-
-/// Sparse stores as spelled in the file.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub(super) enum RawStoreKind {
-    CoherentHash,
-    Octree,
-    PerfectHash,
-    #[serde(rename = "tiletree")]
-    TileTree,
 }
 
 /// Store filters as spelled in the file.

@@ -350,29 +350,55 @@ pub struct StoreSpec {
     pub filter: StoreFilter,
 }
 
-/// Sparse stores a solid texture can be baked into.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StoreKind {
+/// Declares [`StoreKind`] from one line per kind (variant and scene name), so that the enum,
+/// its names, the parser's list and every all-kinds list of the tests come from one place.
+macro_rules! store_kinds {
+    ($($(#[$doc:meta])* $variant:ident = $name:literal,)*) => {
+        /// Sparse stores a solid texture can be baked into.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum StoreKind {
+            $($(#[$doc])* $variant,)*
+        }
+
+        impl StoreKind {
+            /// Every kind, in the order of the registration list.
+            pub const ALL: &'static [StoreKind] = &[$(StoreKind::$variant),*];
+
+            /// The name a scene file gives it.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(StoreKind::$variant => $name,)*
+                }
+            }
+        }
+    };
+}
+
+store_kinds! {
     /// The coherent parallel hash keyed by voxel Morton codes.
-    CoherentHash,
+    CoherentHash = "coherent_hash",
     /// The N³ octree texture.
-    Octree,
+    Octree = "octree",
     /// The perfect spatial hash (texel layout, constrained access: no keys stored).
-    PerfectHash,
+    PerfectHash = "perfect_hash",
     /// The TileTree: 2D tiles on the leaves of an octree around the surface, built from the
     /// mesh itself; R must be a power of two.
-    TileTree,
+    TileTree = "tiletree",
 }
 
 impl StoreKind {
-    /// The name a scene file gives it.
-    pub fn name(self) -> &'static str {
-        match self {
-            StoreKind::CoherentHash => "coherent_hash",
-            StoreKind::Octree => "octree",
-            StoreKind::PerfectHash => "perfect_hash",
-            StoreKind::TileTree => "tiletree",
-        }
+    /// The kind a scene file names `name`, if any.
+    pub fn from_name(name: &str) -> Option<StoreKind> {
+        StoreKind::ALL.iter().copied().find(|k| k.name() == name)
+    }
+
+    /// Every scene name, quoted, for an error to list: "`coherent_hash`, `octree`, ...".
+    pub fn names() -> String {
+        StoreKind::ALL
+            .iter()
+            .map(|k| format!("`{}`", k.name()))
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 }
 

@@ -77,7 +77,7 @@ fn textures_baked_into_stores() {
         "{e}"
     );
     // Every structure has a name; the error for an unknown one lists them.
-    for name in ["coherent_hash", "octree", "perfect_hash", "tiletree"] {
+    for name in StoreKind::ALL.iter().map(|k| k.name()) {
         assert!(e.contains(&format!("`{name}`")), "{e}");
         for (filter, want) in [
             ("nearest", StoreFilter::Nearest),

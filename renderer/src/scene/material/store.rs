@@ -3,7 +3,7 @@
 //! sparse stores of `lazysolid_compute`.
 
 use crate::scene::location::{join, Doc};
-use crate::scene::raw::{RawStoreFilter, RawStoreKind, RawTexture};
+use crate::scene::raw::{RawStoreFilter, RawTexture};
 use crate::scene::{SceneError, StoreFilter, StoreKind, StoreSpec};
 
 /// Largest resolution a solid texture may be baked at (the voxel grids' limit).
@@ -28,12 +28,17 @@ pub(super) fn store(
             Ok(None)
         }
         (Some(kind), Some(res)) => {
-            let kind_ = match kind.get_ref() {
-                RawStoreKind::CoherentHash => StoreKind::CoherentHash,
-                RawStoreKind::Octree => StoreKind::Octree,
-                RawStoreKind::PerfectHash => StoreKind::PerfectHash,
-                RawStoreKind::TileTree => StoreKind::TileTree,
-            };
+            let kind_ = StoreKind::from_name(kind.get_ref()).ok_or_else(|| {
+                doc.invalid(
+                    kind.span(),
+                    join(label, "store"),
+                    format!(
+                        "unknown store `{}`, expected one of {}",
+                        kind.get_ref(),
+                        StoreKind::names()
+                    ),
+                )
+            })?;
             let field = join(label, "resolution");
             let r = doc.integer(res, &field, 2..=MAX_STORE_RESOLUTION)?;
             // The N³ tree needs R as a product of per-level sizes it supports; the TileTree's
@@ -72,7 +77,7 @@ pub(super) fn store(
         (None, Some(res)) => Err(doc.invalid(
             res.span(),
             join(label, "store"),
-            "is required with `resolution` (coherent_hash, octree, perfect_hash or tiletree)",
+            format!("is required with `resolution` ({})", StoreKind::names()),
         )),
     }
 }
