@@ -6,9 +6,9 @@ use lazysolid_synth::cache::{CacheOutcome, DiskCache};
 use lazysolid_synth::feature::DEFAULT_FEATURE_WEIGHT;
 use lazysolid_synth::solid::lazy::MemoryPolicy;
 use lazysolid_synth::solid::{
-    analyze_solid, default_solid_jitter, default_solid_passes, voxel_colour, CandidateBuilder,
-    CandidateParams, GpuSolidSynthesizer, Orientation, SolidExemplars, SolidRecipe, SolidSchedule,
-    VolumeBox, DEFAULT_SOLID_PARALLEL_LEVELS,
+    analyze_solid, candidates_key, default_solid_jitter, default_solid_passes, voxel_colour,
+    CandidateBuilder, CandidateParams, GpuSolidSynthesizer, Orientation, SolidExemplars,
+    SolidRecipe, SolidSchedule, VolumeBox, DEFAULT_SOLID_PARALLEL_LEVELS,
 };
 use lazysolid_synth::{load_solid, FitMode, SynthParams};
 use lazysolid_tests::{exemplar_crop, with_gpu};
@@ -149,7 +149,7 @@ fn the_recipe_prepares_exemplars_as_the_pieces_do() {
 }
 
 /// One preparation, two synthesizers: the recipe's windowed cube equals the volume the pieces
-/// make (the kernels' candidates, a synthesizer of their own) triple for triple, and the recipe's lazy
+/// make (their own analysis, parameters and synthesizer) triple for triple, and the recipe's lazy
 /// state returns the cube's colours at every requested voxel. The candidates go through a
 /// cache: a second preparation reads them back.
 #[test]
@@ -176,12 +176,13 @@ fn windowed_and_lazy_synthesizers_of_one_recipe_give_the_pieces_volume() {
         let exemplars = by_hand(&path, Orientation::Auto);
         same_exemplars(prepared.exemplars(), &exemplars);
         let analysis = analyze_solid(&exemplars);
-        // The kernels' candidates with the usage balance: the host's pruned searches that the
-        // recipe asked for must give them bit for bit.
-        let candidates = CandidateBuilder::Gpu
-            .compute(gpu, &analysis, &CandidateParams::default(), &mut |_| {})
-            .unwrap();
-        assert!(prepared.candidates == candidates, "the recipe's candidates");
+        // The pieces' exemplars and parameters name the same cache entry: the same
+        // candidates, without computing them twice.
+        assert_eq!(
+            candidates_key(&exemplars, &CandidateParams::default()),
+            candidates_key(prepared.exemplars(), &recipe.candidates)
+        );
+        let candidates = &prepared.candidates;
         let levels = analysis.levels.len() as u32;
         let params = SynthParams::new(
             levels,
@@ -197,9 +198,9 @@ fn windowed_and_lazy_synthesizers_of_one_recipe_give_the_pieces_volume() {
             size: [16; 3],
         };
         let cube = prepared.cube(gpu, window, &mut |_| {}).unwrap();
-        let (pieces, _) = GpuSolidSynthesizer::new(gpu, &analysis, &candidates)
+        let (pieces, _) = GpuSolidSynthesizer::new(gpu, &analysis, candidates)
             .unwrap()
-            .synthesize(&analysis, &candidates, &params, window, false, &mut |_| {})
+            .synthesize(&analysis, candidates, &params, window, false, &mut |_| {})
             .unwrap();
         assert!(cube.synthesis.window_triples() == pieces.window_triples());
         assert!(cube.colours == pieces.colours(&exemplars));

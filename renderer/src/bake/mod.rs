@@ -47,7 +47,7 @@ pub(crate) struct Baker<'a> {
 /// through the user's cache.
 fn lazy_state(gpu: &Gpu, spec: &SynthesizedSpec, r: u32) -> Result<GpuLazySolid, SynthError> {
     let cache = DiskCache::user().ok();
-    spec.recipe
+    spec.recipe()
         .load()?
         .prepare(gpu, cache.as_ref(), &mut |_, _| {})?
         .lazy(gpu, r, spec.policy)
@@ -93,13 +93,8 @@ impl<'a> Baker<'a> {
                 material, r,
             ))));
         };
-        let key = (
-            synth.recipe.exemplar.clone(),
-            synth.recipe.seed,
-            r,
-            synth.policy,
-            synth.recipe.relief,
-        );
+        let recipe = synth.recipe();
+        let key = (recipe.exemplar, recipe.seed, r, synth.policy, recipe.relief);
         if let Some(lazy) = self.lazy.get(&key) {
             return Ok(MatterColours::Lazy(lazy.clone()));
         }

@@ -325,10 +325,9 @@ pub struct SolidTexture {
 /// voxels the store needs are synthesized).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SynthesizedSpec {
-    /// What the matter is made from: the exemplar (GIMP pattern, PNG or JPEG) fitted and
-    /// oriented by the defaults `lazysolid solid` uses, the texture's seed, and the relief
-    /// channel when `relief` is on; the same recipe gives the command's volume.
-    pub recipe: lazysolid_synth::solid::SolidRecipe,
+    /// What the matter is made from, but for the relief channel, which follows `relief`
+    /// ([`SynthesizedSpec::recipe`]).
+    pub(crate) colours: lazysolid_synth::solid::SolidRecipe,
     /// How the image becomes the solid exemplar (`lazysolid solid --fit auto`'s rule), decided
     /// when the scene is read and reported with the render.
     pub fit: lazysolid_synth::ExemplarFit,
@@ -337,6 +336,18 @@ pub struct SynthesizedSpec {
     /// Slope of the relief's feature walls (`relief = …`; 0: none): the texels carry the
     /// relief channel in alpha and the path tracer bends shading normals by its gradient.
     pub relief: f32,
+}
+
+impl SynthesizedSpec {
+    /// What the matter is made from: the exemplar (GIMP pattern, PNG or JPEG) fitted and
+    /// oriented by the defaults `lazysolid solid` uses, the texture's seed, and the relief
+    /// channel when `relief` is above 0. The same recipe gives `lazysolid solid`'s volume.
+    pub fn recipe(&self) -> lazysolid_synth::solid::SolidRecipe {
+        lazysolid_synth::solid::SolidRecipe {
+            relief: self.relief > 0.0,
+            ..self.colours.clone()
+        }
+    }
 }
 
 /// Which sparse store holds a baked solid texture, at what resolution, read how.

@@ -154,7 +154,6 @@ fn synthesized_texture(
     };
     let recipe = SolidRecipe {
         seed,
-        relief: relief > 0.0,
         ..SolidRecipe::new(&file)
     };
     // The recipe's exemplars, as the bake will prepare them: a bad image fails here.
@@ -178,7 +177,7 @@ fn synthesized_texture(
         scale: 1.0,
         volume: None,
         synthesized: Some(SynthesizedSpec {
-            recipe,
+            colours: recipe,
             fit: sources.fits[0].clone(),
             policy,
             relief,

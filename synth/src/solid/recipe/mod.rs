@@ -6,6 +6,28 @@
 //! [`SolidSources::prepare`] the one analysis and candidate step, from which the windowed
 //! synthesizer ([`PreparedSolid::synthesizer`], [`PreparedSolid::cube`]) and the lazy one
 //! ([`PreparedSolid::lazy`]) are built. Two callers with equal recipes get the same volume.
+//!
+//! ```no_run
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use lazysolid_compute::gpu::{Gpu, GpuOptions};
+//! use lazysolid_synth::solid::{SolidRecipe, VolumeBox};
+//! use lazysolid_synth::DiskCache;
+//!
+//! let gpu = Gpu::new(&GpuOptions::from_env())?;
+//! // The defaults of `lazysolid solid`, with another seed.
+//! let recipe = SolidRecipe {
+//!     seed: 7,
+//!     ..SolidRecipe::new("assets/exemplars/terra.pat")
+//! };
+//! let sources = recipe.load()?; // fitted and oriented; `sources.fits` says how
+//! let cache = DiskCache::user()?;
+//! let prepared = sources.prepare(&gpu, Some(&cache), &mut |_, _| {})?;
+//! let window = VolumeBox { origin: [0; 3], size: [64; 3] };
+//! let cube = prepared.cube(&gpu, window, &mut |_| {})?;
+//! assert_eq!(cube.colours.len(), 64 * 64 * 64);
+//! # Ok(())
+//! # }
+//! ```
 
 mod cube;
 mod prepared;

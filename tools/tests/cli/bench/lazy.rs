@@ -79,6 +79,26 @@ fn bench_lazy_writes_voxels_stores_and_a_cross_section() {
     // (10d48bd).
     let bytes = std::fs::read(figures.join("bunny00-32-section-z16.png")).unwrap();
     assert_eq!(fnv1a(&bytes), 0xfedb_450e_fffb_c4d9);
+    // And the same work: the voxels synthesized per level and in all (non-timing columns of
+    // the run before the recipe, 10d48bd).
+    for (key, want) in [
+        ("bunny00 16³: level 0 voxels synthesized", 9073.0),
+        ("bunny00 16³: level 1 voxels synthesized", 8519.0),
+        ("bunny00 16³: level 2 voxels synthesized", 7739.0),
+        ("bunny00 16³: level 3 voxels synthesized", 6293.0),
+        ("bunny00 16³: level 4 voxels synthesized", 1530.0),
+        ("bunny00 16³: voxel versions computed", 63894.0),
+        (
+            "bunny00 16³: voxels in the dependency sets, all levels",
+            37207.0,
+        ),
+        (
+            "bunny00 32³ cross-section z = 16: voxel versions computed after the surface",
+            704.0,
+        ),
+    ] {
+        assert_eq!(json["derived"][key].as_f64(), Some(want), "{key}");
+    }
     assert!(bench.json()["rows"]
         .as_array()
         .is_some_and(|r| r.len() == 1));
