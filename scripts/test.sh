@@ -4,28 +4,37 @@
 # with the Vulkan validation layer required.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/fetch-assets.sh
+# Each step prints its time, so a run shows where the suite's time goes (docs/testing.md).
+step() {
+  local name="$1" start=$SECONDS
+  shift
+  "$@"
+  echo "test.sh: ${name} took $((SECONDS - start)) s (${SECONDS} s so far)"
+}
+step "install" bash scripts/install-deps.sh
+step "assets" bash scripts/fetch-assets.sh
 export LAZYSOLID_VALIDATION=1
-cargo fmt --all -- --check
-cargo clippy --locked --workspace --all-targets -- -D warnings
+step "fmt" cargo fmt --all -- --check
+step "clippy" cargo clippy --locked --workspace --all-targets -- -D warnings
 # Every intra-doc link resolves (a renamed or private item breaks it silently otherwise).
-RUSTDOCFLAGS="-D warnings" cargo doc --locked --workspace --no-deps
-cargo test --locked --workspace
+RUSTDOCFLAGS="-D warnings" step "API docs" cargo doc --locked --workspace --no-deps
+step "building the tests" cargo test --locked --workspace --no-run
+step "cargo test" cargo test --locked --workspace
 # The subset again under the two settings a GPU differs by, in one run since they are
 # independent (one changes how bytes reach memory, the other the width kernels run at): every
 # upload and readback through a staging buffer, as a discrete GPU's memory requires, and
 # lavapipe at 128 bits, whose subgroups of 4 instead of 8 show any kernel that depends on 8
 # lanes (docs/gpu.md). Reuses the binaries built above. Two fracture tests are left out: they
 # bake the same stores through the same kernels as the frame references and the store tests.
-LAZYSOLID_MEMORY=device-local LP_NATIVE_VECTOR_WIDTH=128 bash scripts/test-subset.sh -- \
+LAZYSOLID_MEMORY=device-local LP_NATIVE_VECTOR_WIDTH=128 step "the subset, GPU settings" \
+  bash scripts/test-subset.sh -- \
   --skip fracture_frame_agrees_through_every_store --skip both_sides_of_every_crack
 # scripts/gpu-bench.sh stays runnable, on the debug executable the tests built (no release
 # build): every suite's quick and full options parse, and the suites that no command-line
 # test runs (tools/tests/cli/bench/) run at quick sizes on lavapipe through the script.
 bin="${CARGO_TARGET_DIR:-target}/debug/lazysolid"
-bash scripts/gpu-bench.sh --check-args --bin "$bin"
+step "gpu-bench.sh options" bash scripts/gpu-bench.sh --check-args --bin "$bin"
 bench_out="$(mktemp -d)"
-bash scripts/gpu-bench.sh --quick --skip-tests --suites device,trace,multiscale --bin "$bin" \
-  --out-dir "$bench_out"
+step "gpu-bench.sh --quick" bash scripts/gpu-bench.sh --quick --skip-tests \
+  --suites device,trace,multiscale --bin "$bin" --out-dir "$bench_out"
 rm -rf "$bench_out"

@@ -274,7 +274,13 @@ pub fn run(args: &SolidArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         None
     } else {
         let start = Instant::now();
-        let film = render_carved(&gpu, &volume, n)?;
+        let film = render_carved(
+            &gpu,
+            &run.colours,
+            n,
+            args.output.with_extension("scene.toml"),
+            args.output.clone(),
+        )?;
         Some((film, start.elapsed().as_secs_f64()))
     };
 
