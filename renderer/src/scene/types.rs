@@ -321,6 +321,24 @@ pub struct SolidTexture {
     pub store: Option<StoreSpec>,
 }
 
+impl SolidTexture {
+    /// The texture of a volume's voxels, read through `store`: its two colours are the
+    /// volume's mean (what a material without a store would show), as a scene's `volume`
+    /// texture and `lazysolid solid`'s carved render make it.
+    pub fn of_volume(volume: VolumeTexture, store: Option<StoreSpec>) -> SolidTexture {
+        let mean = glam::Vec3::from_array(volume.mean_linear());
+        SolidTexture {
+            kind: SolidTextureKind::Volume,
+            color_a: mean,
+            color_b: mean,
+            scale: 1.0,
+            volume: Some(std::sync::Arc::new(volume)),
+            synthesized: None,
+            store,
+        }
+    }
+}
+
 /// A solid texture synthesized from a 2D exemplar playing all three roles (lazily: only the
 /// voxels the store needs are synthesized).
 #[derive(Clone, Debug, PartialEq)]

@@ -12,11 +12,9 @@ use lazysolid_renderer::output::Film;
 use lazysolid_renderer::render::PathTracer;
 use lazysolid_renderer::scene::{
     Camera, Environment, Instance, Lens, Light, Material, MaterialKind, RenderSettings, Scene,
-    SceneMesh, SolidTexture, SolidTextureKind, StoreFilter, StoreKind, StoreSpec, VolumeTexture,
-    DEFAULT_RR_DEPTH,
+    SceneMesh, SolidTexture, StoreFilter, StoreKind, StoreSpec, VolumeTexture, DEFAULT_RR_DEPTH,
 };
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// Samples per pixel of the render.
 pub const RENDER_SPP: u32 = 32;
@@ -104,7 +102,14 @@ pub fn carved(colours: &[[u8; 3]], n: u32, source: PathBuf, volume_path: PathBuf
         size: [n; 3],
         rgb: colours.to_vec(),
     };
-    let mean = Vec3::from_array(volume.mean_linear());
+    let matter = SolidTexture::of_volume(
+        volume,
+        Some(StoreSpec {
+            kind: StoreKind::Octree,
+            resolution: n,
+            filter: StoreFilter::Nearest,
+        }),
+    );
     let lambertian = |name: &str, color: Vec3, texture: Option<SolidTexture>| Material {
         name: name.into(),
         kind: MaterialKind::Lambertian,
@@ -117,19 +122,6 @@ pub fn carved(colours: &[[u8; 3]], n: u32, source: PathBuf, volume_path: PathBuf
         glint: None,
         albedo_map: None,
         normal_map: None,
-    };
-    let matter = SolidTexture {
-        kind: SolidTextureKind::Volume,
-        color_a: mean,
-        color_b: mean,
-        scale: 1.0,
-        volume: Some(Arc::new(volume)),
-        synthesized: None,
-        store: Some(StoreSpec {
-            kind: StoreKind::Octree,
-            resolution: n,
-            filter: StoreFilter::Nearest,
-        }),
     };
     let mesh = |name: &str, mesh: Mesh| SceneMesh {
         name: name.into(),

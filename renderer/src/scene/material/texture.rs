@@ -16,7 +16,6 @@ use lazysolid_synth::solid::lazy::MemoryPolicy;
 use lazysolid_synth::solid::{SolidRecipe, DEFAULT_SOLID_SEED};
 use std::ops::Range;
 use std::path::Path;
-use std::sync::Arc;
 use toml::Spanned;
 
 /// A solid texture table: a procedural pattern (`color_a`, `color_b`, `scale`) or a volume
@@ -101,16 +100,7 @@ fn volume_texture(
     must_exist(doc, path.span().start, join(label, "path"), &file)?;
     let volume = VolumeTexture::load(&file)
         .map_err(|problem| doc.invalid(path.span(), join(label, "path"), problem))?;
-    let mean = Vec3::from_array(volume.mean_linear());
-    Ok(SolidTexture {
-        kind: SolidTextureKind::Volume,
-        color_a: mean,
-        color_b: mean,
-        scale: 1.0,
-        volume: Some(Arc::new(volume)),
-        synthesized: None,
-        store,
-    })
+    Ok(SolidTexture::of_volume(volume, store))
 }
 
 /// A `kind = "synthesized"` texture table: an exemplar (asset name, or path relative to the
