@@ -15,10 +15,14 @@ step "install" bash scripts/install-deps.sh
 step "assets" bash scripts/fetch-assets.sh
 export LAZYSOLID_VALIDATION=1
 step "fmt" cargo fmt --all -- --check
-step "clippy" cargo clippy --locked --workspace --all-targets -- -D warnings
 # Every intra-doc link resolves (a renamed or private item breaks it silently otherwise).
 RUSTDOCFLAGS="-D warnings" step "API docs" cargo doc --locked --workspace --no-deps
-step "building the tests" cargo test --locked --workspace --no-run
+# Clippy's lints run while the tests are built: the workspace's crates are compiled by
+# clippy-driver with warnings denied, which lints every target `cargo clippy --all-targets`
+# does (libraries, binaries, tests, examples, build scripts) in the same compile. Exported, so
+# the steps below reuse these builds instead of compiling the crates again.
+export RUSTC_WORKSPACE_WRAPPER="$PWD/scripts/lint-rustc.sh"
+step "building the tests, with Clippy's lints" cargo test --locked --workspace --no-run
 step "cargo test" cargo test --locked --workspace
 # The subset again under the two settings a GPU differs by, in one run since they are
 # independent (one changes how bytes reach memory, the other the width kernels run at): every

@@ -94,6 +94,11 @@ pub fn synthesized_neighbourhood(
 /// and adds pairs in one instruction, while it cannot multiply 32-bit lanes. That matters
 /// because the CPU correction spends most of its time here; the gain is in
 /// `docs/log/solid.md` ("Open", "Candidate time at 128²").
+///
+/// The arithmetic wraps, as a release build's does: the bounds above make it exact for every
+/// neighbourhood [`synthesized_neighbourhood`] builds, and a debug build's overflow check on
+/// each lane's three operations cost the test suite's CPU synthesis about a third of its time
+/// (`docs/testing.md`, "Where a command-line test's time goes").
 pub fn neighbourhood_distance(
     synthesized: &[i16; NEIGHBOURHOOD_DIMS],
     exemplar: &[i8; NEIGHBOURHOOD_DIMS],
@@ -101,11 +106,10 @@ pub fn neighbourhood_distance(
     synthesized
         .iter()
         .zip(exemplar)
-        .map(|(&s, &e)| {
-            let d = i32::from(s - PREDICTIONS as i16 * i16::from(e));
-            d * d
-        })
-        .sum::<i32>() as u32
+        .fold(0i32, |sum, (&s, &e)| {
+            let d = i32::from(s.wrapping_sub((PREDICTIONS as i16).wrapping_mul(i16::from(e))));
+            sum.wrapping_add(d.wrapping_mul(d))
+        }) as u32
 }
 
 /// Packs records of `i8`s into little-endian `u32` words (4 components per word, the first in
