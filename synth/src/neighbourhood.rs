@@ -96,9 +96,9 @@ pub fn synthesized_neighbourhood(
 /// `docs/log/solid.md` ("Open", "Candidate time at 128²").
 ///
 /// The arithmetic wraps, as a release build's does: the bounds above make it exact for every
-/// neighbourhood [`synthesized_neighbourhood`] builds, and a debug build's overflow check on
-/// each lane's three operations cost the test suite's CPU synthesis about a third of its time
-/// (`docs/testing.md`, "Where a command-line test's time goes").
+/// neighbourhood [`synthesized_neighbourhood`] builds, and without a debug build's overflow
+/// check on each lane the test build can vectorize the loop too (`docs/testing.md`, "Where a
+/// command-line test's time goes").
 pub fn neighbourhood_distance(
     synthesized: &[i16; NEIGHBOURHOOD_DIMS],
     exemplar: &[i8; NEIGHBOURHOOD_DIMS],
