@@ -1,5 +1,7 @@
 //! Plots and images for the benchmark suites: line charts, grouped bar charts and raw RGB
 //! images, each written under a temporary name and renamed, so no half-written PNG remains.
+//! Charts are drawn into memory and encoded by the `image` crate the workspace already uses
+//! (plotters' own encoder would build a second version of it).
 
 use anyhow::Context;
 use plotters::prelude::*;
@@ -78,9 +80,11 @@ pub fn line_chart(
         .iter()
         .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
     let pad = ((x1 - x0) * 0.03).max(0.01);
+    let (image_width, image_height) = (1100, 700);
+    let mut pixels = vec![0u8; image_width as usize * image_height as usize * 3];
     {
-        let tmp = partial(path);
-        let root = BitMapBackend::new(&tmp, (1100, 700)).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut pixels, (image_width, image_height))
+            .into_drawing_area();
         root.fill(&WHITE)?;
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 24))
@@ -117,7 +121,7 @@ pub fn line_chart(
             .draw()?;
         root.present()?;
     }
-    finish(path)
+    rgb_image(path, image_width, image_height, pixels)
 }
 
 /// Grouped bars: one group per category, one bar per series; log y axis when `log_y`.
@@ -137,9 +141,11 @@ pub fn bar_chart(
         .fold(1.0f64, f64::max);
     let n = categories.len() as f64;
     let width = 0.8 / series.len().max(1) as f64;
+    let (image_width, image_height) = (1100, 650);
+    let mut pixels = vec![0u8; image_width as usize * image_height as usize * 3];
     {
-        let tmp = partial(path);
-        let root = BitMapBackend::new(&tmp, (1100, 650)).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut pixels, (image_width, image_height))
+            .into_drawing_area();
         root.fill(&WHITE)?;
         let mut builder = ChartBuilder::on(&root);
         builder
@@ -203,7 +209,7 @@ pub fn bar_chart(
         }
         root.present()?;
     }
-    finish(path)
+    rgb_image(path, image_width, image_height, pixels)
 }
 
 /// Writes an RGB8 image.
