@@ -28,11 +28,11 @@ step "cargo test" cargo test --locked --workspace
 # independent (one changes how bytes reach memory, the other the width kernels run at): every
 # upload and readback through a staging buffer, as a discrete GPU's memory requires, and
 # lavapipe at 128 bits, whose subgroups of 4 instead of 8 show any kernel that depends on 8
-# lanes (docs/gpu.md). Reuses the binaries built above. Two fracture tests are left out: they
-# bake the same stores through the same kernels as the frame references and the store tests.
+# lanes (docs/gpu.md). Reuses the binaries built above. The fracture test through every store
+# is left out: it bakes the same stores through the same kernels as the frame references and
+# the store tests.
 LAZYSOLID_MEMORY=device-local LP_NATIVE_VECTOR_WIDTH=128 step "the subset, GPU settings" \
-  bash scripts/test-subset.sh -- \
-  --skip fracture_frame_agrees_through_every_store --skip both_sides_of_every_crack
+  bash scripts/test-subset.sh -- --skip fracture_through_every_store
 # scripts/gpu-bench.sh stays runnable, on the debug executable the tests built (no release
 # build): every suite's quick and full options parse, and the suites that no command-line
 # test runs (tools/tests/cli/bench/) run at quick sizes on lavapipe through the script.

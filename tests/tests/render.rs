@@ -537,12 +537,7 @@ fn volume_textures_render_through_their_store() {
     );
 }
 
-/// Renders frames of `scene` with one tracer (the stores are baked once, before the first).
-fn render_frames(gpu: &lazysolid_compute::gpu::Gpu, scene: &Scene, frames: &[u32]) -> Vec<Film> {
-    tracer_frames(&mut PathTracer::new(gpu, scene).unwrap(), scene, frames)
-}
-
-/// [`render_frames`] through a path tracer already built for `scene` (its stores baked once).
+/// Renders frames of `scene` through a path tracer already built for it (its stores baked once).
 fn tracer_frames(t: &mut PathTracer, scene: &Scene, frames: &[u32]) -> Vec<Film> {
     let before: Vec<(u64, u64)> = t.stores().iter().map(|s| (s.texels, s.bytes)).collect();
     let films = frames
@@ -611,63 +606,60 @@ fn reference_fracture_frames() {
 /// where the stores' voxel sets differ, the TileTree by its bilinear tiles.
 const STORE_FLIP_LIMIT: f32 = 0.05;
 
-/// Frame 2 of the fracture scene through each of the four stores agrees with the coherent
-/// hash's within `STORE_FLIP_LIMIT`.
+/// Points on the fracture's cap faces (every 7th cap triangle, one uniform point each) with
+/// the faces' normals: where the two pieces of a crack meet.
+fn crack_points(scene: &Scene) -> (Vec<Vec3>, Vec<Vec3>) {
+    let mut g = lazysolid_tests::rng(5);
+    let mut points = Vec::new();
+    let mut normals = Vec::new();
+    for m in &scene.meshes {
+        let Some((_, caps)) = &m.cut_from else {
+            continue;
+        };
+        for (t, _) in m
+            .mesh
+            .triangles
+            .iter()
+            .zip(caps)
+            .filter(|(_, &c)| c)
+            .step_by(7)
+        {
+            let v = t.map(|i| m.mesh.positions[i as usize]);
+            points.push(lazysolid_tests::point_on_triangle(&mut g, v));
+            normals.push((v[1] - v[0]).cross(v[2] - v[0]).normalize());
+        }
+    }
+    (points, normals)
+}
+
+/// The fracture scene through each of the four stores, one tracer (one bake) per store for
+/// both checks:
+///
+/// - **Every store renders the fracture:** frame 2 through each store agrees with the coherent
+///   hash's within `STORE_FLIP_LIMIT`.
+/// - **Both sides of every crack read the same matter:** every point of every cap face reads a
+///   stored texel of the hash (the crack's matter was synthesized and inserted), the same texel
+///   for the two pieces that meet there, since they share the store and read it at rest-pose
+///   coordinates. The TileTree reads a crack point through the face its normal picks, so the
+///   two sides (opposite normals) may read different tiles: across the crack its colours
+///   differ no more than either side differs from the hash's nearest voxel at the same points
+///   (the tiles' own filtering), on average.
 #[test]
-fn fracture_frame_agrees_through_every_store() {
+fn fracture_through_every_store_and_the_matter_of_its_cracks() {
+    use lazysolid_compute::store::Filter;
     let scene = Scene::load(&test_scene("fracture")).unwrap();
+    let (points, normals) = crack_points(&scene);
+    assert!(points.len() > 200, "{} cap points", points.len());
     with_gpu(|gpu| {
-        let frame = |kind: StoreKind| {
+        let tracer = |kind: StoreKind| {
             let mut s = scene.clone();
             let t = s.materials[0].texture.as_mut().unwrap();
             t.store.as_mut().unwrap().kind = kind;
-            to_rgb8(&render_frames(gpu, &s, &[2])[0])
+            let tracer = PathTracer::new(gpu, &s).unwrap();
+            (tracer, s)
         };
-        let hash = frame(StoreKind::CoherentHash);
-        for &kind in StoreKind::ALL
-            .iter()
-            .filter(|&&k| k != StoreKind::CoherentHash)
-        {
-            let report = flip_images(&hash, &frame(kind)).unwrap();
-            println!("{kind:?} vs coherent hash: FLIP mean {:.4}", report.mean);
-            assert!(report.mean <= STORE_FLIP_LIMIT, "{kind:?}: {}", report.mean);
-        }
-    });
-}
-
-/// Crack coherence: every point of every cap face reads a stored texel (the crack's matter was
-/// synthesized and inserted) — the same texel for the two pieces that meet there, since they
-/// share the store and read it at rest-pose coordinates. The TileTree reads a crack point
-/// through the face its normal picks, so the two sides (opposite normals) may read different
-/// tiles: across the crack its colours differ no more than either side differs from the volume
-/// store's nearest voxel at the same points (the tiles' own filtering), on average.
-#[test]
-fn both_sides_of_every_crack_read_the_same_matter() {
-    use lazysolid_compute::store::Filter;
-    let mut scene = Scene::load(&test_scene("fracture")).unwrap();
-    with_gpu(|gpu| {
-        let mut g = lazysolid_tests::rng(5);
-        let mut points = Vec::new();
-        let mut normals = Vec::new();
-        for m in &scene.meshes {
-            let Some((_, caps)) = &m.cut_from else {
-                continue;
-            };
-            for (t, _) in m
-                .mesh
-                .triangles
-                .iter()
-                .zip(caps)
-                .filter(|(_, &c)| c)
-                .step_by(7)
-            {
-                let v = t.map(|i| m.mesh.positions[i as usize]);
-                points.push(lazysolid_tests::point_on_triangle(&mut g, v));
-                normals.push((v[1] - v[0]).cross(v[2] - v[0]).normalize());
-            }
-        }
-        assert!(points.len() > 200, "{} cap points", points.len());
-        let mut t = PathTracer::new(gpu, &scene).unwrap();
+        let (mut t, s) = tracer(StoreKind::CoherentHash);
+        let hash_frame = to_rgb8(&tracer_frames(&mut t, &s, &[2])[0]);
         let hash = match t.scene_stores_mut().store_mut(0).unwrap() {
             SceneStore::Hash(h) => h.lookup(&points, Filter::Nearest).unwrap(),
             _ => panic!("the test scene stores in the coherent hash"),
@@ -675,39 +667,49 @@ fn both_sides_of_every_crack_read_the_same_matter() {
         let missing = hash.iter().filter(|c| c.w <= 0.0).count();
         assert_eq!(missing, 0, "cap points without a stored voxel");
         drop(t);
-        let tex = scene.materials[0].texture.as_mut().unwrap();
-        tex.store.as_mut().unwrap().kind = StoreKind::TileTree;
-        let mut t = PathTracer::new(gpu, &scene).unwrap();
-        let SceneStore::TileTree(tree) = t.scene_stores_mut().store_mut(0).unwrap() else {
-            panic!("a TileTree");
-        };
-        let flipped: Vec<Vec3> = normals.iter().map(|&n| -n).collect();
-        let a = tree
-            .lookup_with_normals(&points, &normals, Filter::Trilinear)
-            .unwrap();
-        let b = tree
-            .lookup_with_normals(&points, &flipped, Filter::Trilinear)
-            .unwrap();
-        assert!(
-            a.iter().chain(&b).all(|c| c.w > 0.0),
-            "an unfilled texel on a crack"
-        );
-        let mean = |x: &[glam::Vec4], y: &[glam::Vec4]| {
-            x.iter()
-                .zip(y)
-                .map(|(p, q)| (*p - *q).truncate().abs().max_element() * 255.0)
-                .sum::<f32>()
-                / x.len() as f32
-        };
-        let (across, side_a, side_b) = (mean(&a, &b), mean(&a, &hash), mean(&b, &hash));
-        println!(
-            "TileTree at {} crack points: across the crack {across:.2} levels on average; \
-             each side against the nearest voxel {side_a:.2} and {side_b:.2}",
-            a.len()
-        );
-        assert!(
-            across <= side_a.max(side_b),
-            "across {across}, sides {side_a} {side_b}"
-        );
+        for &kind in StoreKind::ALL
+            .iter()
+            .filter(|&&k| k != StoreKind::CoherentHash)
+        {
+            let (mut t, s) = tracer(kind);
+            let frame = to_rgb8(&tracer_frames(&mut t, &s, &[2])[0]);
+            let report = flip_images(&hash_frame, &frame).unwrap();
+            println!("{kind:?} vs coherent hash: FLIP mean {:.4}", report.mean);
+            assert!(report.mean <= STORE_FLIP_LIMIT, "{kind:?}: {}", report.mean);
+            if kind != StoreKind::TileTree {
+                continue;
+            }
+            let SceneStore::TileTree(tree) = t.scene_stores_mut().store_mut(0).unwrap() else {
+                panic!("a TileTree");
+            };
+            let flipped: Vec<Vec3> = normals.iter().map(|&n| -n).collect();
+            let a = tree
+                .lookup_with_normals(&points, &normals, Filter::Trilinear)
+                .unwrap();
+            let b = tree
+                .lookup_with_normals(&points, &flipped, Filter::Trilinear)
+                .unwrap();
+            assert!(
+                a.iter().chain(&b).all(|c| c.w > 0.0),
+                "an unfilled texel on a crack"
+            );
+            let mean = |x: &[glam::Vec4], y: &[glam::Vec4]| {
+                x.iter()
+                    .zip(y)
+                    .map(|(p, q)| (*p - *q).truncate().abs().max_element() * 255.0)
+                    .sum::<f32>()
+                    / x.len() as f32
+            };
+            let (across, side_a, side_b) = (mean(&a, &b), mean(&a, &hash), mean(&b, &hash));
+            println!(
+                "TileTree at {} crack points: across the crack {across:.2} levels on average; \
+                 each side against the nearest voxel {side_a:.2} and {side_b:.2}",
+                a.len()
+            );
+            assert!(
+                across <= side_a.max(side_b),
+                "across {across}, sides {side_a} {side_b}"
+            );
+        }
     });
 }

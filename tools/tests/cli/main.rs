@@ -2,8 +2,8 @@
 //!
 //! One test binary (`cargo test -p lazysolid-tools --test cli`), so the tests cost one link: a
 //! module per subcommand (the bench suites under `bench`), a module per check that cuts across
-//! them (help, renamed flags, revision, unwritable outputs, assets), and the helpers they share
-//! in `support`.
+//! them (help, renamed flags, revision, unwritable outputs, assets, photos of any size as
+//! exemplars), and the helpers they share in `support`.
 
 mod assets;
 mod bench;
@@ -13,6 +13,7 @@ mod diff;
 mod fracture;
 mod help;
 mod multiscale;
+mod photos;
 mod renamed_flags;
 mod render;
 mod revision;

@@ -109,7 +109,7 @@ fn solid_writes_volume_slices_and_slab_with_metrics() {
 fn solid_names_each_bad_input_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let good = terra_square(dir.path(), 16);
-    // Any image from 16 pixels a side up is fitted (tools/tests/cli_photos.rs); what is left
+    // Any image from 16 pixels a side up is fitted (tools/tests/cli/photos.rs); what is left
     // to refuse: smaller images, images past the decode limit, a crop that does not fit, an
     // exemplar side that is no power of two in 16..=256.
     let tiny = dir.path().join("tiny.png");
