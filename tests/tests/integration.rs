@@ -38,3 +38,30 @@ mod trace;
 mod transport;
 mod uv_maps;
 mod voxel;
+
+/// With `autotests = false` (tests/Cargo.toml), cargo builds only the test binaries it is told
+/// of, so a new file beside this one that is not a module here would never be built or run:
+/// every `.rs` file here is a module of this binary, and every folder is a `[[test]]` of its
+/// own.
+#[test]
+fn every_test_file_is_built() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let this = include_str!("integration.rs");
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).unwrap();
+    let mut checked = 0;
+    for entry in std::fs::read_dir(root.join("tests")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if path.is_dir() {
+            let target = format!("path = \"tests/{name}/main.rs\"");
+            assert!(manifest.contains(&target), "tests/{name}/ is no [[test]]");
+        } else if let Some(module) = name.strip_suffix(".rs") {
+            if module != "integration" {
+                let declared = format!("\nmod {module};\n");
+                assert!(this.contains(&declared), "tests/{name} is no module");
+            }
+        }
+        checked += 1;
+    }
+    assert!(checked > 30, "{checked} entries");
+}
