@@ -2,22 +2,16 @@
 //! resampled from real stone patterns synthesize in 2D (`lazysolid synth`) and in 3D
 //! (`lazysolid solid`), each run printing how the image became the exemplar.
 
+use crate::support::{lazysolid, run};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn lazysolid() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_lazysolid"));
-    c.env_remove("LAZYSOLID_DEVICE")
-        .env("LAZYSOLID_VALIDATION", "1");
-    c
-}
-
-/// Runs `c`; it must succeed. Returns its standard output.
-fn run(c: &mut Command) -> String {
-    let out = c.output().expect("lazysolid runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
-    String::from_utf8_lossy(&out.stdout).into_owned()
+/// [`lazysolid`] with the validation layer on; the run must succeed. Returns its standard
+/// output.
+fn run_validated(c: &mut Command) -> String {
+    let (ok, stdout, stderr) = run(c.env("LAZYSOLID_VALIDATION", "1"));
+    assert!(ok, "{stderr}");
+    stdout
 }
 
 /// A GIMP pattern of the assets as an RGB image (decoded by the library: the `image` crate
@@ -82,12 +76,14 @@ fn synth_takes_both_photos_as_they_are() {
         ),
     ] {
         let out = dir.path().join("out.png");
-        let stdout = run(lazysolid()
-            .arg("synth")
-            .arg(photo)
-            .args(["--res", "40x24", "--energy-samples", "16", "-o"])
-            .arg(&out)
-            .env("LAZYSOLID_CACHE_DIR", cache.path()));
+        let stdout = run_validated(
+            lazysolid()
+                .arg("synth")
+                .arg(photo)
+                .args(["--res", "40x24", "--energy-samples", "16", "-o"])
+                .arg(&out)
+                .env("LAZYSOLID_CACHE_DIR", cache.path()),
+        );
         assert_has(&stdout, line);
         assert_has(&stdout, levels);
         assert_has(&stdout, "cache miss");
@@ -105,23 +101,25 @@ fn solid_fits_both_photos_and_says_how() {
     std::fs::create_dir(&out_dir).unwrap();
     let out = out_dir.join("stone.nrrd");
     let solid = |args: &[&std::ffi::OsStr]| {
-        run(lazysolid()
-            .arg("solid")
-            .args(args)
-            // The smallest cube and one correction pass: the synthesizer itself is tested in
-            // tests/tests/solid.rs.
-            .args([
-                "--voxel-res",
-                "64",
-                "--passes",
-                "1",
-                "--energy-samples",
-                "16",
-            ])
-            .arg("--no-render")
-            .arg("-o")
-            .arg(&out)
-            .env("LAZYSOLID_CACHE_DIR", cache.path()))
+        run_validated(
+            lazysolid()
+                .arg("solid")
+                .args(args)
+                // The smallest cube and one correction pass: the synthesizer itself is tested in
+                // tests/tests/solid.rs.
+                .args([
+                    "--voxel-res",
+                    "64",
+                    "--passes",
+                    "1",
+                    "--energy-samples",
+                    "16",
+                ])
+                .arg("--no-render")
+                .arg("-o")
+                .arg(&out)
+                .env("LAZYSOLID_CACHE_DIR", cache.path()),
+        )
     };
     // By default the two would become 128² exemplars (resampled and cut; the rules are tested
     // in tests/tests/fit.rs), whose candidates take minutes in this build: fitted to 16² here,
