@@ -17,6 +17,7 @@ mod glint_range_query;
 mod hash;
 mod kernel_cache;
 mod lazy;
+mod manifold;
 mod mesh;
 mod multiscale;
 mod normal_maps;

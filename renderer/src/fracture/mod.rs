@@ -11,6 +11,7 @@
 
 mod cap;
 mod error;
+mod manifold;
 mod obj_write;
 mod plane_split;
 mod topology;
@@ -44,6 +45,14 @@ pub struct Fragment {
     /// earlier cuts): non-zero only where the input surface intersects itself, which scans
     /// often do. Reported so a user knows the pieces inherit that self-intersection.
     pub resolved_crossings: usize,
+    /// Vertex copies made so that the piece is a 2-manifold: where sheets of a
+    /// self-intersecting input met at an edge used by four triangles or at a vertex, each
+    /// sheet got its own copy of the vertex (at the same position). Zero on surfaces without
+    /// self-intersections.
+    pub separated_vertices: usize,
+    /// Edges split at their midpoint because two sheets still shared both their ends after
+    /// the vertex copies (each split also adds one vertex).
+    pub split_edges: usize,
 }
 
 impl Fragment {
@@ -55,7 +64,18 @@ impl Fragment {
             triangles: mesh.triangles.clone(),
             interior: vec![false; mesh.triangles.len()],
             resolved_crossings: 0,
+            separated_vertices: 0,
+            split_edges: 0,
         }
+    }
+
+    /// Separates the sheets that meet at an edge or vertex of this piece (see
+    /// [`separated_vertices`](Self::separated_vertices)), replacing the counts with this
+    /// separation's.
+    fn separate_sheets(&mut self) {
+        let s = manifold::separate_sheets(self);
+        self.separated_vertices = s.vertices;
+        self.split_edges = s.edges;
     }
 
     /// Signed volume in f64 (positive for an outward-oriented closed piece); see [`volume`].

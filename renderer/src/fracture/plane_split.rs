@@ -125,10 +125,12 @@ pub fn split_surface(
         match cut(positions, triangles, interior, plane, Keep::Both, source)? {
             Cut::AllBelow => SplitResult::Missed { side: Side::Below },
             Cut::AllAbove => SplitResult::Missed { side: Side::Above },
-            Cut::Split { below, above } => SplitResult::Split {
-                below: below.unwrap_or_default(),
-                above: above.unwrap_or_default(),
-            },
+            Cut::Split { below, above } => {
+                let (mut below, mut above) = (below.unwrap_or_default(), above.unwrap_or_default());
+                below.separate_sheets();
+                above.separate_sheets();
+                SplitResult::Split { below, above }
+            }
         },
     )
 }
@@ -550,6 +552,8 @@ impl Part {
             triangles,
             interior: self.interior,
             resolved_crossings,
+            separated_vertices: 0,
+            split_edges: 0,
         }
     }
 }

@@ -133,12 +133,14 @@ fn cell(
             }
         }
     }
-    Ok(Some(current.unwrap_or_else(|| Fragment {
+    let mut piece = current.unwrap_or_else(|| Fragment {
         positions: mesh.positions.clone(),
         triangles: mesh.triangles.clone(),
         interior: flags.map_or_else(|| vec![false; mesh.triangles.len()], <[bool]>::to_vec),
-        resolved_crossings: 0,
-    })))
+        ..Fragment::default()
+    });
+    piece.separate_sheets();
+    Ok(Some(piece))
 }
 
 /// `n` points uniformly distributed inside the solid, deterministic for a given `seed`:

@@ -2,10 +2,12 @@
 //!
 //! tobj gives each model (each group or material run) its own copy of the vertices it uses,
 //! so a surface split into groups — a fragment's outer and cut faces — would come apart along
-//! the group borders. A vertex of a later model at exactly the position of a vertex of an
-//! earlier one is therefore the same vertex; vertices within one model are kept as written.
-//! With texture coordinates the key is the position and the coordinate together, so a UV seam
-//! stays a seam.
+//! the group borders. So the file is read twice when it has several models: once as written,
+//! which checks it and names the group in errors, and once with its grouping lines (`o`,
+//! `g`, `usemtl`, `mtllib`) made comments, as one model, whose vertices are the file's own
+//! `v` (and `vt`) indices. Vertices are never welded by position: two `v` lines at the same
+//! point stay two vertices, as a fragment's separated sheets need (`fracture::manifold`),
+//! and a corner with two texture coordinates (a UV seam) stays two vertices.
 
 use super::{Mesh, MeshError};
 use glam::{Vec2, Vec3};
@@ -42,6 +44,12 @@ pub(super) fn load(path: &Path) -> Result<Mesh, MeshError> {
             });
         }
     }
+    let with_faces = models.iter().filter(|m| !m.mesh.indices.is_empty()).count();
+    let models = if with_faces > 1 {
+        one_model(path, &options)?
+    } else {
+        models
+    };
     let mut positions: Vec<Vec3> = Vec::new();
     let mut uvs: Vec<Vec2> = Vec::new();
     let mut triangles = Vec::new();
@@ -93,4 +101,31 @@ pub(super) fn load(path: &Path) -> Result<Mesh, MeshError> {
         uvs: has_uvs.then_some(uvs),
         source: path.to_path_buf(),
     })
+}
+
+/// The file read again as one model: its grouping lines turned into comments (keeping the
+/// line count), so that tobj numbers vertices by the file's own indices across groups.
+fn one_model(path: &Path, options: &tobj::LoadOptions) -> Result<Vec<tobj::Model>, MeshError> {
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+        file: path.to_path_buf(),
+        source,
+    })?;
+    let mut text = Vec::with_capacity(bytes.len());
+    for line in bytes.split_inclusive(|&b| b == b'\n') {
+        let word = line
+            .trim_ascii_start()
+            .split(|b| b.is_ascii_whitespace())
+            .next()
+            .unwrap_or_default();
+        if [&b"o"[..], b"g", b"usemtl", b"mtllib"].contains(&word) {
+            text.extend_from_slice(b"#");
+        }
+        text.extend_from_slice(line);
+    }
+    let (models, _) = tobj::load_obj_buf(&mut text.as_slice(), options, |_| Ok(Default::default()))
+        .map_err(|e| MeshError::Obj {
+            file: path.to_path_buf(),
+            problem: e.to_string(),
+        })?;
+    Ok(models)
 }

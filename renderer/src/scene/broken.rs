@@ -88,6 +88,7 @@ pub(super) fn break_instances(
             let spin_share = rng.random_range(0.5..=1.0);
             let centroid = piece.centroid();
             let resolved_crossings = piece.resolved_crossings;
+            let separated_vertices = piece.separated_vertices + piece.split_edges;
             let name = format!("{}#{index}.{k}", meshes[source].name);
             meshes.push(SceneMesh {
                 mesh: Mesh {
@@ -111,6 +112,7 @@ pub(super) fn break_instances(
                     spin_share,
                     contact: None,
                     resolved_crossings,
+                    separated_vertices,
                 }),
                 ..inst
             });

@@ -490,6 +490,10 @@ pub struct Piece {
     /// Crossings of cut segments resolved in the caps that made this piece (where the input
     /// surface intersects itself; 0 for a clean mesh), so that a scene's load can say so.
     pub resolved_crossings: usize,
+    /// Vertex copies and edge splits that separated the sheets of the self-intersecting input
+    /// where they met in this piece ([`Fragment::separated_vertices`](crate::fracture::Fragment::separated_vertices)),
+    /// so that every piece is a 2-manifold.
+    pub separated_vertices: usize,
 }
 
 /// Analytic area lights.

@@ -326,24 +326,31 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
 /// Per broken instance, its pieces and the self-intersections its caps resolved (a scanned
 /// mesh often intersects itself; the cut still closes every piece, and says where it had to).
 fn report_pieces(scene: &Scene) {
-    let mut broken: std::collections::BTreeMap<usize, (usize, usize, &str)> = Default::default();
+    let mut broken: std::collections::BTreeMap<usize, (usize, usize, usize, &str)> =
+        Default::default();
     for inst in &scene.instances {
         if let Some(p) = &inst.piece {
             let name = scene.meshes[inst.mesh].name.as_str();
-            let entry = broken.entry(p.broken).or_insert((0, 0, name));
+            let entry = broken.entry(p.broken).or_insert((0, 0, 0, name));
             entry.0 += 1;
             entry.1 += p.resolved_crossings;
+            entry.2 += p.separated_vertices;
         }
     }
-    for (index, (pieces, crossings, name)) in broken {
+    for (index, (pieces, crossings, separated, name)) in broken {
         let mesh = name.split('#').next().unwrap_or(name);
-        let resolved = if crossings > 0 {
+        let mut resolved = if crossings > 0 {
             format!(
                 "; {crossings} crossing(s) of its self-intersecting surface resolved in the caps"
             )
         } else {
             String::new()
         };
+        if separated > 0 {
+            resolved += &format!(
+                "; its sheets separated where they met ({separated} vertex copies and edge splits)"
+            );
+        }
         eprintln!(
             "[[instance]] {} ({mesh}): broken into {pieces} closed pieces{resolved}",
             index + 1

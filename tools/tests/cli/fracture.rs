@@ -7,10 +7,10 @@ use crate::support::{lazysolid, repo, run};
 /// in their own group and material and volumes that add up to the mesh's; plane cuts report a
 /// plane that misses; open meshes, bad piece counts and bad planes are refused clearly, and
 /// a refused run writes nothing. A self-intersecting scan (the cow) breaks into closed pieces
-/// with the resolved crossings reported.
+/// with the resolved crossings reported and the sheets that met at an edge separated.
 #[test]
 fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
-    use lazysolid_renderer::fracture::{check_closed, volume};
+    use lazysolid_renderer::fracture::{check_closed, edge_report, volume};
     use lazysolid_renderer::mesh::Mesh;
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("pieces");
@@ -63,9 +63,17 @@ fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
         stdout.contains("22 crossing(s) of cut segments resolved"),
         "{stdout}"
     );
+    // Piece 8 of this seed had an edge used by four triangles: its two sheets now have a copy
+    // each of the edge's ends, and the files keep the copies apart.
+    assert!(
+        stdout.contains("separated them with 2 vertex copies and 0 edge splits"),
+        "{stdout}"
+    );
     for i in 0..12 {
         let piece = Mesh::load(cow.join(format!("piece_{i:03}.obj"))).unwrap();
         check_closed(&piece).unwrap();
+        let edges = edge_report(&piece.triangles);
+        assert_eq!(edges.shared_edges, 0, "piece {i}: {edges:?}");
     }
 
     let cut = dir.path().join("cut");

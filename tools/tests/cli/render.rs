@@ -217,6 +217,10 @@ radiance = [0.5, 0.5, 0.5]
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no count in {line}"));
     assert!(crossings > 0, "{line}");
+    assert!(
+        line.ends_with("; its sheets separated where they met (2 vertex copies and edge splits)"),
+        "{line}"
+    );
 }
 
 /// Writes a `width`×`height` grey height map of round bumps to `path`.
