@@ -17,6 +17,7 @@ pub mod accel;
 pub mod assets;
 mod bake;
 pub mod diff;
+pub mod export;
 pub mod fracture;
 pub mod glint;
 pub mod image_texture;

@@ -8,6 +8,7 @@
 
 mod core;
 mod docs;
+mod export;
 mod fit;
 mod fracture;
 mod glint;

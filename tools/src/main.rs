@@ -117,7 +117,7 @@ fn main() {
         Command::Synth(s) => cli::synth::run(&s, &global),
         Command::Multiscale(m) => cli::multiscale::run(&m, &global),
         Command::Zoom(z) => cli::multiscale::run_zoom(&z, &global),
-        Command::Fracture(f) => cli::fracture::run(&f),
+        Command::Fracture(f) => cli::fracture::run(&f, &global),
         Command::Solid(s) => cli::solid::run(&s, &global),
     };
     // Every device is dropped by now, so leak reports are in the logs.

@@ -376,6 +376,11 @@ impl PathTracer {
         self.stores.info()
     }
 
+    /// The baked stores, to read matter from (an export's bake).
+    pub fn scene_stores(&self) -> &SceneStores {
+        &self.stores
+    }
+
     /// The baked stores themselves, to insert texels (new surface) into; refresh them
     /// ([`SceneStores::refresh`]) before the next pass.
     pub fn scene_stores_mut(&mut self) -> &mut SceneStores {

@@ -14,8 +14,9 @@ use crate::shader_constants::{
 use glam::Vec3;
 use lazysolid_compute::gpu::{BufferArg, DeviceRecords, Gpu, GpuBuffer};
 use lazysolid_compute::store::{
-    ColourSource, HashStore, HashStoreParams, InsertUnit, OctreeParams, OctreeStore, PerfectStore,
-    PerfectStoreParams, SparseStore, StoreError, StoreReport, TileTree, TileTreeParams,
+    ColourSource, Filter, HashStore, HashStoreParams, InsertUnit, OctreeParams, OctreeStore,
+    PerfectStore, PerfectStoreParams, SparseStore, StoreError, StoreReport, TileTree,
+    TileTreeParams,
 };
 use lazysolid_compute::voxel::VoxelKeys;
 use lazysolid_synth::solid::lazy::MatterStore;
@@ -170,6 +171,8 @@ pub struct SceneStores {
     stores: Vec<(Matter, StoreRead)>,
     records: DeviceRecords,
     instance_slots: GpuBuffer<u32>,
+    /// `instance_slots` on the host, for readers outside the kernel (the export's bake).
+    slots: Vec<u32>,
     info: Vec<BakedStoreInfo>,
 }
 
@@ -241,6 +244,7 @@ impl SceneStores {
             stores,
             records,
             instance_slots: GpuBuffer::from_slice(gpu, "render instance stores", &slots)?,
+            slots,
             info,
         })
     }
@@ -296,6 +300,56 @@ impl SceneStores {
             ("StoreRecords", self.records.arg()),
             ("InstanceStores", self.instance_slots.arg()),
         ]
+    }
+
+    /// The store slot instance `instance` reads, `None` when its material has no store.
+    #[must_use]
+    pub fn slot_of(&self, instance: usize) -> Option<usize> {
+        self.slots
+            .get(instance)
+            .filter(|&&s| s != NO_STORE)
+            .map(|&s| s as usize)
+    }
+
+    /// The colour the path tracer's `store_albedo` reads from store `slot` at object-space
+    /// surface points with their object-space geometric normals, before it decodes sRGB: the
+    /// filtered colour divided by its weight (the sample lookup's coverage for a store whose
+    /// alpha carries relief), through the same GLSL lookups. `None` where nothing is stored
+    /// (the tracer shows magenta there). How an export bakes the matter into images.
+    ///
+    /// # Errors
+    /// No such slot, or a device failure.
+    pub fn albedo_srgb(
+        &self,
+        slot: usize,
+        points: &[Vec3],
+        normals: &[Vec3],
+    ) -> Result<Vec<Option<Vec3>>, RenderError> {
+        let (matter, read) = self
+            .stores
+            .get(slot)
+            .ok_or_else(|| RenderError::Settings(format!("no store in slot {slot}")))?;
+        let store = matter.store();
+        let failed = |e: StoreError| RenderError::Settings(format!("store lookup: {e}"));
+        if read.relief > 0.0 {
+            let samples =
+                with_store!(store, s => s.sample_lookup(points, normals)).map_err(failed)?;
+            Ok(samples
+                .iter()
+                .map(|s| (s.coverage > 0.0).then(|| s.sum.truncate() / s.coverage))
+                .collect())
+        } else {
+            let filter = match read.filter {
+                StoreFilter::Nearest => Filter::Nearest,
+                StoreFilter::Trilinear => Filter::Trilinear,
+            };
+            let colours = with_store!(store, s => s.lookup_with_normals(points, normals, filter))
+                .map_err(failed)?;
+            Ok(colours
+                .iter()
+                .map(|c| (c.w > 0.0).then(|| c.truncate() / c.w))
+                .collect())
+        }
     }
 
     /// What was baked.

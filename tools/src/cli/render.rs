@@ -8,6 +8,7 @@ use anyhow::{bail, ensure, Context};
 use clap::{Args, ValueEnum};
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressStyle};
+use lazysolid_renderer::export::{export_broken, ExportOptions};
 use lazysolid_renderer::output::{
     preview_frame, write_exr, write_gif, write_png, Operator, ToneMap,
 };
@@ -77,6 +78,19 @@ pub struct RenderArgs {
     /// Vertical field of view in degrees, in (0, 180), overriding the scene's.
     #[arg(long, value_name = "DEG")]
     pub fov: Option<f32>,
+    /// Export every cut or fractured instance with its matter into DIR (created if missing):
+    /// `<mesh>.glb` (a node per piece, its baked atlas as base colour, the explosion as
+    /// animation) and `<mesh>/piece_NNN.obj` + `.mtl` + `.png` (docs/fracture.md, "Export").
+    #[arg(long, value_name = "DIR")]
+    pub export: Option<PathBuf>,
+    /// Texel density of the exported atlases, texels per unit of the mesh's unit cube
+    /// (default: the store's resolution, one texel per voxel).
+    #[arg(long, value_name = "TEXELS", requires = "export")]
+    pub export_density: Option<f32>,
+    /// Mip levels the exported atlases must not bleed through: charts get 2^K texels of
+    /// padding filled with their border colours.
+    #[arg(long, value_name = "K", default_value_t = 3, requires = "export")]
+    pub export_mips: u32,
 }
 
 fn parse_point(value: &str) -> Result<Vec3, String> {
@@ -212,6 +226,9 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
     report_maps(&scene);
     report_stores(&tracer);
     eprintln!("prepared in {:.2} s", prepare.as_secs_f64());
+    if let Some(dir) = &args.export {
+        export(&scene, &tracer, dir, args)?;
+    }
     let tone_map = ToneMap {
         exposure_ev: args.exposure,
         operator: match args.tonemap {
@@ -320,6 +337,50 @@ pub fn run(args: &RenderArgs, global: &GlobalArgs) -> anyhow::Result<()> {
         );
         println!("animation: {}", args.output.with_extension("gif").display());
     }
+    Ok(())
+}
+
+/// `--export`: the broken instances with their matter, and what was written.
+fn export(
+    scene: &Scene,
+    tracer: &PathTracer,
+    dir: &std::path::Path,
+    args: &RenderArgs,
+) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let options = ExportOptions {
+        texels_per_unit: args.export_density,
+        mip_levels: args.export_mips,
+    };
+    let objects = export_broken(scene, tracer.scene_stores(), dir, &options)?;
+    ensure!(
+        !objects.is_empty(),
+        "--export {}: the scene breaks no instance ([[cut]] or [[fracture]]), so there is nothing to export",
+        dir.display()
+    );
+    for o in &objects {
+        let texels: usize = o.pieces.iter().map(|p| p.atlas.covered).sum();
+        let holes: usize = o.pieces.iter().map(|p| p.atlas.holes).sum();
+        let charts: u32 = o.pieces.iter().map(|p| p.atlas.charts).sum();
+        let animation = if o.times > 1 {
+            format!(", explosion animated over {} frames", o.times)
+        } else {
+            String::new()
+        };
+        eprintln!(
+            "export: {} ({} pieces{animation}; atlases at {} texels per unit, padding {} texels, {charts} charts, {texels} texels of matter{})",
+            o.glb.display(),
+            o.pieces.len(),
+            o.texels_per_unit,
+            o.padding,
+            if holes > 0 { format!(", {holes} with no stored matter (magenta)") } else { String::new() },
+        );
+        eprintln!(
+            "export: {}/piece_*.obj with .mtl and .png (map_Kd)",
+            dir.join(&o.name).display()
+        );
+    }
+    eprintln!("exported in {:.2} s", start.elapsed().as_secs_f64());
     Ok(())
 }
 

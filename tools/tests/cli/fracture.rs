@@ -123,3 +123,47 @@ fn fracture_writes_closed_obj_pieces_and_refuses_bad_input() {
         assert!(!refused.exists(), "{args:?} wrote {}", refused.display());
     }
 }
+
+/// `--matter` exports the pieces with their matter where the OBJ pieces go: a glTF binary and
+/// OBJ + atlas per piece, in the mesh's own coordinates (the exported pieces' volumes add up
+/// to the mesh's), with the bake's figures printed.
+#[test]
+fn fracture_exports_pieces_with_their_matter() {
+    use lazysolid_renderer::fracture::volume;
+    use lazysolid_renderer::mesh::Mesh;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("pieces");
+    let (ok, stdout, err) = run(lazysolid()
+        .args([
+            "fracture",
+            "elephant",
+            "--pieces",
+            "4",
+            "--seed",
+            "2",
+            "--matter",
+            "leather",
+            "--matter-res",
+            "16",
+            "--out-dir",
+        ])
+        .arg(&out));
+    assert!(ok, "{err}");
+    assert!(
+        stdout.contains("matter: leather at R = 16 baked in"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("(4 pieces, 16 texels per unit"), "{stdout}");
+    let glb = std::fs::read(out.join("elephant.glb")).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    let whole = Mesh::load(repo("assets/meshes/elephant.off")).unwrap();
+    let mut sum = 0.0;
+    for i in 0..4 {
+        let piece = Mesh::load(out.join(format!("elephant/piece_{i:03}.obj"))).unwrap();
+        assert!(piece.uvs.is_some(), "piece {i} has texture coordinates");
+        assert!(out.join(format!("elephant/piece_{i:03}.png")).exists());
+        sum += volume(&piece.positions, &piece.triangles);
+    }
+    let v = volume(&whole.positions, &whole.triangles);
+    assert!(((sum - v) / v).abs() < 1e-4, "{sum} vs {v}");
+}
