@@ -8,7 +8,7 @@ set -euo pipefail
 version="2.0.0-dev.3.10"
 dir="${XDG_CACHE_HOME:-$HOME/.cache}/lazysolid/gltf-validator-${version}"
 if [ ! -f "$dir/node_modules/gltf-validator/package.json" ]; then
-  command -v npm >/dev/null || { echo "gltf-validate: npm not found (bash scripts/install-deps.sh installs it)" >&2; exit 1; }
+  command -v npm >/dev/null || { echo "gltf-validate: npm not found (bash scripts/install-deps.sh --tests installs it)" >&2; exit 1; }
   mkdir -p "$dir"
   npm install --silent --no-audit --no-fund --prefix "$dir" "gltf-validator@${version}" >/dev/null
 fi

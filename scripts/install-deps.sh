@@ -4,9 +4,10 @@
 #   lavapipe (Mesa's CPU Vulkan driver), the Vulkan loader and the Khronos validation layer;
 #   shaderc, glslang and SPIRV-Tools with their static archives (Debian's libshaderc.so cannot be
 #   linked, so build.rs links libshaderc_combined.a with the static glslang/SPIRV-Tools ones).
-#   blender (3.4, with python3-numpy for its glTF importer) and Node with npm: the export tests
-#   open lazysolid's glTF files in Blender and run the Khronos glTF validator on them, which
-#   this script installs into the user's cache (scripts/gltf-validate.sh --install).
+#   With --tests (scripts/test.sh), also what the tests check exports with: blender (3.4, with
+#   python3-numpy for its glTF importer) and Node with npm, and the Khronos glTF validator,
+#   installed into the user's cache (scripts/gltf-validate.sh --install). The main job needs
+#   none of them.
 #
 # LAZYSOLID_MESA=backports installs lavapipe from bookworm-backports (Mesa 25) instead of
 # bookworm's Mesa 22: about 2x faster on lazysolid's kernels (docs/compute-core.md), but it also
@@ -17,11 +18,19 @@ packages=(
   mesa-vulkan-drivers libvulkan1 libvulkan-dev vulkan-tools vulkan-validationlayers
   libshaderc-dev glslang-dev glslang-tools spirv-tools
   build-essential pkg-config git ca-certificates xz-utils fonts-dejavu-core
-  blender python3-numpy
 )
-# Node 18 from Debian where no node is on the PATH (a newer one, if present, is kept).
-command -v node >/dev/null || packages+=(nodejs)
-command -v npm >/dev/null || packages+=(npm)
+tests=false
+case "${1:-}" in
+  --tests) tests=true ;;
+  "") ;;
+  *) echo "install-deps: unknown option $1 (only --tests)" >&2; exit 1 ;;
+esac
+if $tests; then
+  packages+=(blender python3-numpy)
+  # Node 18 from Debian where no node is on the PATH (a newer one, if present, is kept).
+  command -v node >/dev/null || packages+=(nodejs)
+  command -v npm >/dev/null || packages+=(npm)
+fi
 
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then
@@ -52,7 +61,9 @@ elif [ -n "${LAZYSOLID_MESA:-}" ]; then
   exit 1
 fi
 
-bash "$(dirname "$0")/gltf-validate.sh" --install
+if $tests; then
+  bash "$(dirname "$0")/gltf-validate.sh" --install
+fi
 
 if ! command -v cargo >/dev/null; then
   echo "install-deps: cargo not found; lazysolid needs Rust 1.85 or newer (rustup.rs)" >&2

@@ -11,7 +11,7 @@ step() {
   "$@"
   echo "test.sh: ${name} took $((SECONDS - start)) s (${SECONDS} s so far)"
 }
-step "install" bash scripts/install-deps.sh
+step "install" bash scripts/install-deps.sh --tests
 step "assets" bash scripts/fetch-assets.sh
 export LAZYSOLID_VALIDATION=1
 step "fmt" cargo fmt --all -- --check

@@ -325,7 +325,7 @@ fn repo(path: &str) -> PathBuf {
 /// with how to install it.
 fn run(command: &mut std::process::Command) -> String {
     let out = command.output().unwrap_or_else(|e| {
-        panic!("{command:?}: {e} (bash scripts/install-deps.sh installs blender, node and the validator)")
+        panic!("{command:?}: {e} (bash scripts/install-deps.sh --tests installs blender, node and the validator)")
     });
     let text = format!(
         "{}{}",
