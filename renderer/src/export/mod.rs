@@ -101,6 +101,26 @@ pub struct ExportedObject {
     pub pieces: Vec<ExportedPiece>,
 }
 
+impl ExportedObject {
+    /// Texels of matter over all pieces (centres on a triangle), for messages.
+    #[must_use]
+    pub fn covered(&self) -> usize {
+        self.pieces.iter().map(|p| p.atlas.covered).sum()
+    }
+
+    /// Covered texels with no stored matter over all pieces (painted magenta).
+    #[must_use]
+    pub fn holes(&self) -> usize {
+        self.pieces.iter().map(|p| p.atlas.holes).sum()
+    }
+
+    /// Charts over all pieces' atlases.
+    #[must_use]
+    pub fn charts(&self) -> u32 {
+        self.pieces.iter().map(|p| p.atlas.charts).sum()
+    }
+}
+
 /// Exports every broken instance of `scene` into `dir` (created if missing): `<mesh>.glb` and
 /// a folder `<mesh>/` (`<mesh>_instanceN` for a further broken instance of the same mesh) with `piece_NNN.obj`, `.mtl` and `.png` per piece, baked from
 /// `stores` (the stores the scene's path tracer reads). Returns what was written; an

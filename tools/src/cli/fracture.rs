@@ -215,8 +215,7 @@ fn export_matter(
     };
     let objects = export_broken(&scene, tracer.scene_stores(), &args.out_dir, &options)?;
     for o in &objects {
-        let texels: usize = o.pieces.iter().map(|p| p.atlas.covered).sum();
-        let holes: usize = o.pieces.iter().map(|p| p.atlas.holes).sum();
+        let (texels, holes) = (o.covered(), o.holes());
         println!(
             "matter: {exemplar} at R = {} baked in {baked:.1} s; wrote {} ({} pieces, {} texels per unit, padding {} texels, {texels} texels of matter{}) and {}/piece_*.obj + .mtl + .png",
             args.matter_res,

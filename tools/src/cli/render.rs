@@ -359,9 +359,7 @@ fn export(
         dir.display()
     );
     for o in &objects {
-        let texels: usize = o.pieces.iter().map(|p| p.atlas.covered).sum();
-        let holes: usize = o.pieces.iter().map(|p| p.atlas.holes).sum();
-        let charts: u32 = o.pieces.iter().map(|p| p.atlas.charts).sum();
+        let (texels, holes, charts) = (o.covered(), o.holes(), o.charts());
         let animation = if o.times > 1 {
             format!(", explosion animated over {} frames", o.times)
         } else {
