@@ -1,4 +1,4 @@
-//! Compiles the kernels this crate owns (`glsl/{prims,hash,store,voxel}/*.comp`) into
+//! Compiles the kernels this crate owns (`glsl/{prims,hash,store,voxel,ctree}/*.comp`) into
 //! `kernels.rs` (see the `lazysolid-shader-build` crate). A GLSL error fails the build with the
 //! file and line. The synthesizer's kernels (`glsl/synth/`) are compiled by `lazysolid-synth`,
 //! the renderer's (`glsl/render/`) by the renderer.
@@ -10,7 +10,7 @@ fn main() {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").unwrap());
     let set = KernelSet {
         glsl_root: manifest.join("../glsl"),
-        folders: ["prims", "hash", "store", "voxel"]
+        folders: ["prims", "hash", "store", "voxel", "ctree"]
             .map(String::from)
             .to_vec(),
         constants: vec![manifest.join("src/shader_constants.rs")],

@@ -6,6 +6,7 @@
 //! Every GPU kernel has a plain-Rust reference next to it; tests compare the two.
 
 pub mod atomic_file;
+pub mod ctree;
 pub mod gpu;
 pub mod hash;
 pub mod host_memory;

@@ -2,10 +2,11 @@
 //! each pair against the reflected GLSL (a kernel with a push block that is missing here fails
 //! it too). The synthesizer's and the renderer's kernels are registered by their crates.
 
+use crate::ctree::{builder as ctree_builder, device as ctree_device};
 use crate::gpu::{PushBlock, PushRegistration};
 use crate::hash::perfect::{blocked, gpu as perfect};
 use crate::hash::{cuckoo, dense, open_addressing, robin_hood, validate};
-use crate::kernels::{hash, prims, store, voxel};
+use crate::kernels::{ctree, hash, prims, store, voxel};
 use crate::prims::push as prims_push;
 use crate::prims::segments;
 use crate::store::{colours, hash_store, octree, perfect_store, tiletree};
@@ -65,6 +66,19 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<tiletree::gpu::LookupPush>(&store::TILETREE_LOOKUP),
         of::<tiletree::gpu::FillPush>(&store::TILETREE_SCATTER),
         of::<tiletree::gpu::FillPush>(&store::TILETREE_TEXELS),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_BLOCKS),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_CHILDREN),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_FLAGS),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_INTERNAL),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_KEYS),
+        of::<ctree_device::LookupPush>(&ctree::CTREE_LOOKUP),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_MIP),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_PADS),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_PICK),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_PLACE),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_QUANTIZE),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_RESIDUALS),
+        of::<ctree_builder::BuildPush>(&ctree::CTREE_SIZES),
         of::<voxel_gpu::ColumnsPush>(&voxel::COLUMNS),
         of::<voxel_gpu::DilatePush>(&voxel::DILATE),
         of::<voxel_gpu::HitsPush>(&voxel::HITS),

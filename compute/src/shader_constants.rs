@@ -122,3 +122,49 @@ pub const KEY_SET_DIFFERENCE: u32 = 1;
 /// bilinear) sum, then (coverage, gradient of alpha). A high bit, so the octree's MIP modes
 /// (2 + depth) stay free.
 pub const STORE_LOOKUP_SAMPLE: u32 = 2147483648;
+
+/// Fractional bits of a compressed tree's values (`ctree`): 1/64 of a grey level.
+pub const CTREE_VALUE_FRAC_BITS: u32 = 6;
+/// Fractional bits of a compressed-tree lookup position, in finest lattice spacings.
+pub const CTREE_POS_FRAC_BITS: u32 = 8;
+/// Fractional bits of a compressed-tree interpolation weight within a cell.
+pub const CTREE_WEIGHT_BITS: u32 = 12;
+/// Fractional bits of a compressed-tree level of detail.
+pub const CTREE_LOD_FRAC_BITS: u32 = 8;
+/// A compressed tree's indirection entry (or record address) for no subtree.
+pub const CTREE_NO_SUBTREE: u32 = 4294967295;
+/// Largest scaled offset of a compressed tree's pointer byte (7 bits).
+pub const CTREE_MAX_OFFSET: u32 = 127;
+/// Largest code magnitude of a compressed tree's residual (7 bits, kept symmetric).
+pub const CTREE_MAX_CODE: u32 = 63;
+/// Device addresses per level in the compressed-tree builder's level table: values, codes,
+/// internal flags, block sizes, record addresses, records in preorder, the record count.
+pub const CTREE_TABLE_WORDS: u32 = 7;
+/// See [`CTREE_TABLE_WORDS`]: the level's reconstructed values (int).
+pub const CTREE_TABLE_VALUES: u32 = 0;
+/// See [`CTREE_TABLE_WORDS`]: the level's codes (int; residuals before quantization).
+pub const CTREE_TABLE_CODES: u32 = 1;
+/// See [`CTREE_TABLE_WORDS`]: 1 where a node has a live child.
+pub const CTREE_TABLE_INTERNAL: u32 = 2;
+/// See [`CTREE_TABLE_WORDS`]: block sizes (0 for nodes that are not internal).
+pub const CTREE_TABLE_BLOCKS: u32 = 3;
+/// See [`CTREE_TABLE_WORDS`]: byte addresses of the records ([`CTREE_NO_SUBTREE`] for none).
+pub const CTREE_TABLE_ADDRESSES: u32 = 4;
+/// See [`CTREE_TABLE_WORDS`]: the dense indices of the internal nodes in preorder.
+pub const CTREE_TABLE_RECORDS: u32 = 5;
+/// See [`CTREE_TABLE_WORDS`]: the word holding the record count.
+pub const CTREE_TABLE_COUNT: u32 = 6;
+/// uint64 statistics per level of the compressed-tree builder.
+pub const CTREE_STATS_WORDS: u32 = 8;
+/// See [`CTREE_STATS_WORDS`]: the largest residual magnitude.
+pub const CTREE_STAT_MAX_RESIDUAL: u32 = 0;
+/// See [`CTREE_STATS_WORDS`]: the level's step.
+pub const CTREE_STAT_STEP: u32 = 1;
+/// See [`CTREE_STATS_WORDS`]: the largest unpadded child offset, y_max.
+pub const CTREE_STAT_MAX_OFFSET: u32 = 2;
+/// See [`CTREE_STATS_WORDS`]: the best (padding << 32 | scale) of the scale search.
+pub const CTREE_STAT_BEST: u32 = 3;
+/// See [`CTREE_STATS_WORDS`]: the sum of the level's block sizes.
+pub const CTREE_STAT_BLOCKS: u32 = 4;
+/// Added to a candidate scale's padding total when one of its offsets does not fit 7 bits.
+pub const CTREE_INFEASIBLE_SHIFT: u32 = 40;

@@ -7,6 +7,7 @@
 //! measures the whole process.
 
 mod core;
+mod ctree;
 mod docs;
 mod export;
 mod fit;
