@@ -2,7 +2,7 @@
 # Everything lazysolid measures, in one run on the first non-CPU Vulkan device: `device`, the
 # test subset (scripts/test-subset.sh) and every bench suite at the sizes the papers use, each
 # under a time limit, all results under one folder. Written for a GPU lent for minutes: the
-# limits add up to 10 minutes; a suite over its limit is stopped and the run goes on. See
+# limits add up to 10 min 40 s; a suite over its limit is stopped and the run goes on. See
 # docs/gpu.md.
 #
 #   bash scripts/gpu-bench.sh [--quick] [--bin PATH] [--out-dir DIR] [--device NAME|INDEX]
@@ -15,7 +15,8 @@
 #   --out-dir DIR    results folder [results/gpu-bench-<UTC time>]
 #   --device D       device name part or index [the first non-CPU device]
 #   --suites LIST    comma-separated steps of: device, tests, prims, hash, psh, textures,
-#                    solid, lazy, cuts, trace, synth, glints, multiscale, normalmaps [all]
+#                    solid, lazy, cuts, trace, synth, glints, multiscale, normalmaps, ctree
+#                    [all]
 #   --skip-tests     leave out the test subset (CI runs it separately)
 #   --check-args     run nothing: check that every suite's quick and full options parse
 #                    (`lazysolid bench SUITE OPTIONS --help` fails on any that does not), in
@@ -26,13 +27,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-SUITES=(prims hash psh textures solid lazy cuts trace synth glints multiscale normalmaps)
+SUITES=(prims hash psh textures solid lazy cuts trace synth glints multiscale normalmaps ctree)
 # Seconds per step in the full run: each suite's lavapipe time scaled by the thesis' GPU
 # speed-ups, plus its CPU baselines, which no GPU speeds up (docs/gpu.md has the estimate per
-# suite). They sum to 600 s.
+# suite). They sum to 640 s.
 declare -A LIMIT=(
   [device]=10 [tests]=70 [prims]=25 [hash]=55 [psh]=40 [textures]=50 [solid]=60 [lazy]=90
-  [cuts]=30 [trace]=15 [synth]=90 [glints]=30 [multiscale]=20 [normalmaps]=15
+  [cuts]=30 [trace]=15 [synth]=90 [glints]=30 [multiscale]=20 [normalmaps]=15 [ctree]=40
 )
 # Seconds per suite in the quick run: only a guard against a hang (the quick run takes about
 # 5 minutes on lavapipe with 2 cores, the debug build and validation; the tests 30 minutes).
@@ -52,6 +53,7 @@ declare -A FULL=(
   [glints]="--res 128,256,512"
   [multiscale]="--res 256"
   [normalmaps]="--res 320x240 --spp 1,4,16 --reference-spp 256 --fit-sizes 128,256,512"
+  [ctree]="--size 1024 --volume 256 --lookups 16777216"
 )
 # The quick run: each suite's smallest meaningful case, one run, no warm-up. Exemplar analysis
 # and candidate precompute grow with the exemplar, so lazy and cuts take a 16² exemplar
@@ -70,6 +72,7 @@ declare -A QUICK=(
   [glints]="--quick --res 32 --queries 500 --coverage 512 --render-res 32x24 --spp 1"
   [multiscale]="--graphs @TERRA_LOOP@ --res 64 --deeper 1 --quality-res 32 --energy-samples 64"
   [normalmaps]="--res 32x24 --spp 1 --reference-spp 4 --fit-sizes 16 --lobes 4"
+  [ctree]="--quick --lookups 65536"
 )
 
 usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; }

@@ -2,7 +2,7 @@
 //! each pair against the reflected GLSL (a kernel with a push block that is missing here fails
 //! it too). The synthesizer's and the renderer's kernels are registered by their crates.
 
-use crate::ctree::{builder as ctree_builder, device as ctree_device};
+use crate::ctree::{builder as ctree_builder, device as ctree_device, mip_texture};
 use crate::gpu::{PushBlock, PushRegistration};
 use crate::hash::perfect::{blocked, gpu as perfect};
 use crate::hash::{cuckoo, dense, open_addressing, robin_hood, validate};
@@ -79,6 +79,7 @@ pub fn push_registry() -> Vec<PushRegistration> {
         of::<ctree_builder::BuildPush>(&ctree::CTREE_QUANTIZE),
         of::<ctree_builder::BuildPush>(&ctree::CTREE_RESIDUALS),
         of::<ctree_builder::BuildPush>(&ctree::CTREE_SIZES),
+        of::<mip_texture::MipLookupPush>(&ctree::MIP_LOOKUP),
         of::<voxel_gpu::ColumnsPush>(&voxel::COLUMNS),
         of::<voxel_gpu::DilatePush>(&voxel::DILATE),
         of::<voxel_gpu::HitsPush>(&voxel::HITS),

@@ -168,3 +168,7 @@ pub const CTREE_STAT_BEST: u32 = 3;
 pub const CTREE_STAT_BLOCKS: u32 = 4;
 /// Added to a candidate scale's padding total when one of its offsets does not fit 7 bits.
 pub const CTREE_INFEASIBLE_SHIFT: u32 = 40;
+/// `ctree::Border::Anchored` in the builder's push block.
+pub const CTREE_BORDER_ANCHORED: u32 = 0;
+/// `ctree::Border::Free` in the builder's push block.
+pub const CTREE_BORDER_FREE: u32 = 1;

@@ -18,6 +18,6 @@ void main() {
     }
     int t = ct_codes(l).v[i];
     int code = t >= 0 ? (2 * t + s) / (2 * s) : -((-2 * t + s) / (2 * s));
-    ct_values(l).v[i] = ct_target(l, ct_coords(l, i)) - t + code * s;
+    ct_values(l).v[i] += code * s;
     ct_codes(l).v[i] = code;
 }

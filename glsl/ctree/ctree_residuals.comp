@@ -1,7 +1,8 @@
 #version 460
 // Compressed-tree build, level pc.level, one invocation per lattice node: the residual of the
 // field against the primal prediction from the level above (residuals::predict), kept in the
-// level's codes until ctree_quantize, and its magnitude into the level's maximum.
+// level's codes until ctree_quantize (the prediction in its values), and its magnitude into the
+// level's maximum; 0 for nodes past the samples that code nothing (ctree::Border).
 #include "common.glsl"
 #include "ctree/build.glsl"
 
@@ -36,6 +37,12 @@ void main() {
             }
         }
         prediction = sum >> odd;
+    }
+    ct_values(l).v[i] = prediction;
+    // Nodes past the samples (or past the anchors) code nothing (residuals::Residuals::build).
+    if (!ct_codes_residual(l, q)) {
+        ct_codes(l).v[i] = 0;
+        return;
     }
     int t = ct_target(l, q) - prediction;
     ct_codes(l).v[i] = t;

@@ -48,6 +48,9 @@ pub const TEXTURE_IMAGE: u32 = 4;
 pub const IMAGE_ENCODING_SRGB: u32 = 0;
 /// A tangent-space normal map, xyz = 2·rgb − 1.
 pub const IMAGE_ENCODING_NORMAL: u32 = 1;
+/// An sRGB colour image read through three compressed random-access trees (Y, Co, Cg;
+/// `lazysolid_compute::ctree`) instead of its MIP pyramid.
+pub const IMAGE_ENCODING_CTREE: u32 = 2;
 /// Most taps of an anisotropic image lookup along its footprint's long axis: beyond it the
 /// level rises instead (the footprint is blurred along its short axis).
 pub const IMAGE_MAX_ANISOTROPY: u32 = 8;

@@ -1,8 +1,11 @@
 //! Texture coordinates from mesh files to the path tracer: OBJ `vt` kept through the loader and
-//! the BVH, MikkTSpace tangents, the image lookup (GPU against its CPU twin), albedo images the
+//! the BVH, MikkTSpace tangents, the image lookup (GPU against its CPU twin, through the MIP
+//! pyramid and through compressed trees), albedo images the
 //! right way up, and normal maps bending the shading normal along the mesh's tangent frame.
 
 use glam::{Vec2, Vec3, Vec4};
+use lazysolid_compute::ctree::colour::ColourTrees;
+use lazysolid_compute::ctree::CtreeOptions;
 use lazysolid_compute::gpu::GpuBuffer;
 use lazysolid_renderer::accel::{corner_normals, corner_tangents};
 use lazysolid_renderer::glint::NormalExample;
@@ -14,6 +17,7 @@ use lazysolid_tests::kernels::render_test::IMAGE_TEST;
 use lazysolid_tests::{render_scene_text, with_gpu, ImageTestPush};
 use rand::{Rng, SeedableRng};
 use std::path::Path;
+use std::sync::Arc;
 
 /// A unit quad in the xy-plane facing +z whose texture coordinates run (u, v) = (x, y).
 const QUAD_OBJ: &str = "\
@@ -111,6 +115,17 @@ fn the_image_lookup_on_the_device_matches_its_cpu_twin() {
     for image in &images {
         set.add(image).unwrap();
     }
+    // The colour image again, read through its compressed trees.
+    let rgb: Vec<u8> = images[0].levels[0]
+        .iter()
+        .flat_map(|&t| [t as u8, (t >> 8) as u8, (t >> 16) as u8])
+        .collect();
+    let options = CtreeOptions {
+        step: 2.0,
+        ..Default::default()
+    };
+    let trees = Arc::new(ColourTrees::build("odd.png", &rgb, 37, 23, &options).unwrap());
+    let coded = set.add_ctree(&images[0], &trees);
     let mut r = rand_pcg::Pcg64::seed_from_u64(7);
     let queries: Vec<[Vec2; 3]> = (0..2000)
         .map(|i| {
@@ -133,7 +148,7 @@ fn the_image_lookup_on_the_device_matches_its_cpu_twin() {
         let kernel = gpu.kernel(&IMAGE_TEST).unwrap();
         let flat: Vec<[f32; 2]> = queries.iter().flatten().map(|v| v.to_array()).collect();
         let input = GpuBuffer::from_slice(gpu, "image queries", &flat).unwrap();
-        for (index, image) in images.iter().enumerate() {
+        for (index, image) in images.iter().chain([&images[0]]).enumerate() {
             let output = GpuBuffer::<[f32; 4]>::new(gpu, "image results", queries.len()).unwrap();
             let push = ImageTestPush {
                 queries: input.address(),
@@ -153,7 +168,11 @@ fn the_image_lookup_on_the_device_matches_its_cpu_twin() {
             let got = output.read().unwrap();
             let mut worst = 0.0f32;
             for (q, g) in queries.iter().zip(&got) {
-                let want = sample::lookup(image, q[0], q[1], q[2]);
+                let want = if index as u32 == coded {
+                    sample::lookup_ctree(image, &trees, q[0], q[1], q[2])
+                } else {
+                    sample::lookup(image, q[0], q[1], q[2])
+                };
                 let err = (Vec4::from_array(*g) - want).abs().max_element();
                 worst = worst.max(err);
             }

@@ -1,25 +1,30 @@
 //! The compressed tree built on the device from the project's primitives, producing the same
-//! bytes as the CPU build ([`CompressedTree::build`]): per level coarse to fine, the residuals
-//! and their maximum (one atomic), the level's step and codes; finest first, the internal
-//! flags; per level, the preorder by a radix sort of the preorder keys and the records by a
-//! compaction of the internal flags in that order. The packing goes fine to coarse, a level at a
-//! time: y_max (one atomic), then every (candidate scale, record) pair's padding summed per
-//! candidate and the least-padding scale picked by a 64-bit atomicMin, then the block sizes. The
-//! forest level F follows from the blocks' sums; level F's records are placed by an exclusive
-//! scan of their blocks, and each deeper level by its parents, every record writing its bytes.
+//! bytes as the CPU build ([`CompressedTree::build`](super::CompressedTree::build)).
+//!
+//! - Per level, coarse to fine: the residuals and their maximum (one atomic), then the level's
+//!   step and codes.
+//! - Finest first: the internal flags.
+//! - Per level: the preorder by a radix sort of the preorder keys, and the records by a
+//!   compaction of the internal flags in that order.
+//! - The packing, fine to coarse, a level at a time: y_max (one atomic); every (candidate
+//!   scale, record) pair's padding summed per candidate, and the least-padding scale picked by
+//!   a 64-bit atomicMin; the block sizes.
+//! - The forest level F from the blocks' sums; level F's records placed by an exclusive scan of
+//!   their blocks, each deeper level by its parents, every record writing its bytes.
+//!
 //! The host reads back small counts only: the records per level, each level's y_max (which
 //! sizes the candidate search), and the sums that choose F and size the byte buffer.
 
 use super::device::DeviceTree;
 use super::error::CtreeError;
 use super::field::{to_fixed, ScalarField};
-use super::tree::{forest_bytes, header_bytes, CtreeOptions};
+use super::tree::{forest_bytes, header_bytes, Border, CtreeOptions};
 use crate::gpu::{DeviceAddress, DeviceRecords, Gpu, GpuBuffer, GpuError, GpuResult, Kernel};
 use crate::kernels::ctree as k;
 use crate::prims::{CompactOutput, Compactor, Keep, RadixSort, Scan};
 use crate::shader_constants::{
-    CTREE_NO_SUBTREE, CTREE_STATS_WORDS, CTREE_STAT_BEST, CTREE_STAT_BLOCKS, CTREE_STAT_MAX_OFFSET,
-    CTREE_STAT_STEP,
+    CTREE_BORDER_ANCHORED, CTREE_BORDER_FREE, CTREE_NO_SUBTREE, CTREE_STATS_WORDS, CTREE_STAT_BEST,
+    CTREE_STAT_BLOCKS, CTREE_STAT_MAX_OFFSET, CTREE_STAT_STEP,
 };
 use glam::UVec3;
 use std::sync::Arc;
@@ -57,6 +62,7 @@ crate::push_block! {
         records: u32,
         candidates: u32,
         forest: u32,
+        border: u32,
     }
 }
 
@@ -139,7 +145,7 @@ impl CtreeBuilder {
         options: &CtreeOptions,
     ) -> Result<(DeviceTree, DeviceBuildReport), CtreeError> {
         let step = options.validate(field)?;
-        self.build_checked(field, step, options.forest)
+        self.build_checked(field, step, options)
             .map_err(|e| CtreeError::Device(e.to_string()))
     }
 
@@ -147,8 +153,9 @@ impl CtreeBuilder {
         &mut self,
         field: &ScalarField,
         step: i32,
-        forest: Option<u32>,
+        options: &CtreeOptions,
     ) -> GpuResult<(DeviceTree, DeviceBuildReport)> {
+        let forest = options.forest;
         let gpu = self.gpu.clone();
         let lat = field.lattice();
         let finest = lat.finest();
@@ -205,6 +212,10 @@ impl CtreeBuilder {
             dims: lat.dims,
             n: lat.n,
             step: step as u32,
+            border: match options.border {
+                Border::Anchored => CTREE_BORDER_ANCHORED,
+                Border::Free => CTREE_BORDER_FREE,
+            },
             ..Default::default()
         };
         let kernels = &self.kernels;

@@ -226,6 +226,22 @@ impl DeviceTree {
         results.read_range(0, n)
     }
 
+    /// A `ctree_sample` lookup at each (uv, lod) kept on the device, run and timed as often as
+    /// a benchmark needs (one dispatch between two timestamps).
+    pub fn timed_sample(&self, queries: &[Vec4]) -> GpuResult<TimedCtreeLookup<'_>> {
+        let flat: Vec<u32> = queries
+            .iter()
+            .flat_map(|q| q.to_array().map(f32::to_bits))
+            .collect();
+        Ok(TimedCtreeLookup {
+            tree: self,
+            points: GpuBuffer::from_slice(&self.gpu, "ctree timed points", &flat)?,
+            results: GpuBuffer::zeroed(&self.gpu, "ctree timed results", queries.len().max(1))?,
+            n: queries.len(),
+            kernel: self.gpu.kernel(&kernels::CTREE_LOOKUP)?,
+        })
+    }
+
     /// `ctree_lookup_fixed` at each (position, lod) in fixed point.
     pub fn lookup_fixed(&self, queries: &[UVec4]) -> GpuResult<Vec<i32>> {
         let flat: Vec<u32> = queries.iter().flat_map(|q| q.to_array()).collect();
@@ -246,6 +262,49 @@ impl DeviceTree {
         let points = GpuBuffer::from_slice(&self.gpu, "ctree sample points", &flat)?;
         Ok(self
             .run_lookup(points, queries.len(), 1)?
+            .into_iter()
+            .map(f32::from_bits)
+            .collect())
+    }
+}
+
+/// Lookups of a tree whose points are on the device ([`DeviceTree::timed_sample`]).
+pub struct TimedCtreeLookup<'a> {
+    tree: &'a DeviceTree,
+    points: GpuBuffer<u32>,
+    results: GpuBuffer<u32>,
+    n: usize,
+    kernel: std::sync::Arc<crate::gpu::Kernel>,
+}
+
+impl TimedCtreeLookup<'_> {
+    /// One dispatch; its GPU time in milliseconds.
+    pub fn run(&self) -> GpuResult<f64> {
+        let ((), t) = self.tree.gpu.submit_timed(|rec| {
+            let push = LookupPush {
+                tree: self.tree.params(),
+                points: self.points.address(),
+                results: self.results.address(),
+                n: self.n as u32,
+                mode: 1,
+            };
+            rec.timestamp()?;
+            rec.dispatch(
+                &self.kernel,
+                self.kernel.groups_for(self.n as u64),
+                &[],
+                &push,
+            )?;
+            rec.timestamp()
+        })?;
+        Ok((t[1] - t[0]) * 1e-6)
+    }
+
+    /// The last run's values.
+    pub fn results(&self) -> GpuResult<Vec<f32>> {
+        Ok(self
+            .results
+            .read_range(0, self.n)?
             .into_iter()
             .map(f32::from_bits)
             .collect())

@@ -3,6 +3,7 @@
 
 use super::error::CtreeError;
 use super::lattice::{Lattice, MAX_LEVELS_2D, MAX_LEVELS_3D};
+use super::tree::Border;
 
 pub use crate::shader_constants::CTREE_VALUE_FRAC_BITS as VALUE_FRAC_BITS;
 /// Largest magnitude of a value, in grey levels: the forest's pyramid stores values as i16.
@@ -82,6 +83,17 @@ impl ScalarField {
     /// Samples in all.
     pub fn samples(&self) -> usize {
         self.values.len()
+    }
+
+    /// Whether the node at finest-lattice position `p` of a level with node `spacing` codes a
+    /// residual: a sample, or with [`Border::Anchored`] the first node past a border (a corner
+    /// of a cell that holds samples, whose value anchors their predictions).
+    pub fn codes(&self, p: [u32; 3], spacing: u32, border: Border) -> bool {
+        let past = match border {
+            Border::Anchored => spacing,
+            Border::Free => 0,
+        };
+        (0..3).all(|k| p[k] < self.size[k] + past)
     }
 
     /// The fixed-point value at finest-lattice position `p`, the field's border repeated

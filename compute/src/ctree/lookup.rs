@@ -183,13 +183,16 @@ impl CompressedTree {
     }
 
     /// The value (fixed point) at `pos` (finest lattice spacings with [`POS_FRAC_BITS`]
-    /// fractional bits, clamped to the domain) at level of detail `lod` (fixed point with
+    /// fractional bits, clamped to the field's samples) at level of detail `lod` (fixed point with
     /// [`LOD_FRAC_BITS`] fractional bits: 0 is the finest level, 1 the next coarser, fractions
     /// blend the two levels around).
     pub fn lookup_fixed(&self, pos: [u32; 3], lod: u32) -> i32 {
         let lat = &self.lattice;
-        let limit = lat.extent() << POS_FRAC_BITS;
-        let pos = pos.map(|p| p.min(limit));
+        let mut clamped = [0u32; 3];
+        for (k, c) in clamped.iter_mut().enumerate() {
+            *c = pos[k].min((self.size[k] - 1) << POS_FRAC_BITS);
+        }
+        let pos = clamped;
         let finest = lat.finest() << LOD_FRAC_BITS;
         let target = finest.saturating_sub(lod).max(1 << LOD_FRAC_BITS);
         let level = target >> LOD_FRAC_BITS;

@@ -12,27 +12,31 @@
 //! - [`tree`]: the forest and the assembled [`CompressedTree`];
 //! - [`lookup`]: integer random access, the twin of the GLSL lookup;
 //! - [`builder`]: the same tree built on the device from scan, sort and compaction;
+//! - [`colour`]: RGB images as three trees of the YCoCg-R channels;
 //! - [`device`]: the tree's buffers on a device and the record kernels read it through;
+//! - [`mip_texture`]: the plain MIP texture that lookups are compared with;
 //! - [`topology`]: the byte costs of the pointer, sibling and autumnal encodings beside it.
 
 pub mod builder;
+pub mod colour;
 pub mod device;
 mod error;
 pub mod field;
 pub mod fields;
 pub mod lattice;
 pub mod lookup;
+pub mod mip_texture;
 pub mod pack;
 pub mod residuals;
 pub mod topology;
 pub mod tree;
 
 pub use builder::{CtreeBuilder, DeviceBuildReport};
-pub use device::{CtreeParams, DeviceTree, DownloadedTree};
+pub use device::{CtreeParams, DeviceTree, DownloadedTree, TimedCtreeLookup};
 pub use error::CtreeError;
 pub use field::ScalarField;
 pub use lattice::Lattice;
-pub use tree::{CompressedTree, CtreeOptions, CtreeStats, LevelRow};
+pub use tree::{Border, CompressedTree, CtreeOptions, CtreeStats, LevelRow};
 
 #[cfg(test)]
 mod tests;

@@ -4,9 +4,14 @@
 //! step, raised where the level's residuals would not fit 7 bits, so no code is ever clamped and
 //! every node reconstructs within half its level's step of the field (before pruning's exact
 //! zeros, which change nothing). A node is pruned when it and its whole subtree code zero.
+//! Of the nodes past the field's own samples (the lattice is 2^n + 1 a side), only the first
+//! past each border at each level codes a residual (against the border's value, an anchor for
+//! the cells that hold samples) with [`Border::Anchored`], none with [`Border::Free`]; the rest
+//! code zero and prune.
 
 use super::field::ScalarField;
 use super::lattice::Lattice;
+use super::tree::Border;
 
 /// Largest magnitude of a code (the 7-bit range is −64..=63; ±63 keeps it symmetric).
 pub const MAX_CODE: i32 = crate::shader_constants::CTREE_MAX_CODE as i32;
@@ -76,7 +81,7 @@ pub fn level_step(user: i32, max_abs: i32) -> i32 {
 
 impl Residuals {
     /// Quantizes `field` with finest step `step` (fixed point, ≥ 1).
-    pub fn build(field: &ScalarField, step: i32) -> Residuals {
+    pub fn build(field: &ScalarField, step: i32, border: Border) -> Residuals {
         let lat = field.lattice();
         let levels = lat.finest() as usize;
         let root_target = field.fixed_at([0; 3]);
@@ -97,9 +102,14 @@ impl Residuals {
                 } else {
                     predict(&lat, l, q, &values[l as usize - 1])
                 };
-                let target = field.fixed_at(q.map(|v| v * spacing));
+                let at = q.map(|v| v * spacing);
                 prediction.push(p);
-                residual.push(target - p);
+                // Nodes past the field's samples are never read for themselves: see Border.
+                residual.push(if field.codes(at, spacing, border) {
+                    field.fixed_at(at) - p
+                } else {
+                    0
+                });
             }
             let max_abs = residual.iter().map(|t| t.abs()).max().unwrap_or(0);
             let s = level_step(step, max_abs);

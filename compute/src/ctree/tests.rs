@@ -3,7 +3,7 @@
 use super::field::{from_fixed, ScalarField};
 use super::lookup::POS_FRAC_BITS;
 use super::residuals::Residuals;
-use super::tree::{byte_code, CompressedTree, CtreeOptions, NO_SUBTREE};
+use super::tree::{byte_code, Border, CompressedTree, CtreeOptions, NO_SUBTREE};
 
 fn smooth(dims: u32, side: u32, seed: u32) -> ScalarField {
     let size = if dims == 2 {
@@ -96,8 +96,15 @@ fn trees_decode_within_half_a_step_and_their_bytes_walk() {
         (smooth(3, 33, 3), 2.0),
         (noisy(64), 2.0),
     ] {
-        let tree = CompressedTree::build(&field, &CtreeOptions { step, forest: None }).unwrap();
-        let res = Residuals::build(&field, (step * 64.0) as i32);
+        let tree = CompressedTree::build(
+            &field,
+            &CtreeOptions {
+                step,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let res = Residuals::build(&field, (step * 64.0) as i32, Border::Anchored);
         let records = walk(&tree, &res);
         let below: u64 = tree.stats.rows[tree.forest as usize..]
             .iter()
@@ -124,6 +131,7 @@ fn every_forest_level_decodes_the_same() {
         &CtreeOptions {
             step: 1.0,
             forest: Some(1),
+            ..Default::default()
         },
     )
     .unwrap();
@@ -134,6 +142,7 @@ fn every_forest_level_decodes_the_same() {
             &CtreeOptions {
                 step: 1.0,
                 forest: Some(f),
+                ..Default::default()
             },
         )
         .unwrap();

@@ -19,6 +19,21 @@ pub struct CtreeOptions {
     pub step: f32,
     /// The forest's level F (1 ..= finest), or `None` for the F with the fewest bytes.
     pub forest: Option<u32>,
+    /// Which nodes past the field's samples code a residual.
+    pub border: Border,
+}
+
+/// What the lattice's nodes past the field's samples (it is 2^n + 1 a side) code. Lookups
+/// clamp to the samples, so these nodes are only ever predictions for their neighbours inside;
+/// which choice costs fewer bytes depends on the content (`bench ctree` measures both).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Border {
+    /// At each level, the first node past each border codes the border's value (an anchor for
+    /// the cells that hold samples); the nodes further out code nothing.
+    #[default]
+    Anchored,
+    /// No node past the samples codes anything: they keep their predictions.
+    Free,
 }
 
 impl CtreeOptions {
@@ -50,6 +65,7 @@ impl Default for CtreeOptions {
         CtreeOptions {
             step: 1.0,
             forest: None,
+            border: Border::Anchored,
         }
     }
 }
@@ -126,7 +142,7 @@ impl CompressedTree {
     /// Quantizes, prunes and packs `field`.
     pub fn build(field: &ScalarField, params: &CtreeOptions) -> Result<CompressedTree, CtreeError> {
         let step = params.validate(field)?;
-        let res = Residuals::build(field, step);
+        let res = Residuals::build(field, step, params.border);
         let packing = Packing::build(&res);
         Ok(Self::assemble(field.size, &res, &packing, params.forest))
     }

@@ -24,6 +24,7 @@ layout(push_constant, scalar) uniform Push {
     uint records;
     uint candidates;
     uint forest;
+    uint border;        // CTREE_BORDER_*
 } pc;
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer I32Ptr { int v[]; };
@@ -103,6 +104,18 @@ uint ct_child_count(uvec3 open) {
 uvec3 ct_child(uint l, uvec3 q, uint c) {
     uvec3 base = l == 0u ? uvec3(0u) : 2u * q;
     return base + uvec3(c & 1u, (c >> 1) & 1u, (c >> 2) & 1u);
+}
+
+uvec3 ct_finest(uint l, uvec3 q) {
+    return l == 0u ? uvec3(0u) : q * (1u << (pc.n + 1u - l));
+}
+
+// Whether the node at level-l coordinates q codes a residual: a sample, or with
+// CTREE_BORDER_ANCHORED the first node past a border (field::ScalarField::codes).
+bool ct_codes_residual(uint l, uvec3 q) {
+    uint spacing = l == 0u ? 0u : 1u << (pc.n + 1u - l);
+    uint past = pc.border == CTREE_BORDER_ANCHORED ? spacing : 0u;
+    return all(lessThan(ct_finest(l, q), pc.size + past));
 }
 
 // The field at level-l coordinates q (its border repeated past its size).

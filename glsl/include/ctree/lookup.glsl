@@ -233,8 +233,7 @@ ivec2 ctree_evaluate(CtreeParams p, uint l, uvec3 pos, bool finer) {
 }
 
 int ctree_lookup_fixed(CtreeParams p, uvec3 pos, uint lod) {
-    uint limit = (1u << p.n) << CTREE_POS_FRAC_BITS;
-    pos = min(pos, uvec3(limit));
+    pos = min(pos, (p.size - 1u) << CTREE_POS_FRAC_BITS);
     uint finest = (p.n + 1u) << CTREE_LOD_FRAC_BITS;
     uint target = max(finest - min(lod, finest), 1u << CTREE_LOD_FRAC_BITS);
     uint level = target >> CTREE_LOD_FRAC_BITS;

@@ -5,8 +5,11 @@
 // Bindings (block names, bound by renderer::image_texture::DeviceImages::bindings):
 //   ImageRecords  size, levels, encoding and the first texel of each level per image
 //   ImageTexels   RGBA8 texels of every level of every image, row 0 at the image's top
+//   ImageCtrees   the three compressed trees (Y, Co, Cg) of each IMAGE_ENCODING_CTREE image
 #ifndef LAZYSOLID_RENDER_IMAGE_GLSL
 #define LAZYSOLID_RENDER_IMAGE_GLSL
+
+#include "ctree/lookup.glsl"
 
 struct ImageRecord {
     uint width;
@@ -16,9 +19,16 @@ struct ImageRecord {
     uint level_offset[IMAGE_MAX_LEVELS];
     uint normal_filter;  // NORMAL_FILTER_* of a normal map
     uint vmf_record;     // its VmfRecord (render/normal_vmf.glsl) when filtered by vMF
+    uint ctree_record;   // its ImageCtree when IMAGE_ENCODING_CTREE
+};
+struct ImageCtree {
+    CtreeParams y;
+    CtreeParams co;
+    CtreeParams cg;
 };
 layout(binding = 16, scalar) readonly buffer ImageRecords { ImageRecord image_records[]; };
 layout(binding = 17, scalar) readonly buffer ImageTexels { uint image_texels[]; };
+layout(binding = 20, scalar) readonly buffer ImageCtrees { ImageCtree image_ctrees[]; };
 
 float image_srgb_to_linear(float c) {
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
@@ -62,8 +72,30 @@ vec4 image_bilinear(uint img, uint l, vec2 uv) {
     return a * (1.0 - fy) + b * fy;
 }
 
+// A tree-coded image at uv (v up, repeating) and a fractional level: each YCoCg channel read
+// through its tree (primal interpolation, levels blended), rounded, the exact integer inverse
+// of YCoCg-R, then sRGB decoded (lazysolid_compute::ctree::colour; CPU twin:
+// image_texture/sample.rs, ctree_tap).
+vec4 image_ctree(uint img, vec2 uv, float lod) {
+    ImageCtree t = image_ctrees[image_records[img].ctree_record];
+    vec3 p = vec3(fract(uv.x), 1.0 - fract(uv.y), 0.0);
+    // floor(x + 0.5): GLSL leaves round() of halves to the implementation.
+    int y = int(floor(ctree_sample(t.y, p, lod) + 0.5));
+    int co = int(floor(ctree_sample(t.co, p, lod) + 0.5));
+    int cg = int(floor(ctree_sample(t.cg, p, lod) + 0.5));
+    int s = y - (cg >> 1);
+    int g = cg + s;
+    int b = s - (co >> 1);
+    int r = b + co;
+    vec3 c = vec3(clamp(ivec3(r, g, b), ivec3(0), ivec3(255))) / 255.0;
+    return vec4(image_srgb_to_linear(c.x), image_srgb_to_linear(c.y), image_srgb_to_linear(c.z), 1.0);
+}
+
 // Trilinear lookup at a fractional level, clamped to the pyramid.
 vec4 image_trilinear(uint img, vec2 uv, float lod) {
+    if (image_records[img].encoding == IMAGE_ENCODING_CTREE) {
+        return image_ctree(img, uv, lod);
+    }
     float top = float(image_records[img].levels - 1u);
     lod = clamp(lod, 0.0, top);
     float l0 = floor(lod);

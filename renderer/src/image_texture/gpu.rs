@@ -3,9 +3,12 @@
 
 use super::{ImageError, ImageTexture, MAX_IMAGE_TEXELS};
 use crate::normal_map::pyramid::VmfPyramid;
-use crate::shader_constants::{IMAGE_MAX_LEVELS, NORMAL_FILTER_VMF};
+use crate::shader_constants::{IMAGE_ENCODING_CTREE, IMAGE_MAX_LEVELS, NORMAL_FILTER_VMF};
 use bytemuck::{Pod, Zeroable};
-use lazysolid_compute::gpu::{BufferArg, Gpu, GpuBuffer, GpuResult};
+use lazysolid_compute::ctree::colour::ColourTrees;
+use lazysolid_compute::ctree::{CtreeParams, DeviceTree};
+use lazysolid_compute::gpu::{BufferArg, DeviceRecords, Gpu, GpuBuffer, GpuResult};
+use std::sync::Arc;
 
 /// Most vMF lobes of a scene (all levels of all maps, at the scene's stride): one 128 MiB
 /// storage buffer of (α, α·r) in f32.
@@ -33,6 +36,8 @@ pub struct GpuImageRecord {
     /// A vMF-filtered normal map's first lobe of each level in the lobe buffer is
     /// `vmf_level_offset[l]` of its [`GpuVmfRecord`], at this index (0 otherwise).
     pub vmf_record: u32,
+    /// A tree-coded image's record in `ImageCtrees` (`IMAGE_ENCODING_CTREE`; 0 otherwise).
+    pub ctree_record: u32,
 }
 
 /// Where a vMF-filtered normal map's lobes lie: every texel holds the scene's `VMF_LOBES`
@@ -48,7 +53,7 @@ pub struct GpuVmfRecord {
 
 const _: () = assert!(size_of::<GpuVmfRecord>() == 64);
 
-const _: () = assert!(size_of::<GpuImageRecord>() == 80);
+const _: () = assert!(size_of::<GpuImageRecord>() == 84);
 
 /// The images of a scene, gathered on the CPU and uploaded once.
 #[derive(Default)]
@@ -58,6 +63,7 @@ pub struct ImageSet {
     vmf_records: Vec<GpuVmfRecord>,
     vmf_lobes: Vec<[f32; 4]>,
     vmf_stride: usize,
+    ctrees: Vec<Arc<ColourTrees>>,
 }
 
 impl ImageSet {
@@ -159,6 +165,21 @@ impl ImageSet {
         Ok(self.records.len() as u32 - 1)
     }
 
+    /// Adds a colour image read through its compressed trees (`IMAGE_ENCODING_CTREE`) instead
+    /// of texels; returns its index.
+    pub fn add_ctree(&mut self, image: &ImageTexture, trees: &Arc<ColourTrees>) -> u32 {
+        self.records.push(GpuImageRecord {
+            width: image.width,
+            height: image.height,
+            levels: 1,
+            encoding: IMAGE_ENCODING_CTREE,
+            ctree_record: self.ctrees.len() as u32,
+            ..Default::default()
+        });
+        self.ctrees.push(trees.clone());
+        self.records.len() as u32 - 1
+    }
+
     /// Number of images.
     pub fn len(&self) -> usize {
         self.records.len()
@@ -195,7 +216,33 @@ impl ImageSet {
         } else {
             self.vmf_lobes.clone()
         };
+        let trees = self
+            .ctrees
+            .iter()
+            .map(|t| {
+                let [y, co, cg] = &t.channels;
+                Ok([
+                    DeviceTree::upload(gpu, y)?,
+                    DeviceTree::upload(gpu, co)?,
+                    DeviceTree::upload(gpu, cg)?,
+                ])
+            })
+            .collect::<GpuResult<Vec<_>>>()?;
+        let mut ctree_records: Vec<ImageCtree> = trees
+            .iter()
+            .map(|[y, co, cg]| ImageCtree {
+                y: y.params(),
+                co: co.params(),
+                cg: cg.params(),
+            })
+            .collect();
+        if ctree_records.is_empty() {
+            ctree_records.push(ImageCtree::default());
+        }
+        let ctree_bytes = trees.iter().flatten().map(DeviceTree::size_bytes).sum();
         Ok(DeviceImages {
+            ctree_records: DeviceRecords::new(gpu, "image ctree records", &ctree_records)?,
+            ctree_bytes,
             records: GpuBuffer::from_slice(gpu, "image records", &records)?,
             texels: GpuBuffer::from_slice(gpu, "image texels", &texels)?,
             vmf_records: GpuBuffer::from_slice(gpu, "vmf records", &vmf_records)?,
@@ -204,8 +251,24 @@ impl ImageSet {
     }
 }
 
+lazysolid_compute::push_block! {
+    /// What `ImageCtrees` holds per tree-coded image: its three trees.
+    #[derive(Clone, Copy, Default)]
+    pub struct ImageCtree<'a> {
+        /// Luma.
+        pub y: CtreeParams<'a>,
+        /// Orange chroma.
+        pub co: CtreeParams<'a>,
+        /// Green chroma.
+        pub cg: CtreeParams<'a>,
+    }
+}
+
 /// The uploaded images: one owner of both buffers.
 pub struct DeviceImages {
+    /// The records of the tree-coded images, holding their trees' buffers.
+    ctree_records: DeviceRecords,
+    ctree_bytes: u64,
     records: GpuBuffer<GpuImageRecord>,
     texels: GpuBuffer<u32>,
     vmf_records: GpuBuffer<GpuVmfRecord>,
@@ -214,10 +277,11 @@ pub struct DeviceImages {
 
 impl DeviceImages {
     /// The bindings of `render/image.glsl`, by block name.
-    pub fn bindings(&self) -> [(&'static str, BufferArg<'_>); 2] {
+    pub fn bindings(&self) -> [(&'static str, BufferArg<'_>); 3] {
         [
             ("ImageRecords", self.records.arg()),
             ("ImageTexels", self.texels.arg()),
+            ("ImageCtrees", self.ctree_records.arg()),
         ]
     }
 
@@ -235,5 +299,6 @@ impl DeviceImages {
             + self.texels.bytes()
             + self.vmf_records.bytes()
             + self.vmf_lobes.bytes()
+            + self.ctree_bytes
     }
 }

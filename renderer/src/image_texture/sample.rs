@@ -5,6 +5,7 @@ use super::pyramid::{level_size, srgb_to_linear, unpack};
 use super::{ImageEncoding, ImageTexture};
 use crate::shader_constants::IMAGE_MAX_ANISOTROPY;
 use glam::{Vec2, Vec4};
+use lazysolid_compute::ctree::colour::ColourTrees;
 
 /// Texel (x, y) of level `l` (wrapped), decoded: linear colour and alpha, or the normal's xyz
 /// (w = 1).
@@ -54,6 +55,34 @@ pub fn trilinear(image: &ImageTexture, uv: Vec2, lod: f32) -> Vec4 {
     } else {
         a
     }
+}
+
+/// One tap of a tree-coded image (`image_ctree` in GLSL): each YCoCg channel through its tree
+/// at (u, 1 − v) wrapped and level `lod`, rounded (halves up), the exact integer inverse of
+/// YCoCg-R, then sRGB decoded; alpha 1.
+pub fn ctree_tap(trees: &ColourTrees, uv: Vec2, lod: f32) -> Vec4 {
+    let p = [uv.x - uv.x.floor(), 1.0 - (uv.y - uv.y.floor()), 0.0];
+    let [y, co, cg] = trees
+        .channels
+        .each_ref()
+        .map(|t| (t.sample(p, lod) + 0.5).floor() as i32);
+    let s = y - (cg >> 1);
+    let g = cg + s;
+    let b = s - (co >> 1);
+    let r = b + co;
+    let c = [r, g, b].map(|v| srgb_to_linear(v.clamp(0, 255) as f32 / 255.0));
+    Vec4::new(c[0], c[1], c[2], 1.0)
+}
+
+/// [`lookup`] of a tree-coded image: the same taps, each read through the trees.
+pub fn lookup_ctree(image: &ImageTexture, trees: &ColourTrees, uv: Vec2, a: Vec2, b: Vec2) -> Vec4 {
+    let (lod, n, axis) = footprint_taps(image, a, b);
+    let mut sum = Vec4::ZERO;
+    for k in 0..n {
+        let t = (k as f32 + 0.5) / n as f32 - 0.5;
+        sum += ctree_tap(trees, uv + axis * t, lod);
+    }
+    sum / n as f32
 }
 
 /// The level and taps of an anisotropic lookup whose footprint has the axes `a` and `b`

@@ -113,7 +113,10 @@ impl PathTracer {
                     .map_err(|e| RenderError::Settings(format!("material {:?}: {e}", m.name)))
             };
             let albedo_image = match &m.albedo_map {
-                Some(a) => add(&a.image)?,
+                Some(a) => match &a.ctree {
+                    Some((_, trees)) => image_set.add_ctree(&a.image, trees),
+                    None => add(&a.image)?,
+                },
                 None => IMAGE_NONE,
             };
             let normal_image = match &m.normal_map {
@@ -216,13 +219,14 @@ impl PathTracer {
         self.ray_count.write(0, &[0])?;
         let [b0, b1, b2, b3, b4] = self.bvh.bindings();
         let [s0, s1] = self.stores.bindings();
-        let [i0, i1] = self.images.bindings();
+        let [i0, i1, i2] = self.images.bindings();
         let [v0, v1] = self.images.vmf_bindings();
         let bindings = [
             s0,
             s1,
             i0,
             i1,
+            i2,
             v0,
             v1,
             self.bvh.uv_binding(),

@@ -148,6 +148,7 @@ pub(super) struct RawMaterial {
     pub preset: Option<Spanned<RawPreset>>,
     pub texture: Option<Spanned<RawTexture>>,
     pub albedo_map: Option<Spanned<String>>,
+    pub albedo_ctree_step: Option<Spanned<f32>>,
     pub normal_filter: Option<Spanned<RawNormalFilter>>,
     pub vmf_lobes: Option<Spanned<u32>>,
     pub normal_map: Option<Spanned<String>>,

@@ -250,11 +250,23 @@ pub struct ImageMap {
     pub source: PathBuf,
     /// Its levels, as uploaded.
     pub image: std::sync::Arc<crate::image_texture::ImageTexture>,
+    /// With `albedo_ctree_step`: the image as compressed random-access trees, which the
+    /// renderer reads instead of the levels, and the step they were built with.
+    pub ctree: Option<(
+        f32,
+        std::sync::Arc<lazysolid_compute::ctree::colour::ColourTrees>,
+    )>,
 }
 
 impl PartialEq for ImageMap {
     fn eq(&self, o: &Self) -> bool {
-        self.source == o.source && std::sync::Arc::ptr_eq(&self.image, &o.image)
+        self.source == o.source
+            && std::sync::Arc::ptr_eq(&self.image, &o.image)
+            && match (&self.ctree, &o.ctree) {
+                (None, None) => true,
+                (Some((a, x)), Some((b, y))) => a == b && std::sync::Arc::ptr_eq(x, y),
+                _ => false,
+            }
     }
 }
 

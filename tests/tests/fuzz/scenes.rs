@@ -45,6 +45,7 @@ const SCENES: &[&str] = &[
 
 /// Every key of every scene table (`renderer/src/scene/raw.rs`) and every table header.
 const KEYS: &[&str] = &[
+    "albedo_ctree_step",
     "albedo_map",
     "animation",
     "aperture_radius",

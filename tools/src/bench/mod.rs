@@ -2,6 +2,7 @@
 //! median, ratios against a baseline measured in the same run, table + CSV + JSON).
 
 mod correction_profile;
+mod ctree;
 mod cuts;
 mod glints;
 pub mod harness;
@@ -56,6 +57,10 @@ pub enum BenchCommand {
     /// against a many-sample reference (FLIP, far-field error), and the vMF fit's time and
     /// memory per map size.
     Normalmaps(normalmaps::NormalMapsArgs),
+    /// Compressed random-access trees (thesis §4.1.3): rate–distortion against BC1, BC4, BC7
+    /// and 2×2 VQ, Table 4.2 and topology bytes per node, device against host builds, lookups
+    /// against the sparse stores and a plain MIP texture.
+    Ctree(ctree::CtreeArgs),
     /// Thesis Table 4.1: memory and lookup speed of every sparse texture structure over a mesh
     /// at one equivalent resolution, seen from a fixed 800×800 viewpoint, with pictures.
     Textures(textures::TexturesArgs),
@@ -91,6 +96,7 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Glints(a) => &a.common,
         BenchCommand::Textures(a) => &a.common,
         BenchCommand::Normalmaps(a) => &a.common,
+        BenchCommand::Ctree(a) => &a.common,
     };
     check_writable_dir("--out-dir", &common.out_dir)?;
     match command {
@@ -106,5 +112,6 @@ pub fn run(command: BenchCommand, global: &GlobalArgs) -> anyhow::Result<()> {
         BenchCommand::Glints(args) => glints::run(&args, global),
         BenchCommand::Textures(args) => textures::run(&args, global),
         BenchCommand::Normalmaps(args) => normalmaps::run(&args, global),
+        BenchCommand::Ctree(args) => ctree::run(&args, global),
     }
 }

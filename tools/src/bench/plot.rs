@@ -66,11 +66,23 @@ pub fn line_chart(
     y_label: &str,
     series: &[Series],
 ) -> anyhow::Result<()> {
+    xy_chart(path, title, x_label, y_label, series, true)
+}
+
+/// A line chart (a series of one point is a marker), the y axis logarithmic when `log_y`.
+pub fn xy_chart(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+    log_y: bool,
+) -> anyhow::Result<()> {
     ensure_font()?;
     let all: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter().copied())
-        .filter(|p| p.1 > 0.0)
+        .filter(|p| p.1 > 0.0 && p.1.is_finite())
         .collect();
     anyhow::ensure!(!all.is_empty(), "{}: nothing to plot", path.display());
     let (x0, x1) = all
@@ -86,39 +98,63 @@ pub fn line_chart(
         let root = BitMapBackend::with_buffer(&mut pixels, (image_width, image_height))
             .into_drawing_area();
         root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root)
+        let mut builder = ChartBuilder::on(&root);
+        builder
             .caption(title, ("sans-serif", 24))
             .margin(20)
             .x_label_area_size(50)
-            .y_label_area_size(80)
-            .build_cartesian_2d(
-                (x0 - pad)..(x1 + pad),
-                ((y0 * 0.8)..(y1 * 1.25)).log_scale(),
-            )?;
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .label_style(("sans-serif", 16))
-            .draw()?;
-        for (i, s) in series.iter().enumerate() {
-            let color = COLORS[i % COLORS.len()];
-            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(|p| p.1 > 0.0).collect();
-            chart
-                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
-                .label(s.name.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 4, color.filled())))?;
+            .y_label_area_size(80);
+        macro_rules! draw {
+            ($chart:expr) => {{
+                let mut chart = $chart;
+                chart
+                    .configure_mesh()
+                    .x_desc(x_label)
+                    .y_desc(y_label)
+                    .label_style(("sans-serif", 16))
+                    .draw()?;
+                for (i, s) in series.iter().enumerate() {
+                    let color = COLORS[i % COLORS.len()];
+                    let pts: Vec<(f64, f64)> = s
+                        .points
+                        .iter()
+                        .copied()
+                        .filter(|p| p.1 > 0.0 && p.1.is_finite())
+                        .collect();
+                    let size = if pts.len() == 1 { 7 } else { 4 };
+                    chart
+                        .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
+                        .label(s.name.clone())
+                        .legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                        });
+                    chart.draw_series(
+                        pts.into_iter()
+                            .map(|p| Circle::new(p, size, color.filled())),
+                    )?;
+                }
+                chart
+                    .configure_series_labels()
+                    .background_style(WHITE.mix(0.85))
+                    .border_style(BLACK)
+                    .label_font(("sans-serif", 15))
+                    .position(if log_y {
+                        SeriesLabelPosition::LowerLeft
+                    } else {
+                        SeriesLabelPosition::LowerRight
+                    })
+                    .draw()?;
+            }};
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 15))
-            .position(SeriesLabelPosition::LowerLeft)
-            .draw()?;
+        if log_y {
+            draw!(builder.build_cartesian_2d(
+                (x0 - pad)..(x1 + pad),
+                ((y0 * 0.8)..(y1 * 1.25)).log_scale()
+            )?);
+        } else {
+            let ypad = ((y1 - y0) * 0.05).max(0.5);
+            draw!(builder.build_cartesian_2d((x0 - pad)..(x1 + pad), (y0 - ypad)..(y1 + ypad))?);
+        }
         root.present()?;
     }
     rgb_image(path, image_width, image_height, pixels)

@@ -426,7 +426,46 @@ fn report_maps(scene: &Scene) {
         for (what, fit) in maps.into_iter().chain(glint) {
             eprintln!("material {:?}: {what} {fit}", m.name);
         }
+        if let Some(a) = &m.albedo_map {
+            if let Some((step, trees)) = &a.ctree {
+                eprintln!(
+                    "material {:?}: albedo map {} read through compressed trees at step {step}: {}",
+                    m.name,
+                    a.source.display(),
+                    ctree_summary(&a.image, trees)
+                );
+            }
+        }
     }
+}
+
+/// Bytes, bits per texel and PSNR against the image of an albedo map's trees.
+fn ctree_summary(
+    image: &lazysolid_renderer::image_texture::ImageTexture,
+    trees: &lazysolid_compute::ctree::colour::ColourTrees,
+) -> String {
+    let original: Vec<u8> = image.levels[0]
+        .iter()
+        .flat_map(|&t| [t as u8, (t >> 8) as u8, (t >> 16) as u8])
+        .collect();
+    let decoded = trees.decode();
+    let se: f64 = original
+        .iter()
+        .zip(&decoded)
+        .map(|(&a, &b)| (a as f64 - b as f64).powi(2))
+        .sum();
+    let mse = se / original.len() as f64;
+    let psnr = if mse == 0.0 {
+        "lossless".to_string()
+    } else {
+        format!("PSNR {:.2} dB", 10.0 * (255.0f64 * 255.0 / mse).log10())
+    };
+    let bytes = trees.size_bytes();
+    let texels = (image.width * image.height) as f64;
+    format!(
+        "{bytes} bytes, {:.2} bits per texel (the RGBA8 image: 32), {psnr}",
+        8.0 * bytes as f64 / texels
+    )
 }
 
 /// What the scene's stores hold and what synthesizing and cutting them cost.

@@ -10,6 +10,8 @@ use crate::scene::location::{join, Doc};
 use crate::scene::raw::RawMaterial;
 use crate::scene::{ImageMap, SceneError, SolidTexture};
 use glam::Vec3;
+use lazysolid_compute::ctree::colour::ColourTrees;
+use lazysolid_compute::ctree::{CtreeError, CtreeOptions};
 use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
@@ -36,14 +38,28 @@ pub(super) fn albedo(
             .map_err(|e| doc.invalid(a.span(), join(label, "albedo_map"), e.to_string()))?;
         let top = image.levels.last().expect("a pyramid has levels")[0];
         let mean = crate::image_texture::sample::fetch_linear(&image, top).truncate();
+        let ctree = match &raw.albedo_ctree_step {
+            None => None,
+            Some(step) => {
+                let key = join(label, "albedo_ctree_step");
+                let trees = ctree_of(&image, *step.get_ref())
+                    .map_err(|e| doc.invalid(step.span(), key, e.to_string()))?;
+                Some((*step.get_ref(), Arc::new(trees)))
+            }
+        };
         return Ok((
             mean,
             None,
             Some(ImageMap {
                 source: file,
                 image: Arc::new(image),
+                ctree,
             }),
         ));
+    }
+    if let Some(step) = &raw.albedo_ctree_step {
+        let why = "compresses the albedo_map, which this material does not have";
+        return Err(doc.invalid(step.span(), join(label, "albedo_ctree_step"), why));
     }
     let (color, texture) = solid_albedo(doc, raw, table, label, base)?;
     Ok((color, texture, None))
@@ -80,4 +96,17 @@ fn solid_albedo(
             ),
         )),
     }
+}
+
+/// The image's finest level as three compressed trees (YCoCg-R) at `step` grey levels.
+fn ctree_of(image: &ImageTexture, step: f32) -> Result<ColourTrees, CtreeError> {
+    let rgb: Vec<u8> = image.levels[0]
+        .iter()
+        .flat_map(|&t| [t as u8, (t >> 8) as u8, (t >> 16) as u8])
+        .collect();
+    let options = CtreeOptions {
+        step,
+        ..Default::default()
+    };
+    ColourTrees::build(&image.name, &rgb, image.width, image.height, &options)
 }

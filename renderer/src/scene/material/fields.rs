@@ -33,7 +33,7 @@ fn kind_name(kind: RawMaterialKind) -> &'static str {
 }
 
 /// The kinds that accept each optional key, for "does not apply" messages.
-const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 20] = {
+const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 21] = {
     use RawMaterialKind::*;
     [
         (
@@ -47,6 +47,7 @@ const ACCEPTED_BY: [(&str, &[RawMaterialKind]); 20] = {
         ("preset", &[Conductor, Glint]),
         ("texture", &[Lambertian, Plastic]),
         ("albedo_map", &[Lambertian, Plastic]),
+        ("albedo_ctree_step", &[Lambertian, Plastic]),
         ("normal_map", &[Lambertian, Conductor, Plastic, Glint]),
         ("height_map", &[Lambertian, Conductor, Plastic, Glint]),
         ("height_scale", &[Lambertian, Conductor, Plastic, Glint]),
@@ -69,7 +70,7 @@ pub(super) fn reject_inapplicable(
     label: &str,
 ) -> Result<(), SceneError> {
     let kind = *raw.kind.get_ref();
-    let spans: [(&str, Option<Range<usize>>); 20] = [
+    let spans: [(&str, Option<Range<usize>>); 21] = [
         ("color", raw.color.as_ref().map(Spanned::span)),
         ("k", raw.k.as_ref().map(Spanned::span)),
         ("emission", raw.emission.as_ref().map(Spanned::span)),
@@ -78,6 +79,10 @@ pub(super) fn reject_inapplicable(
         ("preset", raw.preset.as_ref().map(Spanned::span)),
         ("texture", raw.texture.as_ref().map(Spanned::span)),
         ("albedo_map", raw.albedo_map.as_ref().map(Spanned::span)),
+        (
+            "albedo_ctree_step",
+            raw.albedo_ctree_step.as_ref().map(Spanned::span),
+        ),
         ("normal_map", raw.normal_map.as_ref().map(Spanned::span)),
         ("height_map", raw.height_map.as_ref().map(Spanned::span)),
         ("height_scale", raw.height_scale.as_ref().map(Spanned::span)),
