@@ -121,6 +121,10 @@ pub const PATH_TRACE_TEXTURE_KINDS_ID: u32 = 4;
 /// Specialization constant id of the path tracer's normal-map switch (1 when a scene material
 /// has a normal map; 0 compiles the tangent frame and the map lookup out).
 pub const PATH_TRACE_NORMAL_MAPS_ID: u32 = 5;
+/// Specialization constant id of the image lookup's compressed-tree switch
+/// (`render/image.glsl`: 1 when an image is read through compressed trees; 0 compiles that
+/// lookup out of every kernel that reads images, lavapipe running branches masked).
+pub const IMAGE_CTREES_ID: u32 = 7;
 /// Nearest-texel store reads.
 pub const STORE_FILTER_NEAREST: u32 = 0;
 /// Trilinear store reads (the store holds the interpolation voxels).

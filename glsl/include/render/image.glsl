@@ -30,6 +30,9 @@ layout(binding = 16, scalar) readonly buffer ImageRecords { ImageRecord image_re
 layout(binding = 17, scalar) readonly buffer ImageTexels { uint image_texels[]; };
 layout(binding = 20, scalar) readonly buffer ImageCtrees { ImageCtree image_ctrees[]; };
 
+// 1 when an image of the set is read through compressed trees; 0 compiles image_ctree out.
+layout(constant_id = IMAGE_CTREES_ID) const uint IMAGE_CTREES = 1u;
+
 float image_srgb_to_linear(float c) {
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
@@ -93,7 +96,7 @@ vec4 image_ctree(uint img, vec2 uv, float lod) {
 
 // Trilinear lookup at a fractional level, clamped to the pyramid.
 vec4 image_trilinear(uint img, vec2 uv, float lod) {
-    if (image_records[img].encoding == IMAGE_ENCODING_CTREE) {
+    if (IMAGE_CTREES != 0u && image_records[img].encoding == IMAGE_ENCODING_CTREE) {
         return image_ctree(img, uv, lod);
     }
     float top = float(image_records[img].levels - 1u);

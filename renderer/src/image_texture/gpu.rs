@@ -180,6 +180,12 @@ impl ImageSet {
         self.records.len() as u32 - 1
     }
 
+    /// Whether an image is read through compressed trees (the kernels that read the set compile
+    /// that lookup in only then: `IMAGE_CTREES_ID`).
+    pub fn has_ctrees(&self) -> bool {
+        !self.ctrees.is_empty()
+    }
+
     /// Number of images.
     pub fn len(&self) -> usize {
         self.records.len()

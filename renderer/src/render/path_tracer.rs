@@ -11,7 +11,7 @@ use crate::normal_map::pyramid::VmfPyramid;
 use crate::output::Film;
 use crate::scene::{Environment, NormalFilter, RenderSettings, Scene, MAX_DEPTH};
 use crate::shader_constants::{
-    IMAGE_NONE, NORMAL_FILTER_MIP, NORMAL_FILTER_NONE, NORMAL_FILTER_VMF,
+    IMAGE_CTREES_ID, IMAGE_NONE, NORMAL_FILTER_MIP, NORMAL_FILTER_NONE, NORMAL_FILTER_VMF,
     PATH_TRACE_MATERIAL_KINDS_ID, PATH_TRACE_NORMAL_MAPS_ID, PATH_TRACE_STORE_KINDS_ID,
     PATH_TRACE_TEXTURE_KINDS_ID, PATH_TRACE_VMF_LOBES_ID,
 };
@@ -132,6 +132,7 @@ impl PathTracer {
                 ..GpuMaterial::from(m)
             });
         }
+        let image_ctrees = image_set.has_ctrees();
         let images = image_set.upload(gpu)?;
         let lights: Vec<GpuLight> = scene.lights.iter().map(GpuLight::from).collect();
         // A binding cannot be empty: a scene without lights still gets one (unused) record.
@@ -176,6 +177,7 @@ impl PathTracer {
                             | ((vmf_lobes > 0) as u32) << 1,
                     ),
                     (PATH_TRACE_VMF_LOBES_ID, vmf_lobes.max(1) as u32),
+                    (IMAGE_CTREES_ID, image_ctrees as u32),
                 ],
             )?,
             frame_buf: GpuBuffer::from_slice(gpu, "render frame", &[frame])?,
