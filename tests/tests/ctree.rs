@@ -1,6 +1,7 @@
 //! Compressed random-access trees: the GLSL lookup against its CPU twin, bit for bit, on 2D and
 //! 3D trees at lattice points, random points and fractional levels of detail.
 
+use crate::uv_maps::quad_scene_sized;
 use glam::{UVec4, Vec4};
 use lazysolid_compute::ctree::fields::{terrain, torus_distance};
 use lazysolid_compute::ctree::lookup::{LOD_FRAC_BITS, POS_FRAC_BITS};
@@ -183,38 +184,8 @@ fn a_scene_renders_an_albedo_map_read_through_compressed_trees() {
     });
     img.save(dir.path().join("smooth.png")).unwrap();
     let scene = |extra: &str| {
-        format!(
-            r#"
-[camera]
-position = [0.5, 4.0, 0.5]
-look_at = [0.5, 0.0, 0.5]
-up = [0.0, 0.0, -1.0]
-fov_y = 14.0
-
-[render]
-width = 64
-height = 64
-spp = 4
-max_depth = 1
-
-[[mesh]]
-name = "quad"
-shape = "quad"
-
-[[material]]
-name = "m"
-kind = "lambertian"
-albedo_map = "smooth.png"
-{extra}
-
-[[instance]]
-mesh = "quad"
-material = "m"
-
-[environment]
-radiance = [1.0, 1.0, 1.0]
-"#
-        )
+        let material = format!("kind = \"lambertian\"\nalbedo_map = \"smooth.png\"\n{extra}");
+        quad_scene_sized(&material, 64, 4)
     };
     let tone = ToneMap {
         exposure_ev: 0.0,

@@ -186,6 +186,11 @@ fn the_image_lookup_on_the_device_matches_its_cpu_twin() {
 /// The built-in quad seen from straight above, filling the frame, with −z up in the picture:
 /// the quad's texture coordinates put the image's top row there.
 fn quad_scene(material: &str) -> String {
+    quad_scene_sized(material, 32, 16)
+}
+
+/// [`quad_scene`] at `side`² pixels and `spp` samples per pixel.
+pub(crate) fn quad_scene_sized(material: &str, side: u32, spp: u32) -> String {
     format!(
         r#"
 [camera]
@@ -195,9 +200,9 @@ up = [0.0, 0.0, -1.0]
 fov_y = 14.0
 
 [render]
-width = 32
-height = 32
-spp = 16
+width = {side}
+height = {side}
+spp = {spp}
 max_depth = 1
 
 [[mesh]]

@@ -3,7 +3,7 @@
 
 use super::lattice::Lattice;
 use super::tree::CompressedTree;
-use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult};
+use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Kernel, PushBlock};
 use crate::kernels::ctree as kernels;
 use glam::{UVec3, UVec4, Vec4};
 
@@ -274,39 +274,49 @@ pub struct TimedCtreeLookup<'a> {
     points: GpuBuffer<u32>,
     results: GpuBuffer<u32>,
     n: usize,
-    kernel: std::sync::Arc<crate::gpu::Kernel>,
+    kernel: std::sync::Arc<Kernel>,
 }
 
 impl TimedCtreeLookup<'_> {
     /// One dispatch; its GPU time in milliseconds.
     pub fn run(&self) -> GpuResult<f64> {
-        let ((), t) = self.tree.gpu.submit_timed(|rec| {
-            let push = LookupPush {
-                tree: self.tree.params(),
-                points: self.points.address(),
-                results: self.results.address(),
-                n: self.n as u32,
-                mode: 1,
-            };
-            rec.timestamp()?;
-            rec.dispatch(
-                &self.kernel,
-                self.kernel.groups_for(self.n as u64),
-                &[],
-                &push,
-            )?;
-            rec.timestamp()
-        })?;
-        Ok((t[1] - t[0]) * 1e-6)
+        let push = LookupPush {
+            tree: self.tree.params(),
+            points: self.points.address(),
+            results: self.results.address(),
+            n: self.n as u32,
+            mode: 1,
+        };
+        timed_dispatch(&self.tree.gpu, &self.kernel, self.n, &push)
     }
 
     /// The last run's values.
     pub fn results(&self) -> GpuResult<Vec<f32>> {
-        Ok(self
-            .results
-            .read_range(0, self.n)?
-            .into_iter()
-            .map(f32::from_bits)
-            .collect())
+        read_floats(&self.results, self.n)
     }
+}
+
+/// One dispatch of `kernel` over `n` invocations between two timestamps; its GPU time in
+/// milliseconds (the timed lookups of the trees and of the MIP texture they are compared with).
+pub(crate) fn timed_dispatch<P: PushBlock>(
+    gpu: &Gpu,
+    kernel: &Kernel,
+    n: usize,
+    push: &P,
+) -> GpuResult<f64> {
+    let ((), t) = gpu.submit_timed(|rec| {
+        rec.timestamp()?;
+        rec.dispatch(kernel, kernel.groups_for(n as u64), &[], push)?;
+        rec.timestamp()
+    })?;
+    Ok((t[1] - t[0]) * 1e-6)
+}
+
+/// The first `n` words of `buffer` as the floats whose bits they hold.
+pub(crate) fn read_floats(buffer: &GpuBuffer<u32>, n: usize) -> GpuResult<Vec<f32>> {
+    Ok(buffer
+        .read_range(0, n)?
+        .into_iter()
+        .map(f32::from_bits)
+        .collect())
 }

@@ -3,6 +3,7 @@
 //! filtering at the same coordinates (`uv` over the texels' centres, clamped) by
 //! `glsl/ctree/mip_lookup.comp`, this file being its CPU twin.
 
+use super::device::{read_floats, timed_dispatch};
 use crate::gpu::{DeviceAddress, Gpu, GpuBuffer, GpuResult, Kernel};
 use crate::kernels::ctree as kernels;
 use glam::Vec4;
@@ -129,34 +130,19 @@ impl TimedMipLookup {
 
     /// One dispatch; its GPU time in milliseconds.
     pub fn run(&self) -> GpuResult<f64> {
-        let ((), t) = self.gpu.submit_timed(|rec| {
-            let push = MipLookupPush {
-                texels: self.texels.address(),
-                levels: self.levels.address(),
-                points: self.points.address(),
-                results: self.results.address(),
-                level_count: self.level_count,
-                n: self.n as u32,
-            };
-            rec.timestamp()?;
-            rec.dispatch(
-                &self.kernel,
-                self.kernel.groups_for(self.n as u64),
-                &[],
-                &push,
-            )?;
-            rec.timestamp()
-        })?;
-        Ok((t[1] - t[0]) * 1e-6)
+        let push = MipLookupPush {
+            texels: self.texels.address(),
+            levels: self.levels.address(),
+            points: self.points.address(),
+            results: self.results.address(),
+            level_count: self.level_count,
+            n: self.n as u32,
+        };
+        timed_dispatch(&self.gpu, &self.kernel, self.n, &push)
     }
 
     /// The last run's values.
     pub fn results(&self) -> GpuResult<Vec<f32>> {
-        Ok(self
-            .results
-            .read_range(0, self.n)?
-            .into_iter()
-            .map(f32::from_bits)
-            .collect())
+        read_floats(&self.results, self.n)
     }
 }
