@@ -27,12 +27,15 @@ HOST_ONLY=(
 )
 # Tests whose device work another test of the subset runs through the same kernels and the
 # same uploads and read-backs: what they add is host logic (a memory policy's bookkeeping, a
-# camera's lens, the host candidate builder's pruning against its CPU reference), which a
-# device setting cannot change. They stay in the main run.
+# camera's lens, the host candidate builder's pruning against its CPU reference, a render's
+# seed, the store records' refresh after an insert), which a device setting cannot change.
+# They stay in the main run.
 DEVICE_REPEATS=(
   every_memory_policy_returns_the_full_volume_and_recomputes_what_it_dropped
   thin_lens_blurs_only_out_of_focus
   host_candidates_equal_the_reference
+  same_seed_same_image_other_seed_other_image
+  store_records_follow_inserts
 )
 cargo_args=()
 while [ $# -gt 0 ] && [ "$1" != "--" ]; do

@@ -1,8 +1,9 @@
 //! Shared helpers for lazysolid's integration tests.
 //!
 //! Every test runs on the device the environment picks (lavapipe on CI) with the Khronos
-//! validation layer required. [`with_gpu`] fails the test on any validation error, including
-//! leaks, which the layer reports only when the device is destroyed.
+//! validation layer required. [`with_gpu`] fails the test on any validation error and on any
+//! GPU object that outlives the test; [`with_fresh_gpu`] also destroys the device, so the
+//! layer's report of leaked Vulkan objects counts too.
 
 pub mod shader_constants;
 
@@ -15,10 +16,47 @@ use lazysolid_compute::gpu::{DeviceAddress, Gpu, GpuOptions, PushRegistration};
 use lazysolid_compute::hash::Universe;
 use lazysolid_renderer::glint::synthetic::{self, BumpExtent};
 use rand::{Rng, SeedableRng};
+use std::sync::Mutex;
 
-/// Runs `test` on a fresh validated device, then destroys the device and asserts that the
-/// validation layer reported no error and that no GPU object outlived the test.
+/// Devices of [`GpuOptions::for_tests`] that finished a test cleanly, for the next tests.
+static DEVICES: Mutex<Vec<Gpu>> = Mutex::new(Vec::new());
+
+/// Runs `test` on a validated device of the test options, kept from an earlier test when one
+/// is free, and asserts that the validation layer reported no error during the test and that
+/// no GPU object outlived it (the device is again owned by its handle and kernel cache
+/// alone). A kept device keeps its kernel cache: lavapipe translates a kernel's SPIR-V
+/// again for every device, which is most of what creating a path tracer costs (about 2 s of
+/// its 2.5 s for the textured test scene, docs/testing.md), so a device per test spent
+/// minutes of the suite building the same pipelines. Tests that count pipelines, meters or
+/// destruction from a device's creation use [`with_fresh_gpu`].
 pub fn with_gpu<R>(test: impl FnOnce(&Gpu) -> R) -> R {
+    let kept = DEVICES.lock().unwrap_or_else(|p| p.into_inner()).pop();
+    let gpu = kept.unwrap_or_else(|| {
+        Gpu::new(&GpuOptions::for_tests())
+            .unwrap_or_else(|e| panic!("cannot create the test device: {e}"))
+    });
+    assert!(gpu.validation_enabled());
+    let log = gpu.validation_log();
+    let (errors, reported) = (log.errors(), log.messages().len());
+    let result = test(&gpu);
+    assert!(
+        gpu.is_sole_owner(),
+        "a GPU object outlived its test (a buffer, kernel or device handle is still alive)"
+    );
+    assert_eq!(
+        log.errors(),
+        errors,
+        "validation errors: {:#?}",
+        &log.messages()[reported..]
+    );
+    DEVICES.lock().unwrap_or_else(|p| p.into_inner()).push(gpu);
+    result
+}
+
+/// Runs `test` on a new validated device, then destroys the device and asserts that the
+/// validation layer reported no error, leaks included (the layer reports those only when the
+/// device is destroyed), and that no GPU object outlived the test.
+pub fn with_fresh_gpu<R>(test: impl FnOnce(&Gpu) -> R) -> R {
     with_gpu_options(&GpuOptions::for_tests(), test)
 }
 

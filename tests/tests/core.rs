@@ -8,7 +8,7 @@ use lazysolid_compute::gpu::{
 use lazysolid_compute::kernels;
 use lazysolid_compute::prims::push::{CopyCountPush, CopyPush};
 use lazysolid_compute::shader_constants::DEFAULT_WORKGROUP_SIZE;
-use lazysolid_tests::{random_u32, with_gpu, with_gpu_options};
+use lazysolid_tests::{random_u32, with_fresh_gpu, with_gpu, with_gpu_options};
 use std::sync::Arc;
 
 /// The device choice refuses a device that lacks a required feature before creating it, naming
@@ -54,7 +54,7 @@ fn a_missing_device_feature_is_reported_by_name() {
 /// every request and every clone of the device.
 #[test]
 fn the_kernel_cache_builds_each_pipeline_once() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let before = gpu.pipelines_created();
         let a = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         let b = gpu.clone().kernel(&kernels::prims::COPY_WORDS).unwrap();
@@ -81,10 +81,36 @@ fn the_kernel_cache_builds_each_pipeline_once() {
     });
 }
 
+/// A device kept between tests is checked by its ownership instead of its destruction: it is
+/// its handle's alone again only when every clone, buffer and kernel handed out is gone, and
+/// `with_gpu` fails a test that leaves one alive.
+#[test]
+fn a_kept_device_is_owned_again_only_when_its_objects_are_gone() {
+    with_fresh_gpu(|gpu| {
+        assert!(gpu.is_sole_owner());
+        let clone = gpu.clone();
+        assert!(!gpu.is_sole_owner(), "a clone");
+        drop(clone);
+        let buffer = GpuBuffer::<u32>::zeroed(gpu, "held", 4).unwrap();
+        assert!(!gpu.is_sole_owner(), "a buffer");
+        drop(buffer);
+        let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
+        assert!(!gpu.is_sole_owner(), "a kernel handed out");
+        drop(kernel);
+        assert!(gpu.is_sole_owner(), "the cache's own kernel does not count");
+    });
+    let mut kept = None;
+    let failed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        with_gpu(|gpu| kept = Some(GpuBuffer::<u32>::zeroed(gpu, "kept", 4).unwrap()))
+    }));
+    assert!(failed.is_err(), "a buffer outlived its test unnoticed");
+    drop(kept);
+}
+
 /// A kernel of one device cannot be dispatched on another.
 #[test]
 fn a_kernel_of_another_device_is_refused() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let other = Gpu::new(&lazysolid_compute::gpu::GpuOptions::for_tests()).unwrap();
         let foreign: Arc<Kernel> = other.kernel(&kernels::prims::COPY_WORDS).unwrap();
         let a = GpuBuffer::<u32>::zeroed(gpu, "a", 4).unwrap();
@@ -120,7 +146,7 @@ lazysolid_compute::push_block! {
 
 #[test]
 fn a_push_block_that_differs_from_glsl_is_refused_at_dispatch() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let kernel = gpu.kernel(&kernels::prims::COPY_VEC4).unwrap();
         let a = GpuBuffer::<u32>::zeroed(gpu, "a", 16).unwrap();
         let b = GpuBuffer::<u32>::zeroed(gpu, "b", 16).unwrap();
@@ -145,7 +171,7 @@ fn a_push_block_that_differs_from_glsl_is_refused_at_dispatch() {
 
 #[test]
 fn recorded_work_keeps_the_buffers_it_addresses_alive() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let kernel = gpu.kernel(&kernels::prims::COPY_VEC4).unwrap();
         let data = random_u32(1024, 7);
         let dst = GpuBuffer::<u32>::zeroed(gpu, "dst", data.len()).unwrap();
@@ -171,7 +197,7 @@ fn recorded_work_keeps_the_buffers_it_addresses_alive() {
 
 #[test]
 fn buffer_round_trip_and_empty_buffers() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let data = random_u32(10_007, 1);
         let mut buf = GpuBuffer::from_slice(gpu, "round trip", &data).unwrap();
         assert_eq!(buf.read().unwrap(), data);
@@ -187,7 +213,7 @@ fn buffer_round_trip_and_empty_buffers() {
 
 #[test]
 fn descriptor_bound_copy_kernel() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         for n in [1usize, 255, 256, 257, 100_000] {
             let data = random_u32(n, n as u64);
@@ -201,7 +227,7 @@ fn descriptor_bound_copy_kernel() {
 
 #[test]
 fn dispatch_interface_errors_name_the_kernel() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         let a = GpuBuffer::<u32>::zeroed(gpu, "a", 16).unwrap();
         let missing = gpu
@@ -250,7 +276,7 @@ fn dispatch_interface_errors_name_the_kernel() {
 
 #[test]
 fn over_limit_requests_are_refused_with_the_limit_named() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let info = gpu.info().clone();
         // Larger than the heap (2 GiB on lavapipe): refused before any allocation.
         let too_big = (info.heap_size.min(info.max_memory_allocation_size) / 4 + 1) as usize;
@@ -315,7 +341,7 @@ fn over_limit_requests_are_refused_with_the_limit_named() {
 
 #[test]
 fn timestamps_measure_elapsed_work() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         let n = 1 << 20;
         let src = GpuBuffer::<u32>::zeroed(gpu, "src", n).unwrap();
@@ -342,7 +368,7 @@ fn timestamps_measure_elapsed_work() {
 /// its kernel's. A readback of device-local memory is a submission of its own.
 #[test]
 fn submissions_count_their_waits_and_time_their_work() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let kernel = gpu.kernel(&kernels::prims::COPY_WORDS).unwrap();
         let n = 1 << 18;
         let src = GpuBuffer::<u32>::zeroed(gpu, "src", n).unwrap();
@@ -515,7 +541,7 @@ fn copy_words(gpu: &Gpu, kernel: &Kernel, src: &GpuBuffer<u32>, dst: &GpuBuffer<
 /// so a benchmark can read what some work needed above what it started with.
 #[test]
 fn the_memory_meter_counts_buffers_live_and_at_their_peak() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let before = gpu.mark_memory();
         assert_eq!(gpu.memory_use().peak, before);
         let bytes = 3 << 20;
@@ -555,7 +581,7 @@ fn a_device_is_destroyed_only_between_other_threads_calls() {
     let other = Gpu::new(&GpuOptions::for_tests()).unwrap();
     std::thread::scope(|s| {
         s.spawn(|| {
-            with_gpu(|gpu| {
+            with_fresh_gpu(|gpu| {
                 gpu.with_device(|_| {
                     inside_tx.send(()).unwrap();
                     std::thread::sleep(std::time::Duration::from_millis(300));

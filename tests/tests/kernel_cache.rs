@@ -6,11 +6,11 @@ use lazysolid_compute::store::{
     ColourSource, HashStore, OctreeConfig, OctreeStore, SparseStore, StoreKernels,
 };
 use lazysolid_compute::voxel::Voxelizer;
-use lazysolid_tests::{unit_mesh, with_gpu};
+use lazysolid_tests::{unit_mesh, with_fresh_gpu};
 
 #[test]
 fn building_stores_again_creates_no_pipelines() {
-    with_gpu(|gpu| {
+    with_fresh_gpu(|gpu| {
         let mesh = unit_mesh("cube.off");
         let r = 32;
         let keys = Voxelizer::new(gpu)

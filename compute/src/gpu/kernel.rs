@@ -113,6 +113,17 @@ impl Gpu {
     pub fn pipelines_created(&self) -> u64 {
         self.kernels.created.load(Ordering::Relaxed)
     }
+
+    /// Whether this handle owns the device alone, with its kernel cache: no other clone and no
+    /// buffer, record or kernel made from it is alive. A device kept for reuse (the test
+    /// suite's, whose pipelines would otherwise be built again for every test) is checked by
+    /// this between uses, where a device used once is checked by its destruction.
+    pub fn is_sole_owner(&self) -> bool {
+        let cached = self.kernels.kernels.lock().unwrap();
+        Arc::strong_count(&self.kernels) == 1
+            && cached.values().all(|k| Arc::strong_count(k) == 1)
+            && Arc::strong_count(&self.inner) == 1 + cached.len()
+    }
 }
 
 /// Identity of a pipeline: kernel name, workgroup width, specialization constants.
