@@ -25,8 +25,8 @@ static DEVICES: Mutex<Vec<Gpu>> = Mutex::new(Vec::new());
 /// is free, and asserts that the validation layer reported no error during the test and that
 /// no GPU object outlived it (the device is again owned by its handle and kernel cache
 /// alone). A kept device keeps its kernel cache: lavapipe translates a kernel's SPIR-V
-/// again for every device, which is most of what creating a path tracer costs (about 2 s of
-/// its 2.5 s for the textured test scene, docs/testing.md), so a device per test spent
+/// again for every device, which is most of what creating a path tracer costs (60 % of the
+/// 3.25 s it took for the textured test scene, docs/testing.md), so a device per test spent
 /// minutes of the suite building the same pipelines. Tests that count pipelines, meters or
 /// destruction from a device's creation use [`with_fresh_gpu`].
 pub fn with_gpu<R>(test: impl FnOnce(&Gpu) -> R) -> R {
